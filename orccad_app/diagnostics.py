@@ -1,0 +1,94 @@
+"""Source locations and located errors shared by every layer.
+
+Every user-facing error in ORCCAD is an :class:`OrccadError`. When it carries a
+:class:`SourceLocation`, :func:`format_diagnostic` renders it the way compilers do::
+
+    missions/abro.orc:7:9: error: undeclared signal 'C'
+        await C;
+              ^
+
+The CLI prints that and exits with status 2; no Python traceback reaches the user.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "SourceLocation",
+    "OrccadError",
+    "Diagnostic",
+    "format_diagnostic",
+    "NOWHERE",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class SourceLocation:
+    """A position in a source file; ``line`` and ``col`` are 1-based."""
+
+    file: str
+    line: int
+    col: int
+    end_line: int | None = None
+    end_col: int | None = None
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.col}"
+
+
+NOWHERE = SourceLocation("<unknown>", 0, 0)
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostic:
+    """One message about the source: ``severity`` is ``error``, ``warning`` or ``note``."""
+
+    severity: str
+    message: str
+    location: SourceLocation | None = None
+
+    def format(self, source: str | None = None) -> str:
+        return format_diagnostic(self.severity, self.message, self.location, source)
+
+
+class OrccadError(Exception):
+    """A user-facing error: bad input, never a bug. ``exit_status`` is 2 unless set."""
+
+    exit_status = 2
+
+    def __init__(self, message: str, location: SourceLocation | None = None,
+                 notes: tuple[Diagnostic, ...] = ()):
+        super().__init__(message)
+        self.message = message
+        self.location = location
+        self.notes = notes
+
+    def format(self, source: str | None = None) -> str:
+        text = format_diagnostic("error", self.message, self.location, source)
+        for note in self.notes:
+            text += "\n" + note.format(source)
+        return text
+
+
+def format_diagnostic(severity: str, message: str, location: SourceLocation | None,
+                      source: str | None = None) -> str:
+    """Render ``file:line:col: severity: message`` plus the source line and a caret."""
+    if location is None or location.line <= 0:
+        return f"orccad: {severity}: {message}"
+    head = f"{location}: {severity}: {message}"
+    if source is None:
+        try:
+            with open(location.file, encoding="utf-8") as handle:
+                source = handle.read()
+        except OSError:
+            return head
+    lines = source.splitlines()
+    if location.line > len(lines):
+        return head
+    text = lines[location.line - 1].expandtabs(4)
+    width = 1
+    if location.end_line == location.line and location.end_col and location.end_col > location.col:
+        width = location.end_col - location.col
+    caret = " " * (location.col - 1) + "^" + "~" * (width - 1)
+    return f"{head}\n    {text}\n    {caret}"
