@@ -1,0 +1,207 @@
+"""Compilation of a reactive program to an explicit automaton.
+
+Starting from the boot state, each reachable control state is reacted *symbolically*: the
+engine (:mod:`.engine`) asks an oracle for input presences and data-test outcomes as it needs
+them, and the compiler answers every way, building the state's reaction tree:
+
+1. input tests first — when the engine asks for an input not yet decided on this path, the
+   tree branches on it (present, then absent), so only the inputs a state actually looks at
+   are tested, in the order it looks at them;
+2. then, for one full input valuation, every combination of data-test outcomes is explored
+   depth-first; the recorded run-time events of each run (assignments, valued emissions, data
+   tests in execution order) are merged into a trie that becomes the data part of the tree.
+
+New control states found at the leaves are explored in turn (breadth first), up to a state
+budget; the result is minimized by bisimulation (:mod:`.minimize`).
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive import ir
+from orccad_app.reactive.automaton import DONE, RUNNING, Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.engine import BOOT, Outcome, react
+from orccad_app.reactive.minimize import minimize
+from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
+
+__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL"]
+
+#: Default state budget; ``orccad compile --max-states`` changes it.
+DEFAULT_MAX_STATES = 20_000
+#: Reaction-tree leaves allowed per state before the compiler gives up.
+MAX_LEAVES_PER_STATE = 200_000
+#: The control state of a terminated program.
+TERMINAL = ("terminated",)
+
+
+class _NeedInput(Exception):
+    def __init__(self, signal: ir.SignalDecl):
+        self.signal = signal
+
+
+class _Oracle:
+    """Answers inputs from a fixed valuation and data tests from a depth-first prefix."""
+
+    __slots__ = ("valuation", "prefix", "asked", "answers")
+
+    def __init__(self, valuation: dict, prefix: list[bool]):
+        self.valuation = valuation
+        self.prefix = prefix
+        self.asked: dict[int, bool] = {}
+        self.answers: list[bool] = []
+
+    def input(self, signal: ir.SignalDecl) -> bool:
+        try:
+            return self.valuation[signal]
+        except KeyError:
+            raise _NeedInput(signal) from None
+
+    def data(self, number: int) -> bool:
+        answer = self.asked.get(number)
+        if answer is None:
+            position = len(self.answers)
+            answer = self.prefix[position] if position < len(self.prefix) else True
+            self.asked[number] = answer
+            self.answers.append(answer)
+        return answer
+
+
+class _Explorer:
+    def __init__(self, prep: Prepared, max_states: int):
+        self.prep = prep
+        self.max_states = max_states
+        self.leaves = 0
+
+    def tree(self, state) -> object:
+        self.leaves = 0
+        if state == TERMINAL:
+            return Leaf(TERMINAL, (), DONE)
+        return self._inputs(state, {})
+
+    def _inputs(self, state, valuation: dict):
+        runs: list[Outcome] = []
+        prefix: list[bool] = []
+        while True:
+            oracle = _Oracle(valuation, prefix)
+            try:
+                runs.append(react(self.prep, state, oracle))
+            except _NeedInput as need:
+                return self._branch(state, valuation, need.signal)
+            self.leaves += 1
+            if self.leaves > MAX_LEAVES_PER_STATE:
+                raise OrccadError(
+                    f"state explosion: one state of '{self.prep.program.name}' needs more than "
+                    f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
+            prefix = oracle.answers
+            while prefix and prefix[-1] is False:
+                prefix.pop()
+            if not prefix:
+                break
+            prefix[-1] = False
+        return self._trie(runs, 0)
+
+    def _branch(self, state, valuation: dict, signal: ir.SignalDecl):
+        then = self._inputs(state, {**valuation, signal: True})
+        orelse = self._inputs(state, {**valuation, signal: False})
+        return then if then == orelse else InputTest(signal, then, orelse)
+
+    def _trie(self, runs: list[Outcome], pos: int):
+        first = runs[0]
+        if pos == len(first.events):
+            leaf = self._leaf(first)
+            if any(len(r.events) != pos or self._leaf(r) != leaf for r in runs[1:]):
+                raise self._ambiguous(None)
+            return leaf
+        event = first.events[pos]
+        if any(len(r.events) <= pos for r in runs):
+            raise self._ambiguous(event)
+        if event[0] == "test":
+            number = event[1]
+            if any(r.events[pos][:2] != ("test", number) for r in runs):
+                raise self._ambiguous(event)
+            yes = [r for r in runs if r.events[pos][2]]
+            no = [r for r in runs if not r.events[pos][2]]
+            if not yes or not no:
+                raise self._ambiguous(event)
+            then, orelse = self._trie(yes, pos + 1), self._trie(no, pos + 1)
+            return then if then == orelse else DataBranch(number, then, orelse)
+        if any(r.events[pos] != event for r in runs):
+            raise self._ambiguous(event)
+        return Action(event[0], event[1], event[2], self._trie(runs, pos + 1))
+
+    def _leaf(self, outcome: Outcome) -> Leaf:
+        order = self.prep.program.outputs
+        emitted = tuple(s for s in order if s in outcome.emitted)
+        if outcome.code == TERMINATED:
+            return Leaf(TERMINAL, emitted, DONE)
+        return Leaf(outcome.state, emitted, RUNNING)
+
+    def _ambiguous(self, event) -> OrccadError:
+        loc = self.prep.program.loc
+        if event is not None and event[0] == "test":
+            loc = self.prep.data_tests[event[1]].loc
+        elif event is not None:
+            loc = getattr(event[2], "loc", loc)
+        return OrccadError(
+            "non-causal program: a data condition decides the status of a signal that is "
+            "used earlier in the same instant (test the data first, in a branch of its own)", loc)
+
+
+def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES) -> Automaton:
+    """Compile ``program`` to a minimized deterministic automaton.
+
+    Raises :class:`OrccadError` (with a location) for instantaneous loops, non-causal programs
+    and when more than ``max_states`` control states are reachable.
+    """
+    prep = prepare(program)
+    explorer = _Explorer(prep, max_states)
+    trees: dict[object, object] = {}
+    queue: deque = deque([BOOT])
+    seen = {BOOT}
+    while queue:
+        state = queue.popleft()
+        tree = explorer.tree(state)
+        trees[state] = tree
+        for target in _targets(tree):
+            if target not in seen:
+                if len(seen) >= max_states:
+                    raise OrccadError(
+                        f"state budget exceeded: '{program.name}' has more than {max_states} "
+                        "reachable control states (raise the budget with --max-states)",
+                        program.loc)
+                seen.add(target)
+                queue.append(target)
+    waiting = {key: _waiting(prep, key) for key in trees}
+    return minimize(program, trees, BOOT, waiting, prep.data_tests, _variables(prep))
+
+
+def _targets(tree):
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Leaf):
+            yield node.target
+        elif isinstance(node, Action):
+            stack.append(node.next)
+        else:
+            stack.append(node.orelse)
+            stack.append(node.then)
+
+
+def _waiting(prep: Prepared, key) -> tuple:
+    if key is BOOT or key == TERMINAL:
+        return ()
+    return tuple(prep.pauses[pid].src.loc for pid in key)
+
+
+def _variables(prep: Prepared) -> tuple[ir.VarDecl, ...]:
+    found: dict[ir.VarDecl, None] = {}
+    stack = [prep.root]
+    while stack:
+        node = stack.pop()
+        if isinstance(node.src, ir.Assign):
+            found.setdefault(node.src.var)
+        stack.extend(reversed(node.children))
+    return tuple(found)

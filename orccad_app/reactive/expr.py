@@ -1,0 +1,120 @@
+"""Data expressions: printing and compilation to Python closures.
+
+A compiled expression is a function of a :class:`Store`, the data memory of a running
+automaton: variables, last signal values and the clock of the instant in integer nanoseconds.
+"""
+
+from __future__ import annotations
+
+import operator
+from typing import Any, Callable
+
+from orccad_app.reactive import ir
+
+__all__ = ["Store", "compile_expr", "format_expr", "format_test", "Unset"]
+
+_BINARY: dict[str, Callable[[Any, Any], Any]] = {
+    "+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
+    "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
+    "==": operator.eq, "!=": operator.ne,
+}
+
+
+class Unset(LookupError):
+    """A variable or a signal value was read before it was ever given a value."""
+
+
+class Store:
+    """Data memory of a running automaton."""
+
+    __slots__ = ("vars", "values", "clock_ns")
+
+    def __init__(self) -> None:
+        self.vars: dict[ir.VarDecl, Any] = {}
+        self.values: dict[ir.SignalDecl, Any] = {}
+        self.clock_ns = 0
+
+
+def _var(decl: ir.VarDecl):
+    def read(store: Store):
+        try:
+            return store.vars[decl]
+        except KeyError:
+            raise Unset(f"variable '{decl.name}' is read before it is assigned") from None
+    return read
+
+
+def _value(decl: ir.SignalDecl):
+    def read(store: Store):
+        try:
+            return store.values[decl]
+        except KeyError:
+            raise Unset(f"?{decl.name} is read before {decl.name} ever had a value") from None
+    return read
+
+
+def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
+    """A closure computing ``expr`` from a :class:`Store`."""
+    kind = type(expr)
+    if kind is ir.Const:
+        value = expr.value
+        return lambda store: value
+    if kind is ir.VarRef:
+        return _var(expr.var)
+    if kind is ir.SigValue:
+        return _value(expr.signal)
+    if kind is ir.Clock:
+        return lambda store: store.clock_ns
+    if kind is ir.VectorExpr:
+        items = tuple(compile_expr(item) for item in expr.items)
+        return lambda store: tuple(f(store) for f in items)
+    if kind is ir.Unary:
+        inner = compile_expr(expr.operand)
+        if expr.op == "-":
+            return lambda store: -inner(store)
+        return lambda store: not inner(store)
+    left, right = compile_expr(expr.left), compile_expr(expr.right)
+    if expr.op == "and":
+        return lambda store: bool(left(store)) and bool(right(store))
+    if expr.op == "or":
+        return lambda store: bool(left(store)) or bool(right(store))
+    op = _BINARY[expr.op]
+    return lambda store: op(left(store), right(store))
+
+
+_PRECEDENCE = {"or": 1, "and": 2, "<": 3, "<=": 3, ">": 3, ">=": 3, "==": 3, "!=": 3,
+               "+": 4, "-": 4, "*": 5, "/": 5}
+
+
+def format_expr(expr: ir.Expr, parent: int = 0) -> str:
+    """Source-like text of an expression (the clock prints as ``clock``, in ns)."""
+    kind = type(expr)
+    if kind is ir.Const:
+        return repr(expr.value) if isinstance(expr.value, str) else str(expr.value).lower() \
+            if isinstance(expr.value, bool) else str(expr.value)
+    if kind is ir.VarRef:
+        return expr.var.name
+    if kind is ir.SigValue:
+        return f"?{expr.signal.name}"
+    if kind is ir.Clock:
+        return "clock"
+    if kind is ir.VectorExpr:
+        return "[" + ", ".join(format_expr(i) for i in expr.items) + "]"
+    if kind is ir.Unary:
+        sep = " " if expr.op == "not" else ""
+        return f"{expr.op}{sep}{format_expr(expr.operand, 6)}"
+    prec = _PRECEDENCE[expr.op]
+    text = f"{format_expr(expr.left, prec)} {expr.op} {format_expr(expr.right, prec + 1)}"
+    return f"({text})" if prec < parent else text
+
+
+def format_test(test: ir.Test) -> str:
+    """Source-like text of a presence test or data test."""
+    if isinstance(test, ir.SigRef):
+        return test.signal.name
+    if isinstance(test, ir.DataTest):
+        return format_expr(test.expr)
+    if isinstance(test, ir.SigNot):
+        return f"not {format_test(test.operand)}"
+    op = "and" if isinstance(test, ir.SigAnd) else "or"
+    return f"({format_test(test.left)} {op} {format_test(test.right)})"

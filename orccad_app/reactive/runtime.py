@@ -1,0 +1,113 @@
+"""Running a compiled automaton, one instant at a time.
+
+:class:`Reactor` holds the current state and the data memory and walks the state's reaction
+tree for each instant. It is the only code on the hot path of ``orccad react`` and of the
+executive: trees are pre-compiled to tuples and closures, so one reaction is a handful of
+tuple look-ups.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive import ir
+from orccad_app.reactive.automaton import DONE, Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.expr import Store, Unset, compile_expr, format_expr
+
+__all__ = ["Reaction", "Reactor"]
+
+_LEAF, _INPUT, _DATA, _ACTION = range(4)
+
+
+@dataclass(frozen=True, slots=True)
+class Reaction:
+    """The result of one instant: outputs emitted (declaration order), their values, status."""
+
+    outputs: tuple[str, ...]
+    values: dict[str, Any] = field(default_factory=dict)
+    status: str = "running"
+    state: int = 0
+
+
+def _lower(node, data_tests) -> tuple:
+    if isinstance(node, Leaf):
+        names = tuple(s.name for s in node.emitted)
+        valued = tuple(s for s in node.emitted if s.valued)
+        return (_LEAF, node.target, names, valued, node.status)
+    if isinstance(node, InputTest):
+        return (_INPUT, node.signal.name, _lower(node.then, data_tests),
+                _lower(node.orelse, data_tests))
+    if isinstance(node, DataBranch):
+        expr = data_tests[node.number].expr
+        return (_DATA, compile_expr(expr), _lower(node.then, data_tests),
+                _lower(node.orelse, data_tests), expr)
+    assert isinstance(node, Action)
+    return (_ACTION, node.kind == "assign", node.target, compile_expr(node.expr),
+            _lower(node.next, data_tests), node.expr)
+
+
+class Reactor:
+    """An automaton in execution: ``react`` performs one instant."""
+
+    def __init__(self, automaton: Automaton):
+        self.automaton = automaton
+        self._trees = tuple(_lower(t, automaton.data_tests) for t in automaton.trees)
+        self._inputs = {s.name: s for s in automaton.inputs}
+        self.state = automaton.initial
+        self.store = Store()
+        self.status = "running"
+        self.instant = 0
+
+    def react(self, inputs: Mapping[str, Any] | frozenset[str] | set[str] = frozenset(),
+              clock_ns: int | None = None) -> Reaction:
+        """One instant with ``inputs`` present (a mapping gives valued inputs their values).
+
+        ``clock_ns`` sets this instant's executive clock; it may not go backwards.
+        """
+        store = self.store
+        if clock_ns is not None:
+            if clock_ns < store.clock_ns:
+                raise OrccadError(f"the clock went backwards: {clock_ns} ns after "
+                                  f"{store.clock_ns} ns")
+            store.clock_ns = clock_ns
+        if isinstance(inputs, Mapping):
+            for name, value in inputs.items():
+                if value is not None:
+                    store.values[self._inputs[name]] = value
+        self.instant += 1
+        node = self._trees[self.state]
+        expr = None
+        try:
+            while True:
+                tag = node[0]
+                if tag == _INPUT:
+                    node = node[2] if node[1] in inputs else node[3]
+                elif tag == _DATA:
+                    expr = node[4]
+                    node = node[2] if node[1](store) else node[3]
+                elif tag == _ACTION:
+                    expr = node[5]
+                    if node[1]:
+                        store.vars[node[2]] = node[3](store)
+                    else:
+                        store.values[node[2]] = node[3](store)
+                    node = node[4]
+                else:
+                    break
+        except (Unset, TypeError, ValueError, ZeroDivisionError, ArithmeticError) as error:
+            raise OrccadError(f"run-time error in {format_expr(expr)}: {error}",
+                              getattr(expr, "loc", None)) from None
+        _, target, names, valued, status = node
+        self.state = target
+        self.status = status
+        values = {s.name: store.values.get(s) for s in valued} if valued else {}
+        return Reaction(names, values, status, target)
+
+    @property
+    def done(self) -> bool:
+        return self.status == DONE
+
+    def input_decl(self, name: str) -> ir.SignalDecl | None:
+        return self._inputs.get(name)
