@@ -1,0 +1,87 @@
+"""Ports: the only way Module-Tasks exchange values (RR-1801 §3.2.1).
+
+A :class:`Port` belongs to a module (a :class:`~orccad_app.tcs.module_task.ModuleTask` or a
+physical resource such as the plant) and is named ``module.port`` in the TCS. Data flows from
+producer (``out``) ports to consumer (``in``) ports; a port of type ``event`` carries signals that
+the executive also surfaces to its observers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+from typing import Any
+
+from orccad_app.diagnostics import OrccadError
+
+__all__ = ["Direction", "Port", "EVENT", "NUMERIC_TYPES", "split_port_ref"]
+
+EVENT = "event"
+"""Type name of event ports: a value that is not ``None``/``False`` is a signal occurrence."""
+
+NUMERIC_TYPES = frozenset({"float", "int", "bool"})
+"""Types whose default initial value is zero (a scalar if ``dim == 1``, else a vector)."""
+
+
+class Direction(str, Enum):
+    """Which way values cross a port."""
+
+    IN = "in"
+    """A consumer port: the module reads it at the start of each job."""
+    OUT = "out"
+    """A producer port: the module writes it at the end of each job's compute phase."""
+
+
+@dataclass(frozen=True, slots=True)
+class Port:
+    """A typed port of a module.
+
+    :param name: identifier, unique within its module.
+    :param direction: ``"in"`` (consumer) or ``"out"`` (producer).
+    :param type: value type name (``float``, ``int``, ``bool``, ``event`` or any
+        plugin-defined name); connected ports must agree on it.
+    :param dim: number of components (a vector of ``dim`` values); connected ports must agree.
+    :param initial: value read before any write arrives; ``None`` means zero for numeric
+        types (scalar if ``dim == 1``) and ``None`` otherwise.
+    """
+
+    name: str
+    direction: Direction
+    type: str = "float"
+    dim: int = 1
+    initial: Any = None
+
+    def __post_init__(self) -> None:
+        if not self.name or not self.name.isidentifier():
+            raise OrccadError(f"invalid port name {self.name!r}: expected an identifier")
+        try:
+            object.__setattr__(self, "direction", Direction(self.direction))
+        except ValueError:
+            raise OrccadError(f"port '{self.name}': direction must be 'in' or 'out', "
+                              f"got {self.direction!r}") from None
+        if not isinstance(self.dim, int) or self.dim < 1:
+            raise OrccadError(f"port '{self.name}': dim must be a positive integer, "
+                              f"got {self.dim!r}")
+
+    @property
+    def is_event(self) -> bool:
+        """Whether this port carries signals (type ``event``)."""
+        return self.type == EVENT
+
+    def initial_value(self) -> Any:
+        """The value a reader gets before the first write: ``initial`` or a typed zero."""
+        if self.initial is not None or self.type not in NUMERIC_TYPES:
+            return self.initial
+        if self.dim == 1:
+            return 0.0 if self.type == "float" else 0
+        import numpy as np
+
+        return np.zeros(self.dim, dtype=float if self.type == "float" else int)
+
+
+def split_port_ref(ref: str) -> tuple[str, str]:
+    """Split ``"module.port"`` into ``("module", "port")``; raise on a malformed reference."""
+    module, dot, port = ref.rpartition(".")
+    if not dot or not module or not port:
+        raise OrccadError(f"bad port reference {ref!r}: expected 'module.port'")
+    return module, port
