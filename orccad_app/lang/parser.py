@@ -1,0 +1,109 @@
+"""Parse plan-language text into the dataclass AST.
+
+>>> program = parse("mission M { output O; emit O; }", "m.orc")
+>>> program.missions[0].body.statements[0].signal
+'O'
+
+The grammar is ``plan.lark`` (package data), compiled once by lark's LALR(1) parser with the
+contextual lexer, ``strict=True`` (no shift/reduce conflict, no terminal collision) and
+``propagate_positions=True``. Every failure is an :class:`~orccad_app.diagnostics.OrccadError`
+located at ``file:line:col`` (see :mod:`.syntax_errors`); no lark exception escapes.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib.resources
+import re
+
+from lark import Lark, Token, Tree
+from lark.exceptions import LarkError, UnexpectedInput, VisitError
+from lark.lexer import PatternStr
+
+from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang import ast
+from orccad_app.lang.syntax_errors import syntax_error
+from orccad_app.lang.transform import ToAst
+
+__all__ = ["parse", "keywords", "grammar_text"]
+
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def grammar_text() -> str:
+    """The text of ``plan.lark``."""
+    return importlib.resources.files("orccad_app.lang").joinpath("plan.lark").read_text(
+        encoding="utf-8")
+
+
+@functools.lru_cache(maxsize=1)
+def _lark() -> Lark:
+    """The compiled parser (built once per process)."""
+    options = dict(parser="lalr", lexer="contextual", propagate_positions=True,
+                   maybe_placeholders=True)
+    try:
+        return Lark(grammar_text(), strict=True, **options)
+    except LarkError as error:
+        if "interegular" not in str(error):
+            raise
+        # strict mode's terminal-collision check needs the optional `interegular` package;
+        # the grammar is verified in strict mode by the test suite, so run without it.
+        return Lark(grammar_text(), **options)  # pragma: no cover
+
+
+@functools.lru_cache(maxsize=1)
+def keywords() -> frozenset[str]:
+    """The reserved words: every literal of the grammar that looks like an identifier."""
+    return frozenset(
+        t.pattern.value for t in _lark().terminals
+        if isinstance(t.pattern, PatternStr) and _NAME.match(t.pattern.value))
+
+
+def _reserved_name(tree: Tree, filename: str) -> OrccadError | None:
+    """An error for the first keyword used as an identifier, if any.
+
+    The contextual lexer reads a keyword as ``NAME`` where no keyword fits (``emit loop;``);
+    keywords are reserved, so such a token is an error.
+    """
+    reserved = keywords()
+    bad = [t for t in tree.scan_values(lambda v: isinstance(v, Token) and v.type == "NAME")
+           if str(t) in reserved]
+    if not bad:
+        return None
+    token = min(bad, key=lambda t: (t.line, t.column))
+    location = SourceLocation(filename, token.line, token.column, token.end_line,
+                              token.end_column)
+    return OrccadError(f"'{token}' is a reserved keyword and cannot be used as a name",
+                       location)
+
+
+def parse(text: str, filename: str = "<input>") -> ast.Program:
+    """Parse the text of one ``.orc`` file.
+
+    Raises :class:`OrccadError` (with a location) on any lexical or syntax error, a
+    reserved keyword used as a name, an unknown protocol, a duplicate Robot-Task item or a
+    duration that is not whole nanoseconds.
+    """
+    try:
+        tree = _lark().parse(text)
+    except UnexpectedInput as error:
+        terminals = {t.name: t for t in _lark().terminals}
+        raise syntax_error(error, text, filename, keywords(), terminals) from None
+    except RecursionError:
+        raise OrccadError("program too deeply nested",
+                          SourceLocation(filename, 1, 1)) from None
+    problem = _reserved_name(tree, filename)
+    if problem is not None:
+        raise problem
+    try:
+        return ToAst(filename).transform(tree)
+    except VisitError as error:
+        if isinstance(error.orig_exc, OrccadError):
+            raise error.orig_exc from None
+        if isinstance(error.orig_exc, RecursionError):
+            raise OrccadError("program too deeply nested",
+                              SourceLocation(filename, 1, 1)) from None
+        raise
+    except RecursionError:
+        raise OrccadError("program too deeply nested",
+                          SourceLocation(filename, 1, 1)) from None

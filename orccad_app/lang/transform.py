@@ -1,0 +1,420 @@
+"""Turn the lark parse tree of ``plan.lark`` into the dataclass AST of :mod:`.ast`.
+
+One method per grammar alias. Only :func:`orccad_app.lang.parser.parse` uses this module;
+nothing downstream ever sees a lark tree.
+"""
+
+from __future__ import annotations
+
+import math
+
+from lark import Token, Transformer
+
+from orccad_app.diagnostics import SourceLocation
+from orccad_app.lang import ast
+from orccad_app.lang.transform_rt import RobotTaskRules, duration_to_ns, rule as _rule
+
+__all__ = ["ToAst"]
+
+_ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\\": "\\", '"': '"', "0": "\0"}
+
+
+def _unescape(literal: str) -> str:
+    out, chars = [], iter(literal[1:-1])
+    for char in chars:
+        if char == "\\":
+            nxt = next(chars, "")
+            out.append(_ESCAPES.get(nxt, nxt))
+        else:
+            out.append(char)
+    return "".join(out)
+
+
+def _binary(op: str):
+    @_rule
+    def method(self, meta, left, right):
+        return ast.Binary(op=op, left=left, right=right, loc=self.loc(meta))
+    return method
+
+
+def _f_unary(op: str):
+    @_rule
+    def method(self, meta, operand):
+        return ast.FUnary(op=op, operand=operand, loc=self.loc(meta))
+    return method
+
+
+def _f_binary(op: str):
+    @_rule
+    def method(self, meta, left, right):
+        return ast.FBinary(op=op, left=left, right=right, loc=self.loc(meta))
+    return method
+
+
+def _f_predicate(predicate: str):
+    @_rule
+    def method(self, meta, name):
+        return ast.FPredicate(predicate=predicate, argument=str(name), loc=self.loc(meta))
+    return method
+
+
+def _f_status(status: str):
+    @_rule
+    def method(self, meta):
+        return ast.FStatus(status=status, loc=self.loc(meta))
+    return method
+
+
+def _simple(cls):
+    @_rule
+    def method(self, meta):
+        return cls(loc=self.loc(meta))
+    return method
+
+
+def _opt(token: Token | None) -> str | None:
+    return None if token is None else str(token)
+
+
+class ToAst(RobotTaskRules, Transformer):
+    """The transformer; ``filename`` goes into every :class:`SourceLocation`."""
+
+    def __init__(self, filename: str):
+        super().__init__(visit_tokens=False)
+        self.filename = filename
+
+    # ------------------------------------------------------------------ locations
+
+    def loc(self, meta) -> SourceLocation:
+        """Location of a rule's span."""
+        if getattr(meta, "empty", True):
+            return SourceLocation(self.filename, 0, 0)
+        return SourceLocation(self.filename, meta.line, meta.column,
+                              meta.end_line, meta.end_column)
+
+    def tloc(self, token: Token) -> SourceLocation:
+        """Location of one token."""
+        return SourceLocation(self.filename, token.line, token.column,
+                              token.end_line, token.end_column)
+
+    def ns(self, token: Token) -> int:
+        return duration_to_ns(str(token), self.tloc(token))
+
+    # ------------------------------------------------------------------ root, declarations
+
+    @_rule
+    def start(self, meta, *items):
+        flat = []
+        for item in items:
+            flat.extend(item if isinstance(item, list) else [item])
+        return ast.Program(filename=self.filename, items=tuple(flat), loc=self.loc(meta))
+
+    @_rule
+    def robot_decl(self, meta, name, type_, args):
+        return ast.Robot(name=str(name), type=str(type_), args=args or (), loc=self.loc(meta))
+
+    @_rule
+    def type_name(self, meta, *token):
+        return str(token[0]) if token else "duration"
+
+    @_rule
+    def sig_item(self, meta, name, type_):
+        return (name, _opt(type_))
+
+    def _signals(self, direction: ast.Direction, items) -> list[ast.SignalDecl]:
+        return [ast.SignalDecl(name=str(name), direction=direction, type=type_,
+                               loc=self.tloc(name)) for name, type_ in items]
+
+    @_rule
+    def input_decl(self, meta, *items):
+        return self._signals(ast.Direction.INPUT, items)
+
+    @_rule
+    def output_decl(self, meta, *items):
+        return self._signals(ast.Direction.OUTPUT, items)
+
+    # ------------------------------------------------------------------ expressions
+
+    @_rule
+    def name(self, meta, token):
+        return ast.Name(name=str(token), loc=self.tloc(token))
+
+    @_rule
+    def number(self, meta, token):
+        text = str(token)
+        value = int(text) if token.type == "INT" else float(text)
+        return ast.Number(value=value, text=text, loc=self.tloc(token))
+
+    @_rule
+    def duration(self, meta, token):
+        return ast.DurationLit(duration_ns=self.ns(token), text=" ".join(str(token).split()),
+                               loc=self.tloc(token))
+
+    @_rule
+    def string(self, meta, token):
+        return ast.String(value=_unescape(str(token)), loc=self.tloc(token))
+
+    @_rule
+    def true(self, meta):
+        return ast.Bool(value=True, loc=self.loc(meta))
+
+    @_rule
+    def false(self, meta):
+        return ast.Bool(value=False, loc=self.loc(meta))
+
+    @_rule
+    def pi(self, meta):
+        return ast.Number(value=math.pi, text="pi", loc=self.loc(meta))
+
+    @_rule
+    def last_value(self, meta, token):
+        return ast.LastValue(signal=str(token), loc=self.loc(meta))
+
+    @_rule
+    def vector(self, meta, *items):
+        items = () if items == (None,) else items
+        return ast.Vector(items=tuple(items), loc=self.loc(meta))
+
+    @_rule
+    def call_expr(self, meta, name, args):
+        return ast.Call(func=str(name), args=args, loc=self.loc(meta))
+
+    @_rule
+    def paren(self, meta, expr):
+        return expr
+
+    @_rule
+    def neg(self, meta, operand):
+        loc = self.loc(meta)
+        if isinstance(operand, ast.Number) and operand.text[:1] != "-":
+            return ast.Number(value=-operand.value, text="-" + operand.text, loc=loc)
+        return ast.Unary(op="-", operand=operand, loc=loc)
+
+    @_rule
+    def not_(self, meta, operand):
+        return ast.Unary(op="not", operand=operand, loc=self.loc(meta))
+
+    or_, and_ = _binary("or"), _binary("and")
+    lt, le, gt, ge, eq, ne = (_binary(op) for op in ("<", "<=", ">", ">=", "==", "!="))
+    add, sub, mul, div = (_binary(op) for op in ("+", "-", "*", "/"))
+
+    @_rule
+    def call_args(self, meta, *args):
+        return () if args == (None,) else tuple(args)
+
+    @_rule
+    def named_arg(self, meta, name, value):
+        return ast.Arg(name=str(name), value=value, loc=self.loc(meta))
+
+    @_rule
+    def positional_arg(self, meta, value):
+        return ast.Arg(name=None, value=value, loc=self.loc(meta))
+
+    @_rule
+    def call(self, meta, name, args):
+        return ast.Call(func=str(name), args=args, loc=self.loc(meta))
+
+    @_rule
+    def observer(self, meta, name, args):
+        return ast.Call(func=str(name), args=args or (), loc=self.loc(meta))
+
+    @_rule
+    def port_ref(self, meta, component, port):
+        return ast.PortRef(component=str(component), port=str(port), loc=self.loc(meta))
+
+    # ------------------------------------------------------------------ temporal logic
+
+    @_rule
+    def property_(self, meta, name, formula):
+        mission, prop = name
+        return ast.Property(mission=mission, name=prop, formula=formula, loc=self.loc(meta))
+
+    @_rule
+    def assume(self, meta, name, formula):
+        mission, prop = name
+        return ast.Assumption(mission=mission, name=prop, formula=formula, loc=self.loc(meta))
+
+    @_rule
+    def qualified_name(self, meta, mission, name):
+        return (str(mission), str(name))
+
+    @_rule
+    def simple_name(self, meta, name):
+        return (None, str(name))
+
+    @_rule
+    def f_signal(self, meta, token):
+        return ast.FSignal(name=str(token), loc=self.tloc(token))
+
+    @_rule
+    def f_true(self, meta):
+        return ast.FBool(value=True, loc=self.loc(meta))
+
+    @_rule
+    def f_false(self, meta):
+        return ast.FBool(value=False, loc=self.loc(meta))
+
+    @_rule
+    def f_paren(self, meta, formula):
+        return formula
+
+    f_done, f_failed, f_aborted = (_f_status(s) for s in ("done", "failed", "aborted"))
+    f_active, f_started, f_ended, f_raised = (
+        _f_predicate(p) for p in ("active", "started", "ended", "raised"))
+    f_not, f_next, f_always, f_eventually, f_never, f_previously, f_once, f_historically = (
+        _f_unary(op) for op in ("not", "next", "always", "eventually", "never",
+                                "previously", "once", "historically"))
+    f_iff, f_implies, f_or, f_and, f_until, f_since = (
+        _f_binary(op) for op in ("<->", "->", "or", "and", "until", "since"))
+
+    # ------------------------------------------------------------------ statements
+
+    nothing, pause, halt = _simple(ast.Nothing), _simple(ast.Pause), _simple(ast.Halt)
+
+    @_rule
+    def block(self, meta, *statements):
+        return ast.Block(statements=tuple(statements), loc=self.loc(meta))
+
+    @_rule
+    def nested_block(self, meta, block):
+        return block
+
+    @_rule
+    def statement(self, meta, stmt):
+        return stmt
+
+    @_rule
+    def emit(self, meta, name, value):
+        return ast.Emit(signal=str(name), value=value, signal_loc=self.tloc(name),
+                        loc=self.loc(meta))
+
+    @_rule
+    def sustain(self, meta, name, value):
+        return ast.Sustain(signal=str(name), value=value, signal_loc=self.tloc(name),
+                           loc=self.loc(meta))
+
+    @_rule
+    def trigger_expr(self, meta, expr):
+        if isinstance(expr, ast.DurationLit):
+            return ast.Trigger(duration_ns=expr.duration_ns, loc=self.loc(meta))
+        return ast.Trigger(condition=expr, loc=self.loc(meta))
+
+    @_rule
+    def trigger_immediate(self, meta, _immediate, expr):
+        return ast.Trigger(condition=expr, immediate=True, loc=self.loc(meta))
+
+    @_rule
+    def trigger_count(self, meta, count, expr):
+        return ast.Trigger(condition=expr, count=self.number(None, count), loc=self.loc(meta))
+
+    @_rule
+    def await_(self, meta, trigger):
+        return ast.Await(trigger=trigger, loc=self.loc(meta))
+
+    @_rule
+    def run(self, meta, name, args, within):
+        return ast.Run(task=str(name), args=args or (),
+                       within_ns=None if within is None else self.ns(within),
+                       task_loc=self.tloc(name), loc=self.loc(meta))
+
+    @_rule
+    def if_(self, meta, condition, then, orelse):
+        return ast.If(condition=condition, then=then, orelse=orelse, loc=self.loc(meta))
+
+    @_rule
+    def else_block(self, meta, block):
+        return block
+
+    @_rule
+    def else_if(self, meta, if_stmt):
+        return ast.Block(statements=(if_stmt,), loc=if_stmt.loc)
+
+    @_rule
+    def loop(self, meta, body):
+        return ast.Loop(body=body, loc=self.loc(meta))
+
+    @_rule
+    def loop_each(self, meta, body, trigger):
+        return ast.Loop(body=body, each=trigger, loc=self.loc(meta))
+
+    @_rule
+    def repeat(self, meta, count, body):
+        return ast.Repeat(count=count, body=body, loc=self.loc(meta))
+
+    @_rule
+    def every(self, meta, trigger, body):
+        return ast.Every(trigger=trigger, body=body, loc=self.loc(meta))
+
+    @_rule
+    def abort(self, meta, weak, body, trigger):
+        return ast.Abort(body=body, trigger=trigger, weak=weak is not None, loc=self.loc(meta))
+
+    @_rule
+    def abort_do(self, meta, weak, body, trigger, handler):
+        return ast.Abort(body=body, trigger=trigger, weak=weak is not None, handler=handler,
+                         loc=self.loc(meta))
+
+    @_rule
+    def suspend(self, meta, body, trigger):
+        return ast.Suspend(body=body, trigger=trigger, loc=self.loc(meta))
+
+    @_rule
+    def trap(self, meta, name, body, handler):
+        return ast.Trap(name=str(name), body=body, handler=handler, loc=self.loc(meta))
+
+    @_rule
+    def exit(self, meta, name):
+        return ast.Exit(name=str(name), loc=self.loc(meta))
+
+    @_rule
+    def catch(self, meta, *parts):
+        *names, body = parts
+        return ast.Catch(exceptions=tuple(str(n) for n in names), body=body, loc=self.loc(meta))
+
+    @_rule
+    def try_(self, meta, body, *catches):
+        return ast.Try(body=body, catches=tuple(catches), loc=self.loc(meta))
+
+    @_rule
+    def par(self, meta, *branches):
+        return ast.Par(branches=tuple(branches), loc=self.loc(meta))
+
+    @_rule
+    def race(self, meta, *branches):
+        return ast.Race(branches=tuple(branches), loc=self.loc(meta))
+
+    @_rule
+    def local_signals(self, meta, *parts):
+        *items, body = parts
+        return ast.LocalSignals(signals=tuple(self._signals(ast.Direction.LOCAL, items)),
+                                body=body, loc=self.loc(meta))
+
+    @_rule
+    def var_decl(self, meta, name, type_, value):
+        return ast.VarDecl(name=str(name), value=value, type=_opt(type_), loc=self.loc(meta))
+
+    @_rule
+    def assign(self, meta, name, value):
+        return ast.Assign(name=str(name), value=value, loc=self.loc(meta))
+
+    # ------------------------------------------------------------------ missions
+
+    @_rule
+    def on_fatal(self, meta, block):
+        return ("on_fatal", block)
+
+    @_rule
+    def mission(self, meta, name, *items):
+        *items, on_fatal = items
+        signals, statements = [], []
+        for item in items:
+            (signals.extend if isinstance(item, list) else statements.append)(item)
+        body_loc = statements[0].loc if statements else self.loc(meta)
+        if statements:
+            last = statements[-1].loc
+            body_loc = SourceLocation(self.filename, body_loc.line, body_loc.col,
+                                      last.end_line, last.end_col)
+        return ast.Mission(name=str(name), signals=tuple(signals),
+                           body=ast.Block(statements=tuple(statements), loc=body_loc),
+                           on_fatal=None if on_fatal is None else on_fatal[1],
+                           loc=self.loc(meta))
