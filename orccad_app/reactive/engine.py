@@ -64,7 +64,7 @@ class _Walk:
     """Mutable scratch of one walk over the program."""
 
     __slots__ = ("prep", "active", "oracle", "env", "must", "can", "unknown", "unknown_at",
-                 "events", "next")
+                 "events", "next", "tested")
 
     def __init__(self, prep: Prepared, active: tuple[int, ...], oracle: Oracle, env: dict):
         self.prep = prep
@@ -77,6 +77,7 @@ class _Walk:
         self.unknown_at: dict = {}
         self.events: list = []
         self.next: list[int] = []
+        self.tested: set[int] = set()
 
     # ------------------------------------------------------------------ helpers
     def selected(self, node: KNode) -> bool:
@@ -99,7 +100,10 @@ class _Walk:
         if kind is ir.DataTest:
             number = self.prep.data_test_index[id(test)]
             outcome = self.oracle.data(number)
-            if sure:
+            if sure and number not in self.tested:
+                # a test shared by two statements (suspend and watcher of an abort) is
+                # decided once per instant, at its first use
+                self.tested.add(number)
                 self.events.append(("test", number, outcome))
             return outcome
         if kind is ir.SigNot:

@@ -110,9 +110,10 @@ class _Builder:
         elif node.kind == EXIT and stmt.trap not in self.trap_level:
             raise OrccadError(f"'exit {stmt.trap.name}' is outside the trap it names", stmt.loc)
         elif node.kind == PRESENT or node.kind == SUSPEND:
-            for test in _tests_of(stmt.test):
-                self.out.data_test_index[id(test)] = len(self.out.data_tests)
-                self.out.data_tests.append(test)
+            for test in _tests_of(stmt.test):  # derived forms may share one test object
+                if id(test) not in self.out.data_test_index:
+                    self.out.data_test_index[id(test)] = len(self.out.data_tests)
+                    self.out.data_tests.append(test)
         inner = level + 1 if node.kind == TRAP else level
         node.children = tuple(self.build(child, inner) for child in _children(stmt))
         if node.kind == TRAP:

@@ -1,0 +1,66 @@
+"""The compiler pipeline shared by the CLI and the TUI: read → parse → check → lower → compile.
+
+Each step is a function over immutable data, so each is testable alone; this module only
+chains them and picks the mission a command is about.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.lang import ast
+from orccad_app.lang.names import check
+from orccad_app.lang.parser import parse
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
+from orccad_app.reactive.lower import lower_mission
+
+__all__ = ["Source", "load", "select_mission", "compile_mission"]
+
+
+@dataclass(frozen=True)
+class Source:
+    """A parsed and checked ``.orc`` file."""
+
+    path: str
+    text: str
+    program: ast.Program
+
+
+def load(path: str | Path) -> Source:
+    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations."""
+    path = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise OrccadError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise OrccadError(f"{path}: cannot read: {error}") from None
+    program = parse(text, path)
+    check(program)
+    return Source(path, text, program)
+
+
+def select_mission(source: Source, name: str | None) -> ast.Mission:
+    """The mission called ``name``, or the file's only mission when ``name`` is None."""
+    missions = source.program.missions
+    if name is not None:
+        mission = source.program.mission(name)
+        if mission is None:
+            known = ", ".join(m.name for m in missions) or "none"
+            raise OrccadError(f"{source.path}: no mission named '{name}' (missions: {known})")
+        return mission
+    if not missions:
+        raise OrccadError(f"{source.path}: the file declares no mission")
+    if len(missions) > 1:
+        names = ", ".join(m.name for m in missions)
+        raise OrccadError(f"{source.path}: several missions ({names}); choose one with --mission")
+    return missions[0]
+
+
+def compile_mission(source: Source, mission: ast.Mission, *,
+                    max_states: int = DEFAULT_MAX_STATES) -> Automaton:
+    """The minimized application automaton of ``mission``."""
+    return compile_program(lower_mission(source.program, mission), max_states=max_states)

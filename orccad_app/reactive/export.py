@@ -1,0 +1,118 @@
+"""Textual forms of a compiled automaton: summary, JSON and Graphviz DOT."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from orccad_app.reactive.automaton import Automaton, Transition, transitions
+from orccad_app.reactive.expr import format_expr
+
+__all__ = ["to_summary", "to_json", "to_dict", "to_dot", "guard_text"]
+
+
+def _signal_type(signal) -> str:
+    return signal.name if signal.type is None else f"{signal.name} : {signal.type}"
+
+
+def guard_text(automaton: Automaton, t: Transition) -> str:
+    """``A and not B and [x > 2]``, or ``true`` for an unconditional transition."""
+    parts = [name if value else f"not {name}" for name, value in
+             ((s.name, v) for s, v in t.inputs)]
+    for number, value in t.data:
+        text = format_expr(automaton.data_tests[number].expr)
+        parts.append(f"[{text}]" if value else f"[not ({text})]")
+    return " and ".join(parts) or "true"
+
+
+def _action_text(action) -> str:
+    if action.kind == "assign":
+        return f"{action.target.name} := {format_expr(action.expr)}"
+    return f"emit {action.target.name}({format_expr(action.expr)})"
+
+
+def to_dict(automaton: Automaton) -> dict[str, Any]:
+    """A JSON-ready description: interface, then every state and its transitions."""
+    states = []
+    by_source: dict[int, list] = {i: [] for i in range(automaton.state_count)}
+    for t in automaton.transitions():
+        by_source[t.source].append({
+            "inputs": {s.name: v for s, v in t.inputs},
+            "data": [[format_expr(automaton.data_tests[n].expr), v] for n, v in t.data],
+            "actions": [_action_text(a) for a in t.actions],
+            "outputs": [s.name for s in t.emitted],
+            "status": t.status,
+            "target": t.target,
+        })
+    for state in range(automaton.state_count):
+        states.append({
+            "id": state,
+            "waiting_at": [str(loc) for loc in automaton.waiting[state]],
+            "transitions": by_source[state],
+        })
+    return {
+        "name": automaton.name,
+        "inputs": [{"name": s.name, "type": s.type} for s in automaton.inputs],
+        "outputs": [{"name": s.name, "type": s.type} for s in automaton.outputs],
+        "variables": [v.name for v in automaton.variables],
+        "initial": automaton.initial,
+        "state_count": automaton.state_count,
+        "transition_count": sum(len(s["transitions"]) for s in states),
+        "states": states,
+    }
+
+
+def to_json(automaton: Automaton) -> str:
+    return json.dumps(to_dict(automaton), indent=2)
+
+
+def to_summary(automaton: Automaton) -> str:
+    """A human overview: sizes, interface, and the transitions of each state."""
+    lines = [
+        f"mission {automaton.name}",
+        f"  states: {automaton.state_count}",
+        f"  transitions: {automaton.transition_count}",
+        f"  inputs: {', '.join(_signal_type(s) for s in automaton.inputs) or '-'}",
+        f"  outputs: {', '.join(_signal_type(s) for s in automaton.outputs) or '-'}",
+    ]
+    visible = [v.name for v in automaton.variables if not v.hidden]
+    hidden = sum(1 for v in automaton.variables if v.hidden)
+    if visible or hidden:
+        lines.append(f"  variables: {', '.join(visible) or '-'}"
+                     + (f" (+{hidden} counters/timers)" if hidden else ""))
+    current = None
+    for t in automaton.transitions():
+        if t.source != current:
+            current = t.source
+            where = ", ".join(str(loc) for loc in automaton.waiting[t.source])
+            label = "initial" if t.source == automaton.initial else f"waiting at {where}" \
+                if where else "terminated"
+            lines.append(f"state {t.source} ({label})")
+        effects = [_action_text(a) for a in t.actions] + [s.name for s in t.emitted]
+        tail = f" / {', '.join(effects)}" if effects else ""
+        status = f" [{t.status}]" if t.status != "running" else ""
+        lines.append(f"  {guard_text(automaton, t)}{tail} -> {t.target}{status}")
+    return "\n".join(lines)
+
+
+def _quote(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def to_dot(automaton: Automaton) -> str:
+    """Graphviz DOT: one node per state, one edge per transition labelled guard / effects."""
+    lines = [f"digraph {_quote(automaton.name)} {{", "  rankdir=LR;",
+             '  node [shape=circle, fontname="Helvetica"];',
+             '  edge [fontname="Helvetica", fontsize=10];',
+             '  start [shape=point];', f"  start -> s{automaton.initial};"]
+    for state in range(automaton.state_count):
+        final = any(t.status != "running" for t in transitions(state, automaton.trees[state]))
+        shape = "doublecircle" if final else "circle"
+        lines.append(f"  s{state} [label={_quote(str(state))}, shape={shape}];")
+    for t in automaton.transitions():
+        effects = [_action_text(a) for a in t.actions] + [s.name for s in t.emitted]
+        label = guard_text(automaton, t) + (" / " + ", ".join(effects) if effects else "")
+        lines.append(f"  s{t.source} -> s{t.target} [label={_quote(label)}];")
+    lines.append("}")
+    return "\n".join(lines)
+

@@ -1,0 +1,305 @@
+"""Lowering of a checked mission (plan-language AST) to the reactive kernel IR.
+
+Names are resolved lexically: file-level signals, then the mission's, then ``signal`` blocks;
+``var`` declarations are visible to the end of their block; ``exit T`` names the innermost
+enclosing ``trap T``. A condition is a *presence test* when it is made of signal names under
+``not``/``and``/``or``, and a *data test* when it names no signal (``?S`` reads a value and is
+data); mixing both in one condition is an error that suggests nesting two ``if``.
+
+Statements that involve Robot-Tasks (``run``, ``try``, ``on fatal``) belong to the
+application level and are lowered by :mod:`orccad_app.robottask` when it is there; here they
+are reported as not available.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang import ast
+from orccad_app.reactive import derived as d
+from orccad_app.reactive import ir
+
+__all__ = ["lower_mission", "mission_interface"]
+
+
+
+@dataclass
+class _Scope:
+    """One lexical level: signals, variables and traps declared there."""
+
+    parent: "_Scope | None" = None
+    signals: dict[str, ir.SignalDecl] = field(default_factory=dict)
+    variables: dict[str, ir.VarDecl] = field(default_factory=dict)
+    traps: dict[str, ir.TrapDecl] = field(default_factory=dict)
+
+    def lookup(self, table: str, name: str):
+        scope: _Scope | None = self
+        while scope is not None:
+            found = getattr(scope, table).get(name)
+            if found is not None:
+                return found
+            scope = scope.parent
+        return None
+
+    def child(self) -> "_Scope":
+        return _Scope(parent=self)
+
+
+def _kind(direction: ast.Direction) -> str:
+    return {ast.Direction.INPUT: ir.INPUT, ast.Direction.OUTPUT: ir.OUTPUT}.get(direction, ir.LOCAL)
+
+
+def mission_interface(program: ast.Program, mission: ast.Mission) -> tuple[tuple, tuple]:
+    """The mission's input and output declarations: file-level first, in source order."""
+    inputs: list[ir.SignalDecl] = []
+    outputs: list[ir.SignalDecl] = []
+    seen: dict[str, SourceLocation] = {}
+    for decl in (*program.signals, *mission.signals):
+        if decl.name in seen:
+            raise OrccadError(f"signal '{decl.name}' is declared twice (first at "
+                              f"{seen[decl.name]})", decl.loc)
+        seen[decl.name] = decl.loc
+        lowered = ir.SignalDecl(decl.name, _kind(decl.direction), decl.type, decl.loc)
+        (inputs if lowered.kind == ir.INPUT else outputs).append(lowered)
+    return tuple(inputs), tuple(outputs)
+
+
+def lower_mission(program: ast.Program, mission: ast.Mission) -> ir.Program:
+    """The kernel program of ``mission`` (its body; Robot-Task statements excluded)."""
+    inputs, outputs = mission_interface(program, mission)
+    scope = _Scope()
+    for decl in (*inputs, *outputs):
+        scope.signals[decl.name] = decl
+    if mission.on_fatal is not None:
+        _not_yet("'on fatal'", mission.on_fatal.loc)
+    body = _Lowerer().block(mission.body, scope)
+    return ir.Program(mission.name, inputs, outputs, body, mission.loc)
+
+
+def _not_yet(what: str, loc: SourceLocation):
+    raise OrccadError(f"{what} needs Robot-Tasks, which the application level compiles; "
+                      "this build handles missions made of reactive statements only", loc)
+
+
+class _Lowerer:
+    """Statement-by-statement translation; one instance per mission."""
+
+    # ------------------------------------------------------------------ statements
+    def block(self, block: ast.Block, scope: _Scope) -> ir.Stmt:
+        inner = scope.child()
+        return d.seq(*(self.stmt(s, inner) for s in block.statements), loc=block.loc)
+
+    def stmt(self, s: ast.Stmt, scope: _Scope) -> ir.Stmt:
+        method = getattr(self, "_" + type(s).__name__.lower(), None)
+        if method is None:
+            _not_yet(f"'{type(s).__name__.lower()}'", s.loc)
+        return method(s, scope)
+
+    def _block(self, s: ast.Block, scope: _Scope) -> ir.Stmt:
+        return self.block(s, scope)
+
+    def _nothing(self, s: ast.Nothing, scope: _Scope) -> ir.Stmt:
+        return ir.Nothing(s.loc)
+
+    def _pause(self, s: ast.Pause, scope: _Scope) -> ir.Stmt:
+        return ir.Pause(s.loc)
+
+    def _halt(self, s: ast.Halt, scope: _Scope) -> ir.Stmt:
+        return d.halt(s.loc)
+
+    def _emit(self, s: ast.Emit, scope: _Scope) -> ir.Stmt:
+        signal = self._emittable(s.signal, s.value, s.signal_loc or s.loc, scope)
+        value = None if s.value is None else self.expr(s.value, scope)
+        return ir.Emit(signal, value, s.loc)
+
+    def _sustain(self, s: ast.Sustain, scope: _Scope) -> ir.Stmt:
+        signal = self._emittable(s.signal, s.value, s.signal_loc or s.loc, scope)
+        value = None if s.value is None else self.expr(s.value, scope)
+        return d.sustain(signal, value, s.loc)
+
+    def _await(self, s: ast.Await, scope: _Scope) -> ir.Stmt:
+        trigger = s.trigger
+        if trigger.duration_ns is not None:
+            return d.await_duration(ir.Const(trigger.duration_ns, trigger.loc), s.loc)
+        test = self.condition(trigger.condition, scope)
+        if trigger.count is not None:
+            if trigger.immediate:
+                raise OrccadError("'await immediate' cannot be counted", s.loc)
+            return d.await_count(self.expr(trigger.count, scope), test, s.loc)
+        return d.await_signal(test, immediate=trigger.immediate, loc=s.loc)
+
+    def _if(self, s: ast.If, scope: _Scope) -> ir.Stmt:
+        test = self.condition(s.condition, scope)
+        orelse = ir.Nothing(s.loc) if s.orelse is None else self.block(s.orelse, scope)
+        return ir.Present(test, self.block(s.then, scope), orelse, s.loc)
+
+    def _loop(self, s: ast.Loop, scope: _Scope) -> ir.Stmt:
+        body = self.block(s.body, scope)
+        if s.each is None:
+            return ir.Loop(body, s.loc)
+        setup, test, rearm = self.trigger(s.each, scope, "loop … each")
+        run = d.abort(d.seq(body, d.halt(s.loc)), test, loc=s.loc)
+        return d.seq(*setup, ir.Loop(d.seq(run, *rearm), s.loc, "loop … each"))
+
+    def _repeat(self, s: ast.Repeat, scope: _Scope) -> ir.Stmt:
+        return d.repeat(self.expr(s.count, scope), self.block(s.body, scope), s.loc)
+
+    def _every(self, s: ast.Every, scope: _Scope) -> ir.Stmt:
+        body = self.block(s.body, scope)
+        if s.trigger.duration_ns is not None:
+            return d.every_duration(ir.Const(s.trigger.duration_ns, s.trigger.loc), body, s.loc)
+        self._no_count(s.trigger, "every")
+        test = self.condition(s.trigger.condition, scope)
+        return d.every_signal(test, body, immediate=s.trigger.immediate, loc=s.loc)
+
+    def _abort(self, s: ast.Abort, scope: _Scope) -> ir.Stmt:
+        setup, test, _ = self.trigger(s.trigger, scope, "abort")
+        handler = None if s.handler is None else self.block(s.handler, scope)
+        body = self.block(s.body, scope)
+        return d.seq(*setup, d.abort(body, test, weak=s.weak, immediate=s.trigger.immediate,
+                                     handler=handler, loc=s.loc))
+
+    def _suspend(self, s: ast.Suspend, scope: _Scope) -> ir.Stmt:
+        if s.trigger.duration_ns is not None:
+            raise OrccadError("'suspend' needs a signal condition, not a duration", s.trigger.loc)
+        self._no_count(s.trigger, "suspend")
+        test = self.condition(s.trigger.condition, scope)
+        return d.suspend(self.block(s.body, scope), test, immediate=s.trigger.immediate, loc=s.loc)
+
+    def _trap(self, s: ast.Trap, scope: _Scope) -> ir.Stmt:
+        inner = scope.child()
+        trap = ir.TrapDecl(s.name, s.loc)
+        inner.traps[s.name] = trap
+        body = self.block(s.body, inner)
+        handler = None if s.handler is None else self.block(s.handler, scope)
+        return d.trap_handle(trap, body, handler, s.loc)
+
+    def _exit(self, s: ast.Exit, scope: _Scope) -> ir.Stmt:
+        trap = scope.lookup("traps", s.name)
+        if trap is None:
+            raise OrccadError(f"'exit {s.name}' is not inside a trap named {s.name}", s.loc)
+        return ir.Exit(trap, s.loc)
+
+    def _par(self, s: ast.Par, scope: _Scope) -> ir.Stmt:
+        return ir.Par(tuple(self.block(b, scope) for b in s.branches), s.loc)
+
+    def _race(self, s: ast.Race, scope: _Scope) -> ir.Stmt:
+        return d.race(tuple(self.block(b, scope) for b in s.branches), s.loc)
+
+    def _localsignals(self, s: ast.LocalSignals, scope: _Scope) -> ir.Stmt:
+        inner = scope.child()
+        decls = []
+        for decl in s.signals:
+            local = ir.SignalDecl(decl.name, ir.LOCAL, decl.type, decl.loc)
+            inner.signals[decl.name] = local
+            decls.append(local)
+        return ir.Local(tuple(decls), self.block(s.body, inner), s.loc)
+
+    def _vardecl(self, s: ast.VarDecl, scope: _Scope) -> ir.Stmt:
+        value = self.expr(s.value, scope)  # the initial value cannot see the new variable
+        var = ir.VarDecl(s.name, s.loc)
+        scope.variables[s.name] = var
+        return ir.Assign(var, value, s.loc)
+
+    def _assign(self, s: ast.Assign, scope: _Scope) -> ir.Stmt:
+        var = scope.lookup("variables", s.name)
+        if var is None:
+            raise OrccadError(f"undeclared variable '{s.name}' (declare it with 'var "
+                              f"{s.name} := …;')", s.loc)
+        return ir.Assign(var, self.expr(s.value, scope), s.loc)
+
+    # ------------------------------------------------------------------ helpers
+    def _emittable(self, name: str, value, loc: SourceLocation, scope: _Scope) -> ir.SignalDecl:
+        signal = self.signal(name, loc, scope)
+        if signal.kind == ir.INPUT:
+            raise OrccadError(f"'{name}' is an input signal: the mission cannot emit it", loc)
+        if signal.valued and value is None:
+            raise OrccadError(f"signal '{name}' carries a {signal.type}: emit it with a value, "
+                              f"'emit {name}(…)'", loc)
+        if not signal.valued and value is not None:
+            raise OrccadError(f"signal '{name}' is pure: it cannot carry a value", loc)
+        return signal
+
+    def _no_count(self, trigger: ast.Trigger, what: str) -> None:
+        if trigger.count is not None:
+            raise OrccadError(f"a count is only allowed in 'await', not in '{what}'", trigger.loc)
+
+    def signal(self, name: str, loc: SourceLocation, scope: _Scope) -> ir.SignalDecl:
+        signal = scope.lookup("signals", name)
+        if signal is None:
+            raise OrccadError(f"undeclared signal '{name}'", loc)
+        return signal
+
+    def trigger(self, trigger: ast.Trigger, scope: _Scope, what: str):
+        """(set-up statements, test, re-arm statements) of a preemption trigger."""
+        if trigger.duration_ns is None:
+            self._no_count(trigger, what)
+            return (), self.condition(trigger.condition, scope), ()
+        deadline = ir.VarDecl("_deadline", trigger.loc, hidden=True)
+        period = ir.Const(trigger.duration_ns, trigger.loc)
+        start = ir.Assign(deadline, ir.Binary("+", ir.Clock(trigger.loc), period), trigger.loc)
+        rearm = ir.Assign(deadline, ir.Binary("+", ir.VarRef(deadline), period), trigger.loc)
+        test = ir.DataTest(ir.Binary(">=", ir.Clock(trigger.loc), ir.VarRef(deadline)), trigger.loc)
+        return (start,), test, (rearm,)
+
+    # ------------------------------------------------------------------ conditions
+    def _mentions_signal(self, e: ast.Expr, scope: _Scope) -> bool:
+        if isinstance(e, ast.Name):
+            return scope.lookup("variables", e.name) is None and \
+                scope.lookup("signals", e.name) is not None
+        if isinstance(e, ast.Unary):
+            return self._mentions_signal(e.operand, scope)
+        if isinstance(e, ast.Binary):
+            return self._mentions_signal(e.left, scope) or self._mentions_signal(e.right, scope)
+        return False
+
+    def condition(self, e: ast.Expr, scope: _Scope) -> ir.Test:
+        if not self._mentions_signal(e, scope):
+            return ir.DataTest(self.expr(e, scope), e.loc)
+        return self._presence(e, scope)
+
+    def _presence(self, e: ast.Expr, scope: _Scope) -> ir.Test:
+        if isinstance(e, ast.Name):
+            if scope.lookup("variables", e.name) is not None:
+                self._mixed(e)
+            return ir.SigRef(self.signal(e.name, e.loc, scope), e.loc)
+        if isinstance(e, ast.Unary) and e.op == "not":
+            return ir.SigNot(self._presence(e.operand, scope), e.loc)
+        if isinstance(e, ast.Binary) and e.op in ("and", "or"):
+            left, right = self._presence(e.left, scope), self._presence(e.right, scope)
+            return (ir.SigAnd if e.op == "and" else ir.SigOr)(left, right, e.loc)
+        self._mixed(e)
+
+    def _mixed(self, e: ast.Expr):
+        raise OrccadError("this condition mixes signal presence and data values; test them "
+                          "in two nested 'if' statements", e.loc)
+
+    # ------------------------------------------------------------------ expressions
+    def expr(self, e: ast.Expr, scope: _Scope) -> ir.Expr:
+        if isinstance(e, (ast.Number, ast.String, ast.Bool)):
+            return ir.Const(e.value, e.loc)
+        if isinstance(e, ast.DurationLit):
+            return ir.Const(e.duration_ns, e.loc)
+        if isinstance(e, ast.Name):
+            var = scope.lookup("variables", e.name)
+            if var is not None:
+                return ir.VarRef(var, e.loc)
+            if scope.lookup("signals", e.name) is not None:
+                raise OrccadError(f"'{e.name}' is a signal: its presence is not a value here "
+                                  f"(use ?{e.name} for its value)", e.loc)
+            raise OrccadError(f"undeclared variable '{e.name}'", e.loc)
+        if isinstance(e, ast.LastValue):
+            signal = self.signal(e.signal, e.loc, scope)
+            if not signal.valued:
+                raise OrccadError(f"?{e.signal}: signal '{e.signal}' is pure and has no value",
+                                  e.loc)
+            return ir.SigValue(signal, e.loc)
+        if isinstance(e, ast.Vector):
+            return ir.VectorExpr(tuple(self.expr(i, scope) for i in e.items), e.loc)
+        if isinstance(e, ast.Unary):
+            return ir.Unary(e.op, self.expr(e.operand, scope), e.loc)
+        if isinstance(e, ast.Binary):
+            return ir.Binary(e.op, self.expr(e.left, scope), self.expr(e.right, scope), e.loc)
+        raise OrccadError(f"'{getattr(e, 'func', '?')}(…)' is not a value in a mission "
+                          "expression", e.loc)
