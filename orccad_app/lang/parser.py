@@ -17,7 +17,7 @@ import importlib.resources
 import re
 
 from lark import Lark, Token, Tree
-from lark.exceptions import LarkError, UnexpectedInput, VisitError
+from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken, VisitError
 from lark.lexer import PatternStr
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
@@ -77,6 +77,24 @@ def _reserved_name(tree: Tree, filename: str) -> OrccadError | None:
                        location)
 
 
+def _accepts(error: UnexpectedInput, text: str) -> set[str] | None:
+    """The terminals the parser could really take where ``error`` happened.
+
+    lark's ``expected`` is the lexer's set when the contextual lexer found no token fitting
+    the state; replaying the input in an interactive parser gives the parser's own set.
+    """
+    if not isinstance(error, UnexpectedToken):
+        return None
+    if error.interactive_parser is not None:
+        return set(error.accepts)
+    replay = _lark().parse_interactive(text)
+    try:
+        replay.exhaust_lexer()
+    except UnexpectedInput:
+        return set(replay.accepts())
+    return None  # pragma: no cover - the replay fails where the parse did
+
+
 def parse(text: str, filename: str = "<input>") -> ast.Program:
     """Parse the text of one ``.orc`` file.
 
@@ -88,7 +106,8 @@ def parse(text: str, filename: str = "<input>") -> ast.Program:
         tree = _lark().parse(text)
     except UnexpectedInput as error:
         terminals = {t.name: t for t in _lark().terminals}
-        raise syntax_error(error, text, filename, keywords(), terminals) from None
+        raise syntax_error(error, text, filename, keywords(), terminals,
+                           _accepts(error, text)) from None
     except RecursionError:
         raise OrccadError("program too deeply nested",
                           SourceLocation(filename, 1, 1)) from None

@@ -19,6 +19,7 @@ import re
 from dataclasses import dataclass
 
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+from lark.lexer import PatternStr
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 
@@ -44,6 +45,12 @@ _TERMINAL_WORDS = {
     "STRING": "a string", "PROTOCOL": "a protocol", "$END": "end of file",
     "IMMEDIATE": "'immediate'", "WEAK": "'weak'",
 }
+
+
+#: Terminals that start an expression, or continue one: left out of "expected ..." lists.
+_EXPRESSION_START = frozenset({"NAME", "INT", "FLOAT", "DURATION", "STRING", "LSQB", "LPAR",
+                               "QMARK", "MINUS", "NOT", "TRUE", "FALSE", "PI"})
+_OPERATORS = frozenset({"+", "-", "*", "/", "<", "<=", ">", ">=", "==", "!=", "and", "or"})
 
 
 @dataclass(frozen=True)
@@ -101,18 +108,23 @@ def _unclosed_brace(tokens: list[_Tok]) -> _Tok | None:
 
 def _describe(expected: set[str], lark_terminals: dict) -> list[str]:
     words = []
+    if {"NAME", "INT", "FLOAT"} <= expected:
+        words.append("an expression")
+        expected = expected - _EXPRESSION_START
     for name in sorted(expected):
+        pattern = getattr(lark_terminals.get(name), "pattern", None)
         if name in _TERMINAL_WORDS:
             words.append(_TERMINAL_WORDS[name])
-        elif name in lark_terminals and hasattr(lark_terminals[name].pattern, "value"):
-            words.append(f"'{lark_terminals[name].pattern.value}'")
+        elif isinstance(pattern, PatternStr):
+            if pattern.value not in _OPERATORS:
+                words.append(f"'{pattern.value}'")
         else:
             words.append(name)
     return sorted(set(words))
 
 
-def _suggest(word: str, candidates) -> str:
-    close = difflib.get_close_matches(word, sorted(candidates), n=1, cutoff=0.6)
+def _suggest(word: str, candidates, cutoff: float = 0.6) -> str:
+    close = difflib.get_close_matches(word, sorted(candidates), n=1, cutoff=cutoff)
     return f"; did you mean '{close[0]}'?" if close else ""
 
 
@@ -141,46 +153,50 @@ def _characters_error(error: UnexpectedCharacters, loc: _Locator) -> OrccadError
 
 
 def _token_error(error: UnexpectedToken, loc: _Locator, keywords: frozenset[str],
-                 terminals: dict) -> OrccadError:
+                 terminals: dict, accepts: set[str]) -> OrccadError:
     token = error.token
-    expected = set(error.expected)
     at_end = token.type == "$END"
     pos = len(loc.text) if at_end else loc.offset(token.line, token.column)
     before = _tokens(loc.text, pos)
     prev = before[-1] if before else None
-    here = loc.at(pos, pos + len(str(token))) if not at_end else None
+    here = None if at_end else loc.at(pos, pos + len(str(token)))
     found = "end of file" if at_end else f"'{token}'"
+    texts = _expected_texts(accepts, terminals)
 
     unclosed = _unclosed_brace(before)
-    if unclosed is not None and (at_end or str(token) in _TOP_LEVEL):
+    if unclosed is not None and (at_end or str(token) in _TOP_LEVEL
+                                 or (prev is not None and prev.text in _TOP_LEVEL)):
         return OrccadError("unclosed '{': no matching '}' before " + found,
                            loc.at(unclosed.start, unclosed.end))
     if at_end:
-        return OrccadError("unexpected end of file" + _expecting(expected, terminals),
+        return OrccadError("unexpected end of file" + _expecting(accepts, terminals),
                            loc.end_of(prev) if prev else loc.at(0))
+    if loc.text.startswith("/*", pos):
+        return OrccadError("unterminated comment: '/*' has no matching '*/'",
+                           loc.at(pos, pos + 2))
     if str(token) == "}" and unclosed is None:
         return OrccadError("unmatched '}'", here)
-    if "DURATION" in expected and token.type in ("INT", "FLOAT"):
+    if "DURATION" in accepts and token.type in ("INT", "FLOAT"):
         return _duration_error(token, pos, loc)
-    if token.type == "NAME" and prev is not None and prev.kind == "num" and \
-            "DURATION" not in expected:
+    if token.type == "NAME" and prev is not None and prev.kind == "num":
         return OrccadError(f"bad duration unit '{token}' (expected one of "
                            f"{', '.join(UNITS)})", here)
-    if "SEMICOLON" in expected and prev is not None and (
-            str(token) in keywords or token.line > _line_of(loc, prev) or str(token) == "}"
-            or len(expected) > 1):
-        if not (prev.kind == "word" and ":=" in _expected_texts(expected, terminals)):
-            return OrccadError(f"expected ';' after {_statement_kind(before)}",
-                               loc.end_of(prev))
-    if prev is not None and prev.kind == "word" and ":=" in _expected_texts(expected,
-                                                                            terminals):
+    if prev is not None and prev.kind == "word" and ":=" in texts:
         return _unknown_statement(prev, loc, keywords)
+    if (prev is not None and prev.kind == "word" and prev.text not in keywords
+            and token.type in ("NAME", "LPAR")):
+        hint = _suggest(prev.text, keywords, cutoff=0.8)
+        if hint:
+            return OrccadError(f"unknown keyword '{prev.text}'{hint}",
+                               loc.at(prev.start, prev.end))
+    if "SEMICOLON" in accepts and prev is not None:
+        return OrccadError(f"expected ';' after {_statement_kind(before)}", loc.end_of(prev))
     if token.type == "NAME":
-        choices = {w.strip("'") for w in _describe(expected, terminals)} & keywords
-        hint = _suggest(str(token), choices or keywords)
+        choices = (texts & keywords) or keywords
+        hint = _suggest(str(token), choices)
         if hint:
             return OrccadError(f"unknown keyword '{token}'{hint}", here)
-    return OrccadError(f"unexpected {found}" + _expecting(expected, terminals), here)
+    return OrccadError(f"unexpected {found}" + _expecting(accepts, terminals), here)
 
 
 _TOP_LEVEL = frozenset({"mission", "robottask", "robot", "property", "assume"})
@@ -213,16 +229,26 @@ def _duration_error(token, pos: int, loc: _Locator) -> OrccadError:
 
 
 def _unknown_statement(prev: _Tok, loc: _Locator, keywords: frozenset[str]) -> OrccadError:
+    where = loc.at(prev.start, prev.end)
+    if prev.text in keywords:
+        return OrccadError(f"'{prev.text}' cannot start a statement here", where)
     hint = _suggest(prev.text, keywords)
-    return OrccadError(f"unknown statement '{prev.text}'{hint}", loc.at(prev.start, prev.end))
+    return OrccadError(f"unknown statement '{prev.text}'{hint}", where)
 
 
-def syntax_error(error: UnexpectedInput, text: str, filename: str,
-                 keywords: frozenset[str], terminals: dict | None = None) -> OrccadError:
-    """The located :class:`OrccadError` for a lark parse failure."""
+def syntax_error(error: UnexpectedInput, text: str, filename: str, keywords: frozenset[str],
+                 terminals: dict | None = None,
+                 accepts: set[str] | None = None) -> OrccadError:
+    """The located :class:`OrccadError` for a lark parse failure.
+
+    ``terminals`` maps terminal names to lark definitions (to spell expected tokens);
+    ``accepts`` is the exact set of terminals the parser could take at the failure
+    (``error.expected`` when not given).
+    """
     loc = _Locator(text, filename)
     if isinstance(error, UnexpectedCharacters):
         return _characters_error(error, loc)
     if isinstance(error, UnexpectedToken):
-        return _token_error(error, loc, keywords, terminals or {})
+        accepts = set(error.expected if accepts is None else accepts)
+        return _token_error(error, loc, keywords, terminals or {}, accepts)
     return OrccadError("syntax error", loc.at(getattr(error, "pos_in_stream", 0) or 0))
