@@ -254,7 +254,27 @@ class _Lowerer:
             return self._mentions_signal(e.left, scope) or self._mentions_signal(e.right, scope)
         return False
 
+    def _presence_shaped(self, e: ast.Expr) -> bool:
+        if isinstance(e, ast.Name):
+            return True
+        if isinstance(e, ast.Unary) and e.op == "not":
+            return self._presence_shaped(e.operand)
+        if isinstance(e, ast.Binary) and e.op in ("and", "or"):
+            return self._presence_shaped(e.left) and self._presence_shaped(e.right)
+        return False
+
+    def _mentions_variable(self, e: ast.Expr, scope: _Scope) -> bool:
+        if isinstance(e, ast.Name):
+            return scope.lookup("variables", e.name) is not None
+        if isinstance(e, ast.Unary):
+            return self._mentions_variable(e.operand, scope)
+        if isinstance(e, ast.Binary):
+            return self._mentions_variable(e.left, scope) or self._mentions_variable(e.right, scope)
+        return False
+
     def condition(self, e: ast.Expr, scope: _Scope) -> ir.Test:
+        if self._presence_shaped(e) and not self._mentions_variable(e, scope):
+            return self._presence(e, scope)  # unknown names are reported as signals
         if not self._mentions_signal(e, scope):
             return ir.DataTest(self.expr(e, scope), e.loc)
         return self._presence(e, scope)

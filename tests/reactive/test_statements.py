@@ -272,3 +272,10 @@ def test_abro_is_esterels_abro(run):
     r = run(source, ["", "A", "B", "A B", "R", "A B", "R A", "B", "A"])
     assert r.outputs == ["-", "-", "O", "-", "-", "O", "-", "-", "O"]
     assert r.automaton.state_count == 5
+
+
+def test_if_on_a_boolean_variable_is_a_data_test(run):
+    r = run(mission("input A; output Y, N;",
+                    "var seen := false; loop { if seen { emit Y; } else { emit N; } "
+                    "if A { seen := true; } pause; }"), ["", "A", ""])
+    assert r.outputs == ["N", "N", "Y"]
