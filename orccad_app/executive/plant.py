@@ -1,0 +1,228 @@
+"""Plant coupling: a MuJoCo model advanced between events (DESIGN.md §5, RR-1801 §6.1).
+
+:class:`MujocoPlant` wraps an MJCF model as the physical resource of a TCS. Its ports:
+
+- producer (sensor) ports ``q`` (``qpos``, dim ``nq``), ``qdot`` (``qvel``, dim ``nv``) and one
+  port per named MJCF ``<sensor>`` (dim ``sensor_dim``), sampled at the instant of the read;
+- consumer (actuator) port ``tau`` (``ctrl``, dim ``nu``), held until the next write
+  (zero-order hold) and clamped to the torque limits.
+
+**Time coupling.** The plant integrates in steps of the model's ``opt.timestep``: before a read
+or a write at ``t`` (and at the end of a run) it takes every step that ends at or before ``t``.
+A read thus sees the state of the last step boundary ``<= t``, and a write applies from that
+boundary: both are exact when instants fall on the timestep grid and off by less than one
+timestep otherwise.
+
+**Sensors.** ``noise_std`` adds Gaussian noise per port (stream ``plant/<name>/<port>`` of the
+run's seed), then ``quantization`` rounds to multiples of the step per port.
+
+**Divergence.** After each advance, non-finite ``qpos``/``qvel`` or a new MuJoCo warning
+(bad ``qacc``/``qpos``/``qvel``/``ctrl``; MuJoCo resets the state on those) raises
+:class:`PlantDivergenceError`.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import mujoco
+import numpy as np
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.kernel import Kernel
+from orccad_app.tcs.module_task import PhysicalResource
+
+__all__ = ["MujocoPlant", "PlantDivergenceError"]
+
+_WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
+                     mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
+
+
+class PlantDivergenceError(OrccadError):
+    """The physics diverged (non-finite state or a MuJoCo instability warning)."""
+
+    exit_status = 1
+
+
+def _load(xml: str | None, path: str | None) -> mujoco.MjModel:
+    if (xml is None) == (path is None):
+        raise OrccadError("MujocoPlant needs exactly one of xml= (an MJCF string) or path=")
+    try:
+        if xml is not None:
+            return mujoco.MjModel.from_xml_string(xml)
+        return mujoco.MjModel.from_xml_path(str(path))
+    except ValueError as error:
+        raise OrccadError(f"cannot load MJCF model {path or '<string>'}: {error}") from None
+
+
+class MujocoPlant:
+    """A MuJoCo model as the physical resource ``name``.
+
+    :param name: the resource's name in the TCS (e.g. ``arm``: ports ``arm.q``, ``arm.tau``).
+    :param xml: MJCF text; or
+    :param path: an MJCF file.
+    :param noise_std: per sensor port, the standard deviation of additive Gaussian noise
+        (in the port's unit: [rad], [rad/s], ...).
+    :param quantization: per sensor port, the quantization step (same unit).
+    :param torque_limits: symmetric bound(s) on ``tau`` [N·m] (scalar or per actuator);
+        default: the actuators' ``ctrlrange`` where ``ctrllimited``, else none.
+    :param qpos0: initial joint positions (default: the model's ``qpos0``).
+    :param qvel0: initial joint velocities (default zero).
+    """
+
+    def __init__(self, name: str, *, xml: str | None = None, path: str | None = None,
+                 noise_std: Mapping[str, float] | None = None,
+                 quantization: Mapping[str, float] | None = None,
+                 torque_limits: Any = None, qpos0: Any = None, qvel0: Any = None) -> None:
+        self.model = _load(xml, path)
+        self.data = mujoco.MjData(self.model)
+        self.name = name
+        self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
+        if self.timestep_ns <= 0:
+            raise OrccadError(f"plant '{name}': timestep {self.model.opt.timestep} s is below 1 ns")
+        self._readers = self._sensor_readers()
+        self.resource = self._resource()
+        self._noise = self._per_port("noise_std", noise_std)
+        self._quantum = self._per_port("quantization", quantization)
+        self._low, self._high = self._limits(torque_limits)
+        if qpos0 is not None:
+            self.data.qpos[:] = qpos0
+        if qvel0 is not None:
+            self.data.qvel[:] = qvel0
+        mujoco.mj_forward(self.model, self.data)
+        self.steps = 0
+        """Integration steps taken."""
+        self.saturations = 0
+        """Actuator writes that the torque limits clamped."""
+        self._kernel: Kernel | None = None
+        self._streams: dict[str, np.random.Generator] = {}
+        self._warnings = self._warning_counts()
+
+    # -- construction ------------------------------------------------------------------------
+
+    def _sensor_readers(self) -> dict[str, Any]:
+        model, data = self.model, self.data
+        readers: dict[str, Any] = {"q": lambda: data.qpos.copy(), "qdot": lambda: data.qvel.copy()}
+        for index in range(model.nsensor):
+            sensor = model.sensor(index)
+            if not sensor.name or sensor.name in readers or sensor.name == "tau":
+                continue
+            start, dim = int(model.sensor_adr[index]), int(model.sensor_dim[index])
+            readers[sensor.name] = (lambda a=start, b=start + dim: data.sensordata[a:b].copy())
+        return readers
+
+    def _resource(self) -> PhysicalResource:
+        dims = {"q": self.model.nq, "qdot": self.model.nv}
+        for index in range(self.model.nsensor):
+            dims.setdefault(self.model.sensor(index).name, int(self.model.sensor_dim[index]))
+        ports = [PhysicalResource.sensor(port, dims[port]) for port in self._readers]
+        if self.model.nu:
+            ports.append(PhysicalResource.actuator("tau", self.model.nu))
+        return PhysicalResource(self.name, tuple(ports))
+
+    def _per_port(self, label: str, values: Mapping[str, float] | None) -> dict[str, float]:
+        values = dict(values or {})
+        for port, value in values.items():
+            if port not in self._readers:
+                raise OrccadError(f"plant '{self.name}': {label} for unknown sensor port "
+                                  f"'{port}' (sensors: {', '.join(self._readers)})")
+            if not value >= 0:
+                raise OrccadError(f"plant '{self.name}': {label}['{port}'] must be >= 0, "
+                                  f"got {value!r}")
+        return {port: float(value) for port, value in values.items() if value > 0}
+
+    def _limits(self, torque_limits: Any) -> tuple[np.ndarray, np.ndarray]:
+        nu = self.model.nu
+        if torque_limits is not None:
+            bound = np.broadcast_to(np.abs(np.asarray(torque_limits, dtype=float)), (nu,))
+            return -bound.copy(), bound.copy()
+        low = np.full(nu, -np.inf)
+        high = np.full(nu, np.inf)
+        limited = self.model.actuator_ctrllimited.astype(bool)
+        low[limited] = self.model.actuator_ctrlrange[limited, 0]
+        high[limited] = self.model.actuator_ctrlrange[limited, 1]
+        return low, high
+
+    def attach(self, kernel: Kernel) -> None:
+        """Bind to the simulation's kernel (clock and random streams)."""
+        self._kernel = kernel
+
+    # -- coupling ----------------------------------------------------------------------------
+
+    @property
+    def time_ns(self) -> int:
+        """The plant's integrated time [ns] (a multiple of the timestep)."""
+        return self.steps * self.timestep_ns
+
+    def advance_to(self, time_ns: int) -> None:
+        """Take every integration step that ends at or before ``time_ns``."""
+        count = (time_ns - self.time_ns) // self.timestep_ns
+        if count <= 0:
+            return
+        model, data, step = self.model, self.data, mujoco.mj_step
+        for _ in range(count):
+            step(model, data)
+        self.steps += count
+        self._check(time_ns)
+
+    def _warning_counts(self) -> tuple[int, ...]:
+        return tuple(self.data.warning[int(w)].number for w in _WATCHED_WARNINGS)
+
+    def _check(self, time_ns: int) -> None:
+        counts = self._warning_counts()
+        finite = np.isfinite(self.data.qpos).all() and np.isfinite(self.data.qvel).all()
+        if finite and counts == self._warnings:
+            return
+        raised = [w.name for w, old, new in zip(_WATCHED_WARNINGS, self._warnings, counts)
+                  if new > old]
+        what = ", ".join(raised) if raised else "non-finite qpos/qvel"
+        self._warnings = counts
+        raise PlantDivergenceError(f"plant '{self.name}' diverged before t = {time_ns} ns "
+                                   f"({what}); reduce the timestep or the gains")
+
+    def sample(self, port: str) -> np.ndarray:
+        """The sensor ``port`` now (noise and quantization applied)."""
+        self.advance_to(self._kernel.now)
+        value = self._readers[port]()
+        std = self._noise.get(port)
+        if std:
+            stream = self._streams.get(port)
+            if stream is None:
+                stream = self._streams[port] = self._kernel.stream(f"plant/{self.name}/{port}")
+            value += stream.normal(0.0, std, value.shape)
+        quantum = self._quantum.get(port)
+        if quantum:
+            value = np.round(value / quantum) * quantum
+        return value
+
+    def actuate(self, port: str, value: Any) -> None:
+        """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
+        self.advance_to(self._kernel.now)
+        command = np.broadcast_to(np.asarray(value, dtype=float), (self.model.nu,))
+        clamped = np.clip(command, self._low, self._high)
+        if not np.array_equal(clamped, command):
+            self.saturations += 1
+        self.data.ctrl[:] = clamped
+
+    # -- accessors ---------------------------------------------------------------------------
+
+    @property
+    def qpos(self) -> np.ndarray:
+        """Joint positions at the plant's time (a copy) [rad or m]."""
+        return self.data.qpos.copy()
+
+    @property
+    def qvel(self) -> np.ndarray:
+        """Joint velocities at the plant's time (a copy) [rad/s or m/s]."""
+        return self.data.qvel.copy()
+
+    @property
+    def ctrl(self) -> np.ndarray:
+        """The held actuator command (a copy) [N·m]."""
+        return self.data.ctrl.copy()
+
+    def energy(self) -> float:
+        """Potential + kinetic energy at the plant's time [J]."""
+        mujoco.mj_energyPos(self.model, self.data)
+        mujoco.mj_energyVel(self.model, self.data)
+        return float(self.data.energy[0] + self.data.energy[1])

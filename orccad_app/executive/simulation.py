@@ -1,0 +1,304 @@
+"""The executive's run loop: kernel, processors, bus, Module-Tasks, channels and plants.
+
+Build a :class:`Simulation` from a checked :class:`~orccad_app.tcs.graph.TCS`, activate
+Module-Tasks, run::
+
+    sim = Simulation(tcs, seed=7, processors=[Processor("cpu0", context_switch_ns=2_000)],
+                     bus=Bus(transfer_ns=50_000), plants=[plant], observers=[log])
+    sim.activate()                      # every Module-Task, now
+    sim.kill(["obs"], at_ns=ms(300))    # what the behaviour automata will drive
+    sim.run(until_ns=s(1))
+    sim.stats().tasks["ctrl"].response_max_ns
+
+Control methods (``activate``, ``kill``, ``set_param``, ``at``, ``post_signal``) schedule an
+event of class ``CONTROL`` at ``at_ns`` (default: now, i.e. in zero time after the current
+event), so an observer reacting to a signal can call them from its callback. Processors named
+by Module-Tasks but not given are created with the defaults (fixed priority, no overhead); a
+connection between different processors crosses ``bus`` (a zero-time :class:`Bus` if none).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.bus import Bus, BusStats
+from orccad_app.executive.channel import (ActuatorChannel, Channel, SensorChannel,
+                                          make_channel)
+from orccad_app.executive.deadlock import describe_cycle, wait_cycle
+from orccad_app.executive.job import Job, TaskStats
+from orccad_app.executive.kernel import EventClass, Kernel
+from orccad_app.executive.observer import HOOKS, Observer, listeners
+from orccad_app.executive.processor import Processor, ProcessorStats
+from orccad_app.executive.task_runtime import TaskRuntime
+from orccad_app.tcs.graph import TCS
+from orccad_app.tcs.module_task import PhysicalResource
+
+__all__ = ["Simulation", "RunStats", "Hooks"]
+
+_CONTROL = EventClass.CONTROL
+
+
+class Hooks:
+    """Per callback name, the list of observers' bound methods that override it."""
+
+    __slots__ = HOOKS
+
+    def __init__(self, observers: list[Observer]) -> None:
+        for hook in HOOKS:
+            setattr(self, hook, listeners(observers, hook))
+
+
+class _SignalCallback(Observer):
+    """Adapts a plain ``callback(t_ns, name, value)`` to the observer interface."""
+
+    def __init__(self, callback: Callable[[int, str, Any], None]) -> None:
+        self.on_signal = callback  # type: ignore[method-assign]
+
+    def on_signal(self, t_ns: int, name: str, value: Any) -> None:  # replaced per instance
+        """Forward to the callback."""
+
+
+@dataclass(frozen=True, slots=True)
+class RunStats:
+    """Statistics at the end of the last run segment.
+
+    :param time_ns: the simulated time reached [ns].
+    :param events: kernel events processed.
+    :param tasks: per Module-Task.
+    :param processors: per processor.
+    :param bus: the bus's, if any connection crosses it.
+    """
+
+    time_ns: int
+    events: int
+    tasks: dict[str, TaskStats]
+    processors: dict[str, ProcessorStats]
+    bus: BusStats | None
+
+
+class Simulation:
+    """A timed run of a TCS.
+
+    :param tcs: the TCS (checked with ``tcs.check()`` unless ``check=False``).
+    :param seed: the run's seed; same TCS, seed and commands give the same run bit for bit.
+    :param processors: processor descriptions (others are created with the defaults).
+    :param bus: the bus between processors.
+    :param plants: plant objects, one per physical resource of the TCS, matched by
+        ``plant.resource.name`` (see :class:`~orccad_app.executive.plant.MujocoPlant`).
+    :param observers: :class:`~orccad_app.executive.observer.Observer` instances.
+    """
+
+    def __init__(self, tcs: TCS, *, seed: int = 0, processors: Iterable[Processor] = (),
+                 bus: Bus | None = None, plants: Iterable[Any] = (),
+                 observers: Iterable[Observer] = (), check: bool = True) -> None:
+        if check:
+            tcs.check()
+        self.tcs = tcs
+        self.kernel = Kernel(seed)
+        self._observers = list(observers)
+        self.hooks = Hooks(self._observers)
+        self.processors = self._processors(tcs, processors)
+        self.bus = bus
+        self.plants = self._plants(tcs, plants)
+        self.tasks = {task.name: TaskRuntime(self, task, self.processors[task.processor])
+                      for task in tcs.module_tasks}
+        self.channels: dict[str, Channel] = {}
+        self._wire()
+
+    # -- construction ------------------------------------------------------------------------
+
+    def _processors(self, tcs: TCS, given: Iterable[Processor]) -> dict[str, Processor]:
+        processors: dict[str, Processor] = {}
+        for processor in given:
+            if processor.name in processors:
+                raise OrccadError(f"duplicate processor name '{processor.name}'")
+            processors[processor.name] = processor
+        for task in tcs.module_tasks:
+            if task.processor not in processors:
+                processors[task.processor] = Processor(task.processor)
+        for processor in processors.values():
+            processor.attach(self.kernel, self.hooks)
+        return processors
+
+    def _plants(self, tcs: TCS, plants: Iterable[Any]) -> dict[str, Any]:
+        by_name = {}
+        resources = {r.name for r in tcs.resources}
+        for plant in plants:
+            name = plant.resource.name
+            if name not in resources:
+                raise OrccadError(f"plant '{name}' is not a physical resource of TCS "
+                                  f"'{tcs.name}' (add plant.resource to the TCS)")
+            by_name[name] = plant
+            plant.attach(self.kernel)
+        for name in resources - set(by_name):
+            raise OrccadError(f"physical resource '{name}' of TCS '{tcs.name}' has no plant")
+        return by_name
+
+    def _wire(self) -> None:
+        tcs = self.tcs
+        writes: dict[str, list[Channel]] = {}
+        for connection in tcs.connections:
+            channel = self._channel(connection)
+            self.channels[connection.label] = channel
+            writes.setdefault(connection.producer, []).append(channel)
+        for runtime in self.tasks.values():
+            task = runtime.task
+            for port in task.inputs:
+                connection = tcs.feeding(f"{task.name}.{port.name}")
+                if connection is not None:
+                    runtime.reads.append((port.name, self.channels[connection.label]))
+            for port in task.outputs:
+                runtime.writes.append((port.name, port.is_event, None))
+                for channel in writes.get(f"{task.name}.{port.name}", ()):
+                    runtime.writes.append((port.name, port.is_event, channel))
+
+    def _channel(self, connection: Any) -> Channel:
+        producer = self.tcs.module(connection.producer_module)
+        consumer = self.tcs.module(connection.consumer_module)
+        if isinstance(producer, PhysicalResource):
+            return SensorChannel(connection, self.tasks.get(consumer.name),
+                                 self.plants[producer.name])
+        if isinstance(consumer, PhysicalResource):
+            return ActuatorChannel(connection, self.tasks[producer.name],
+                                   self.plants[consumer.name])
+        out_port = producer.port(connection.producer_port)
+        in_port = consumer.port(connection.consumer_port)
+        initial = in_port.initial if in_port.initial is not None else out_port.initial_value()
+        bus = None
+        if producer.processor != consumer.processor:
+            if self.bus is None:
+                self.bus = Bus()
+            bus = self.bus
+            bus.attach(self.kernel, self.hooks)
+        return make_channel(connection, self.tasks[producer.name], self.tasks[consumer.name],
+                            initial, bus)
+
+    # -- observers ---------------------------------------------------------------------------
+
+    def add_observer(self, observer: Observer) -> None:
+        """Start calling ``observer``'s overridden callbacks."""
+        self._observers.append(observer)
+        fresh = Hooks(self._observers)
+        for hook in HOOKS:
+            getattr(self.hooks, hook)[:] = getattr(fresh, hook)
+
+    def on_signal(self, callback: Callable[[int, str, Any], None]) -> None:
+        """Call ``callback(t_ns, name, value)`` for every signal (event port writes and
+        posted signals)."""
+        self.add_observer(_SignalCallback(callback))
+
+    # -- control -----------------------------------------------------------------------------
+
+    @property
+    def now_ns(self) -> int:
+        """The current simulated instant [ns]."""
+        return self.kernel.now
+
+    def _runtimes(self, modules: Iterable[str] | str | None) -> list[TaskRuntime]:
+        if modules is None:
+            return list(self.tasks.values())
+        if isinstance(modules, str):
+            modules = [modules]
+        found = []
+        for name in modules:
+            if name not in self.tasks:
+                known = ", ".join(self.tasks)
+                raise OrccadError(f"unknown module-task '{name}' (known: {known})")
+            found.append(self.tasks[name])
+        return found
+
+    def at(self, time_ns: int | None, callback: Callable[[Simulation], None]) -> None:
+        """Call ``callback(sim)`` at ``time_ns`` (default now), in class ``CONTROL``."""
+        when = self.kernel.now if time_ns is None else time_ns
+        self.kernel.schedule(when, _CONTROL, callback, self)
+
+    def activate(self, modules: Iterable[str] | str | None = None,
+                 at_ns: int | None = None) -> None:
+        """Start ``modules`` (default all) at ``at_ns`` (default now): first release then."""
+        runtimes = self._runtimes(modules)
+
+        def start(sim: Simulation) -> None:
+            for runtime in runtimes:
+                if not runtime.active:
+                    runtime.activate()
+                    for hook in sim.hooks.on_activate:
+                        hook(sim.kernel.now, runtime.name)
+        self.at(at_ns, start)
+
+    def kill(self, modules: Iterable[str] | str | None = None,
+             at_ns: int | None = None) -> None:
+        """Stop ``modules`` (default all) at ``at_ns`` (default now), aborting their jobs."""
+        runtimes = self._runtimes(modules)
+
+        def stop(sim: Simulation) -> None:
+            for runtime in runtimes:
+                if runtime.active:
+                    runtime.kill()
+                    for hook in sim.hooks.on_kill:
+                        hook(sim.kernel.now, runtime.name)
+        self.at(at_ns, stop)
+
+    def set_param(self, module: str, name: str, value: Any, at_ns: int | None = None) -> None:
+        """Call ``set_param(name, value)`` of ``module``'s compute object at ``at_ns``."""
+        runtime = self._runtimes([module])[0]
+
+        def change(sim: Simulation) -> None:
+            runtime.set_param(name, value)
+            for hook in sim.hooks.on_param:
+                hook(sim.kernel.now, module, name, value)
+        self.at(at_ns, change)
+
+    def post_signal(self, name: str, value: Any = True, at_ns: int | None = None) -> None:
+        """Surface an external signal (operator input, timer) to observers at ``at_ns``."""
+        def emit(sim: Simulation) -> None:
+            for hook in sim.hooks.on_signal:
+                hook(sim.kernel.now, name, value)
+        self.at(at_ns, emit)
+
+    # -- running -----------------------------------------------------------------------------
+
+    def run(self, until_ns: int) -> RunStats:
+        """Process every event before ``until_ns``, bring plants to it, return the stats.
+
+        A deadlock, a diverging plant or a failing compute object raises an
+        :class:`OrccadError`; the statistics then stop at the failing instant.
+        """
+        if not isinstance(until_ns, int) or until_ns < self.kernel.now:
+            raise OrccadError(f"run until {until_ns!r} ns: expected an integer instant >= "
+                              f"now ({self.kernel.now} ns)")
+        try:
+            self.kernel.run(until_ns)
+            for plant in self.plants.values():
+                plant.advance_to(until_ns)
+        finally:
+            self._close()
+        return self.stats()
+
+    def _close(self) -> None:
+        now = self.kernel.now
+        for processor in self.processors.values():
+            processor.close(now)
+        for runtime in self.tasks.values():
+            runtime.close(now)
+        if self.bus is not None:
+            self.bus.close(now)
+
+    def stats(self) -> RunStats:
+        """Statistics as of the end of the last run segment (live objects)."""
+        return RunStats(self.kernel.now, self.kernel.events_processed,
+                        {name: rt.stats for name, rt in self.tasks.items()},
+                        {name: p.stats for name, p in self.processors.items()},
+                        self.bus.stats if self.bus is not None else None)
+
+    def check_deadlock(self, job: Job) -> None:
+        """Raise :class:`~orccad_app.executive.deadlock.DeadlockError` if ``job`` closes a
+        wait cycle (called by the executive whenever a job blocks)."""
+        cycle = wait_cycle(job)
+        if cycle is None:
+            return
+        error = describe_cycle(cycle, self.kernel.now)
+        for hook in self.hooks.on_deadlock:
+            hook(self.kernel.now, error.cycle)
+        raise error

@@ -1,0 +1,289 @@
+"""The running instance of a Module-Task: releases, reads, compute, writes (DESIGN.md §5).
+
+Job life cycle, all instants in [ns]:
+
+1. **Release** every ``period_ns`` from activation (+ ``offset_ns``). If the previous job is
+   still unfinished the release is *skipped* and counted as an overrun (the unfinished job is
+   a deadline miss when it finishes late): a Module-Task never has two jobs at once.
+2. **Read** the inputs in port order at the release instant; a protocol may block the job,
+   which then reads the remaining ports when released.
+3. **Compute**: the job competes for its processor; when it first gets it, the Python
+   ``compute(t_s, inputs)`` runs at once (``t_s`` is that instant in [s]); its execution time
+   (``wcet_ns``, or drawn uniformly in ``[bcet_ns, wcet_ns]``) then occupies the processor,
+   preemptibly.
+4. **Write** the outputs in port order when the execution time is consumed: only then are the
+   results visible (the execution time is an input/output delay). A protocol may block a write.
+   A written event port whose value is neither ``None`` nor ``False`` is a signal.
+
+Execution times with ``bcet_ns`` come from the stream ``mt/<name>/duration`` of the run's seed,
+drawn in blocks of 256 with ``Generator.integers(bcet, wcet, endpoint=True)``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.job import (ABORTED, BLOCKED, DONE, READING, READY, WAKING, WRITING,
+                                      Job, TaskStats)
+from orccad_app.executive.kernel import EventClass
+from orccad_app.tcs.module_task import ModuleTask
+
+if TYPE_CHECKING:
+    from orccad_app.executive.channel import Channel
+    from orccad_app.executive.processor import Processor
+    from orccad_app.executive.simulation import Simulation
+
+__all__ = ["TaskRuntime", "ComputeError", "BLOCK"]
+
+_RELEASE = EventClass.RELEASE
+_WAKE = EventClass.WAKE
+_DRAW_BLOCK = 256
+
+
+class _Blocked:
+    """The value a channel returns from a read that blocks."""
+
+    def __repr__(self) -> str:
+        return "BLOCK"
+
+
+BLOCK = _Blocked()
+
+
+class ComputeError(OrccadError):
+    """A Module-Task's compute object raised or returned something that is not a dict."""
+
+
+class TaskRuntime:
+    """Runs one Module-Task inside a :class:`~orccad_app.executive.simulation.Simulation`.
+
+    :attr:`reads` lists ``(port, channel)`` per connected input in port order;
+    :attr:`writes` lists ``(port, is_event, channel)`` in port order, where a ``None`` channel
+    marks the port's own write (observers, signals) before its connections.
+    """
+
+    def __init__(self, sim: Simulation, task: ModuleTask, processor: Processor) -> None:
+        self.sim = sim
+        self.task = task
+        self.name = task.name
+        self.priority = task.priority
+        self.processor = processor
+        self.reads: list[tuple[str, Channel]] = []
+        self.writes: list[tuple[str, bool, Channel | None]] = []
+        self.stats = TaskStats()
+        self.active = False
+        self.job: Job | None = None
+        self._kernel = sim.kernel
+        self._hooks = sim.hooks
+        self._release_entry: list | None = None
+        self._count = 0
+        self._draws: list[int] = []
+        self._rng = None
+        if task.bcet_ns is not None and task.bcet_ns < task.wcet_ns:
+            self._rng = sim.kernel.stream(f"mt/{task.name}/duration")
+
+    # -- activation --------------------------------------------------------------------------
+
+    def activate(self) -> None:
+        """Start releasing jobs now (+ offset); call the compute object's ``init()``."""
+        if self.active:
+            return
+        self.active = True
+        init = getattr(self.task.compute, "init", None)
+        if callable(init):
+            self._call(init)
+        first = self._kernel.now + self.task.offset_ns
+        self._release_entry = self._kernel.schedule(first, _RELEASE, self._release)
+
+    def kill(self) -> None:
+        """Stop releasing jobs and abort the unfinished one."""
+        if not self.active:
+            return
+        self.active = False
+        self._kernel.cancel(self._release_entry)
+        job = self.job
+        if job is not None:
+            self.job = None
+            self.stats.aborted += 1
+            if job.phase == BLOCKED:
+                self.stats.blocking_ns += self._kernel.now - job.blocked_since
+            job.phase = ABORTED
+            self._kernel.cancel(job.wake_entry)
+            for _, channel in self.reads:
+                channel.cancel(job)
+            for _, _, channel in self.writes:
+                if channel is not None:
+                    channel.cancel(job)
+            self.processor.abort(job)
+
+    def set_param(self, name: str, value: Any) -> None:
+        """Forward a parameter change to the compute object's ``set_param``."""
+        setter = getattr(self.task.compute, "set_param", None)
+        if not callable(setter):
+            raise OrccadError(f"module-task '{self.name}' has no settable parameters "
+                              f"(cannot set '{name}')")
+        self._call(setter, name, value)
+
+    # -- job life cycle ----------------------------------------------------------------------
+
+    def _release(self, _: object) -> None:
+        kernel = self._kernel
+        now = kernel.now
+        task = self.task
+        self._release_entry = kernel.schedule(now + task.period_ns, _RELEASE, self._release)
+        if self.job is not None:
+            self.stats.overruns += 1
+            for hook in self._hooks.on_overrun:
+                hook(now, self.name, self.job.index)
+            return
+        index = self._count
+        self._count += 1
+        job = Job(self, index, kernel._seq, now, now + task.deadline_ns, self._duration())
+        self.job = job
+        self.stats.released += 1
+        for hook in self._hooks.on_release:
+            hook(now, self.name, index)
+        self._read(job)
+
+    def _duration(self) -> int:
+        if self._rng is None:
+            return self.task.wcet_ns
+        if not self._draws:
+            block = self._rng.integers(self.task.bcet_ns, self.task.wcet_ns, endpoint=True,
+                                       size=_DRAW_BLOCK)
+            self._draws = block.tolist()[::-1]
+        return self._draws.pop()
+
+    def _read(self, job: Job) -> None:
+        reads = self.reads
+        inputs = job.inputs
+        on_read = self._hooks.on_read
+        while job.op < len(reads):
+            port, channel = reads[job.op]
+            value = channel.read(job)
+            if value is BLOCK:
+                self._block(job, port, "read", channel)
+                return
+            inputs[port] = value
+            for hook in on_read:
+                hook(self._kernel.now, self.name, port, value)
+            job.op += 1
+        job.phase = READY
+        job.op = 0
+        self.processor.make_ready(job)
+
+    def _block(self, job: Job, port: str, operation: str, channel: Channel) -> None:
+        now = self._kernel.now
+        job.phase = BLOCKED
+        job.blocked_since = now
+        job.blocked_port = port
+        job.blocked_protocol = channel.protocol_name
+        for hook in self._hooks.on_block:
+            hook(now, self.name, port, operation, channel.protocol_name)
+        self.sim.check_deadlock(job)
+
+    def wake(self, job: Job, value: Any = None) -> None:
+        """Called by a channel: the blocked operation of ``job`` completes (with ``value``
+        for a read); the job resumes at this instant, after the current event."""
+        if job.phase != BLOCKED:
+            return
+        job.phase = WAKING
+        job.waits_for = None
+        job.wake_value = value
+        job.wake_entry = self._kernel.schedule(self._kernel.now, _WAKE, self._resume, job)
+
+    def _resume(self, job: Job) -> None:
+        now = self._kernel.now
+        job.wake_entry = None
+        blocked = now - job.blocked_since
+        self.stats.blocking_ns += blocked
+        reading = job.start_ns < 0
+        for hook in self._hooks.on_unblock:
+            hook(now, self.name, job.blocked_port, "read" if reading else "write", blocked)
+        if reading:
+            job.inputs[job.blocked_port] = job.wake_value
+            for hook in self._hooks.on_read:
+                hook(now, self.name, job.blocked_port, job.wake_value)
+            job.phase = READING
+            job.op += 1
+            self._read(job)
+        else:
+            job.phase = WRITING
+            job.op += 1
+            self._write(job)
+
+    def compute(self, job: Job) -> None:
+        """Run the compute object (called by the processor when the job first runs)."""
+        obj = self.task.compute
+        if obj is None:
+            return
+        outputs = self._call(obj.compute, self._kernel.now / 1e9, job.inputs)
+        if outputs is None:
+            return
+        if not isinstance(outputs, dict):
+            raise ComputeError(f"module-task '{self.name}': compute returned "
+                               f"{type(outputs).__name__}, expected a dict of output values")
+        job.outputs = outputs
+
+    def _call(self, function: Any, *args: Any) -> Any:
+        try:
+            return function(*args)
+        except OrccadError:
+            raise
+        except Exception as error:  # user code: report it with the module's name
+            raise ComputeError(f"module-task '{self.name}': {function.__name__} raised "
+                               f"{type(error).__name__}: {error} "
+                               f"(at t = {self._kernel.now} ns)") from error
+
+    def compute_done(self, job: Job) -> None:
+        """The execution time is consumed: write the outputs."""
+        job.phase = WRITING
+        job.op = 0
+        self._write(job)
+
+    def _write(self, job: Job) -> None:
+        writes = self.writes
+        outputs = job.outputs
+        hooks = self._hooks
+        while job.op < len(writes):
+            port, is_event, channel = writes[job.op]
+            value = outputs.get(port)
+            if value is None or (is_event and value is False):
+                job.op += 1
+                continue
+            if channel is None:
+                now = self._kernel.now
+                for hook in hooks.on_write:
+                    hook(now, self.name, port, value)
+                if is_event:
+                    for hook in hooks.on_signal:
+                        hook(now, f"{self.name}.{port}", value)
+            elif not channel.write(job, value):
+                self._block(job, port, "write", channel)
+                return
+            job.op += 1
+        self._finish(job)
+
+    def _finish(self, job: Job) -> None:
+        now = self._kernel.now
+        job.phase = DONE
+        self.job = None
+        stats = self.stats
+        response = now - job.release_ns
+        stats.completed += 1
+        stats.response_sum_ns += response
+        if response > stats.response_max_ns:
+            stats.response_max_ns = response
+        if stats.response_min_ns < 0 or response < stats.response_min_ns:
+            stats.response_min_ns = response
+        missed = now > job.deadline_ns
+        if missed:
+            stats.late += 1
+        for hook in self._hooks.on_finish:
+            hook(now, self.name, job.index, response, missed)
+
+    def close(self, now_ns: int) -> None:
+        """Bring the statistics up to ``now_ns`` (end of a run segment)."""
+        job = self.job
+        self.stats.late_pending = int(job is not None and now_ns > job.deadline_ns)
