@@ -66,8 +66,8 @@ def _reserved_name(tree: Tree, filename: str) -> OrccadError | None:
     keywords are reserved, so such a token is an error.
     """
     reserved = keywords()
-    bad = [t for t in tree.scan_values(lambda v: isinstance(v, Token) and v.type == "NAME")
-           if str(t) in reserved]
+    bad = [child for subtree in tree.iter_subtrees() for child in subtree.children
+           if isinstance(child, Token) and child.type == "NAME" and str(child) in reserved]
     if not bad:
         return None
     token = min(bad, key=lambda t: (t.line, t.column))
@@ -99,30 +99,29 @@ def parse(text: str, filename: str = "<input>") -> ast.Program:
     """Parse the text of one ``.orc`` file.
 
     Raises :class:`OrccadError` (with a location) on any lexical or syntax error, a
-    reserved keyword used as a name, an unknown protocol, a duplicate Robot-Task item or a
-    duration that is not whole nanoseconds.
+    reserved keyword used as a name, an unknown protocol, a duplicate Robot-Task item, a
+    duration that is not whole nanoseconds, or nesting too deep for Python's stack.
     """
+    try:
+        return _parse(text, filename)
+    except RecursionError:
+        raise OrccadError("program too deeply nested",
+                          SourceLocation(filename, 1, 1)) from None
+
+
+def _parse(text: str, filename: str) -> ast.Program:
     try:
         tree = _lark().parse(text)
     except UnexpectedInput as error:
         terminals = {t.name: t for t in _lark().terminals}
         raise syntax_error(error, text, filename, keywords(), terminals,
                            _accepts(error, text)) from None
-    except RecursionError:
-        raise OrccadError("program too deeply nested",
-                          SourceLocation(filename, 1, 1)) from None
     problem = _reserved_name(tree, filename)
     if problem is not None:
         raise problem
     try:
         return ToAst(filename).transform(tree)
     except VisitError as error:
-        if isinstance(error.orig_exc, OrccadError):
+        if isinstance(error.orig_exc, (OrccadError, RecursionError)):
             raise error.orig_exc from None
-        if isinstance(error.orig_exc, RecursionError):
-            raise OrccadError("program too deeply nested",
-                              SourceLocation(filename, 1, 1)) from None
         raise
-    except RecursionError:
-        raise OrccadError("program too deeply nested",
-                          SourceLocation(filename, 1, 1)) from None
