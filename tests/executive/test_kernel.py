@@ -1,0 +1,61 @@
+"""The discrete-event kernel: ordering, cancellation, run segments, seeded streams."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive import EventClass, Kernel
+
+
+def test_events_run_by_time_then_class_then_insertion():
+    kernel = Kernel()
+    order = []
+    kernel.schedule(5, EventClass.DISPATCH, order.append, "dispatch@5")
+    kernel.schedule(5, EventClass.RELEASE, order.append, "release@5 first")
+    kernel.schedule(5, EventClass.RELEASE, order.append, "release@5 second")
+    kernel.schedule(5, EventClass.FINISH, order.append, "finish@5")
+    kernel.schedule(3, EventClass.DISPATCH, order.append, "dispatch@3")
+    kernel.run(10)
+    assert order == ["dispatch@3", "finish@5", "release@5 first", "release@5 second",
+                     "dispatch@5"]
+    assert kernel.now == 10 and kernel.events_processed == 5
+
+
+def test_cancelled_events_do_not_run_and_until_is_exclusive():
+    kernel = Kernel()
+    seen = []
+    entry = kernel.schedule(2, EventClass.FINISH, seen.append, "cancelled")
+    kernel.schedule(4, EventClass.FINISH, seen.append, "at 4")
+    kernel.schedule(6, EventClass.FINISH, seen.append, "at 6")
+    kernel.cancel(entry)
+    kernel.run(6)
+    assert seen == ["at 4"] and kernel.now == 6
+    assert kernel.peek_ns() == 6
+    kernel.run(7)
+    assert seen == ["at 4", "at 6"]
+
+
+def test_events_cannot_be_scheduled_in_the_past():
+    kernel = Kernel()
+    kernel.run(100)
+    with pytest.raises(OrccadError, match="in the past"):
+        kernel.schedule(99, EventClass.FINISH, print)
+
+
+def test_named_streams_depend_only_on_seed_and_name():
+    a = Kernel(seed=42)
+    b = Kernel(seed=42)
+    b.stream("other").normal(size=10)  # creating another stream first changes nothing
+    assert np.array_equal(a.stream("mt/x").integers(0, 1 << 30, 5),
+                          b.stream("mt/x").integers(0, 1 << 30, 5))
+    assert not np.array_equal(Kernel(seed=42).stream("mt/y").random(5),
+                              Kernel(seed=42).stream("mt/x").random(5))
+    assert not np.array_equal(Kernel(seed=43).stream("mt/x").random(5),
+                              Kernel(seed=42).stream("mt/x").random(5))
+
+
+def test_seed_must_be_a_non_negative_integer():
+    with pytest.raises(OrccadError, match="seed"):
+        Kernel(seed=-1)
