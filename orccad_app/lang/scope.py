@@ -144,12 +144,13 @@ def classify_condition(expr: ast.Expr, scope: dict[str, NameKind] | Scope) -> Co
     signals = [n for n in _names_in(expr) if kinds.get(n.name) is NameKind.SIGNAL]
     if not signals:
         return ConditionKind.DATA
-    leaves = signal_leaves(expr)
-    for leaf in leaves or ():
+    leaves = signal_leaves(expr) or ()
+    buried = [n for n in signals if not any(leaf is n for leaf in leaves)]
+    if buried:
+        raise OrccadError(f"signal '{buried[0].name}' used as a value; write "
+                          f"?{buried[0].name} for its last value", buried[0].loc)
+    for leaf in leaves:
         if not (isinstance(leaf, ast.Name) and kinds.get(leaf.name) is NameKind.SIGNAL):
             raise OrccadError(f"condition mixes the presence of signal '{signals[0].name}' "
                               "with a value; test them in nested statements", leaf.loc)
-    if leaves is None:
-        raise OrccadError(f"signal '{signals[0].name}' used as a value; write "
-                          f"?{signals[0].name} for its last value", signals[0].loc)
     return ConditionKind.SIGNAL
