@@ -1,0 +1,101 @@
+"""The control library: task functions, trajectories, control laws, models, constraints.
+
+RR-1801 §3.1: a Robot-Task's servo-control is a task function :math:`e(q, t)` regulated by
+the generic scheme of eq. 5; PID (eq. 8) and computed torque are instances. Models come
+from Pinocchio built from the same MJCF that MuJoCo simulates. Module kinds
+(:mod:`.module`) cut the scheme into periodic Module-Tasks with typed ports.
+
+Layering: this package imports neither the plugin host nor the executive; plugins
+register its kinds (the built-in ``orccad_control`` plugin registers the ones here).
+The closed-loop check without the executive is :mod:`orccad_app.control.closed_loop`.
+"""
+
+from orccad_app.control.constraints import ActuatorConstraint
+from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
+from orccad_app.control.kinds import ComponentKind, LawKind, TaskFunctionKind, TrajectoryKind
+from orccad_app.control.laws import (
+    LAW_KINDS,
+    PID,
+    ComputedTorque,
+    ControlLaw,
+    GenericScheme,
+    LawOutput,
+)
+from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioModel, perturbed_model
+from orccad_app.control.module import (
+    ModuleContext,
+    ModuleInstance,
+    ModuleKind,
+    ParamSpec,
+    PortSpec,
+    Timing,
+)
+from orccad_app.control.module_kinds import MODULE_KINDS, ControlLawModule, TrajectoryModule
+from orccad_app.control.params import REQUIRED, resolve_params
+from orccad_app.control.physics import RobotPhysics
+from orccad_app.control.robot import RobotPort, RobotType
+from orccad_app.control.spec import Spec, module_context, resolve
+from orccad_app.control.task_functions import (
+    TASK_FUNCTION_KINDS,
+    CartesianTracking,
+    JointTracking,
+    TaskFunction,
+    TaskState,
+)
+from orccad_app.control.trajectories import (
+    TRAJECTORY_KINDS,
+    Constant,
+    Cosine,
+    MinimumJerk,
+    Sample,
+    Trajectory,
+)
+
+__all__ = [
+    "ActuatorConstraint",
+    "CartesianTracking",
+    "ComponentKind",
+    "ComputedTorque",
+    "Constant",
+    "ControlError",
+    "ControlLaw",
+    "ControlLawModule",
+    "Cosine",
+    "DimensionMismatch",
+    "DynamicsModel",
+    "GenericScheme",
+    "IdentityModel",
+    "InvalidParameter",
+    "JointTracking",
+    "LAW_KINDS",
+    "LawKind",
+    "LawOutput",
+    "MODULE_KINDS",
+    "MinimumJerk",
+    "ModuleContext",
+    "ModuleInstance",
+    "ModuleKind",
+    "PID",
+    "ParamSpec",
+    "PinocchioModel",
+    "PortSpec",
+    "REQUIRED",
+    "RobotPhysics",
+    "RobotPort",
+    "RobotType",
+    "Sample",
+    "Spec",
+    "TASK_FUNCTION_KINDS",
+    "TRAJECTORY_KINDS",
+    "TaskFunction",
+    "TaskFunctionKind",
+    "TaskState",
+    "Timing",
+    "Trajectory",
+    "TrajectoryKind",
+    "TrajectoryModule",
+    "module_context",
+    "perturbed_model",
+    "resolve",
+    "resolve_params",
+]

@@ -1,0 +1,87 @@
+"""Component kinds: named, parametrized factories that plugins register.
+
+A kind pairs a name and declared :class:`~orccad_app.control.params.ParamSpec` s with a
+factory. Three categories exist besides module kinds and robot types:
+
+- :class:`TrajectoryKind` — ``create(params) -> Trajectory``
+- :class:`TaskFunctionKind` — ``create(params, robot) -> TaskFunction``
+- :class:`LawKind` — ``create(params, robot, task_function) -> ControlLaw``
+
+``params`` may contain call forms for ``trajectory`` parameters when a ``resolver`` is
+given (see :func:`orccad_app.control.spec.resolve`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from orccad_app.control.params import ParamSpec, Resolver, resolve_params
+
+if TYPE_CHECKING:
+    from orccad_app.control.laws import ControlLaw
+    from orccad_app.control.robot import RobotType
+    from orccad_app.control.task_functions import TaskFunction
+    from orccad_app.control.trajectories import Trajectory
+
+__all__ = ["ComponentKind", "TrajectoryKind", "TaskFunctionKind", "LawKind"]
+
+
+@dataclass(frozen=True)
+class ComponentKind:
+    """A named factory with declared parameters; ``summary`` is a one-line description."""
+
+    name: str
+    summary: str
+    params: tuple[ParamSpec, ...]
+    factory: Callable[..., Any]
+
+    category = "component"
+
+    def resolve_params(self, params: Mapping[str, Any],
+                       resolver: Resolver | None = None) -> dict[str, Any]:
+        """Validated parameter values (defaults filled in)."""
+        return resolve_params(self.name, self.params, params, resolver)
+
+    def param(self, name: str) -> ParamSpec:
+        """The declared parameter ``name`` (``KeyError`` if absent)."""
+        for spec in self.params:
+            if spec.name == name:
+                return spec
+        raise KeyError(name)
+
+
+@dataclass(frozen=True)
+class TrajectoryKind(ComponentKind):
+    """Factory of :class:`~orccad_app.control.trajectories.Trajectory` objects."""
+
+    category = "trajectory"
+
+    def create(self, params: Mapping[str, Any], resolver: Resolver | None = None) -> Trajectory:
+        """A trajectory from user parameters."""
+        return self.factory(self.resolve_params(params, resolver))
+
+
+@dataclass(frozen=True)
+class TaskFunctionKind(ComponentKind):
+    """Factory of :class:`~orccad_app.control.task_functions.TaskFunction` objects."""
+
+    category = "task function"
+
+    def create(self, params: Mapping[str, Any], robot: RobotType,
+               resolver: Resolver | None = None) -> TaskFunction:
+        """A task function for ``robot``; checks its dimension against the robot's."""
+        return self.factory(self.resolve_params(params, resolver), robot)
+
+
+@dataclass(frozen=True)
+class LawKind(ComponentKind):
+    """Factory of :class:`~orccad_app.control.laws.ControlLaw` objects."""
+
+    category = "control law"
+
+    def create(self, params: Mapping[str, Any], robot: RobotType,
+               task_function: TaskFunction) -> ControlLaw:
+        """A fresh law (its own integrator state) for ``robot`` and ``task_function``."""
+        return self.factory(self.resolve_params(params), robot, task_function)

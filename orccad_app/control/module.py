@@ -1,0 +1,269 @@
+"""Module kinds: the periodic Module-Tasks (MT) of a Robot-Task's time-constrained spec.
+
+An MT follows RR-1801 §3.2::
+
+    init; loop { read all input ports; compute; write all output ports }
+
+A :class:`ModuleKind` (provided by a plugin, e.g. ``trajectory``, ``control_law``,
+``joint_limits``) declares typed ports, parameters and a default :class:`Timing`;
+:meth:`ModuleKind.create` makes a :class:`ModuleInstance` for one Robot-Task, given the
+user's parameters and a :class:`ModuleContext` (the robot, the task function, the law).
+
+Lifecycle of an instance, as the timed executive drives it (duck-typed):
+
+- :meth:`ModuleInstance.init` — at each activation of the module (Robot-Task start,
+  restart); resets internal state (integrators, filters, clocks).
+- :meth:`ModuleInstance.compute` — once per job, with the values read from the input
+  ports; returns the values to write on output ports. An ``event`` output is ``True`` in
+  the jobs where the event fires and absent (or ``False``) otherwise.
+- :meth:`ModuleInstance.set_param` — a type-1 exception (``adjust ctrl.kp = 200.0``)
+  changes a parameter between two jobs; the value is validated like at creation.
+
+Time given to ``compute`` is the executive clock ``t_s`` [s]; modules that need the time
+since their own start (trajectories, integrators) measure it from their first job after
+``init`` (see :meth:`ModuleInstance.task_time`).
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
+
+from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
+from orccad_app.control.params import ParamSpec, close_matches, resolve_params
+
+if TYPE_CHECKING:
+    from orccad_app.control.robot import RobotType
+    from orccad_app.control.spec import Spec
+
+__all__ = [
+    "PORT_TYPES",
+    "PortSpec",
+    "ParamSpec",
+    "Timing",
+    "ModuleContext",
+    "ModuleKind",
+    "ModuleInstance",
+]
+
+#: Value types a port can carry. ``vector`` values are ``numpy.ndarray`` of length ``dim``.
+PORT_TYPES: tuple[str, ...] = ("vector", "float", "bool", "event", "string")
+
+
+@dataclass(frozen=True, slots=True)
+class PortSpec:
+    """A typed port of a module kind or robot.
+
+    ``direction`` is ``"in"`` (the module reads it) or ``"out"`` (it writes it). A robot's
+    sensors are ``out`` ports (``arm.q -> ctrl.q``) and its actuators ``in`` ports
+    (``ctrl.tau -> arm.tau``). ``dim`` is the length of a ``vector`` port; ``None`` in a
+    kind's declaration means "fixed at creation" (the robot's number of joints, the task
+    function's dimension); instances always carry concrete dims. An input with
+    ``required=False`` may stay unconnected: the module then falls back to a documented
+    default (e.g. velocity estimated by differences).
+    """
+
+    name: str
+    direction: str
+    type: str
+    dim: int | None = None
+    required: bool = True
+    doc: str = ""
+
+    def __post_init__(self) -> None:
+        if self.direction not in ("in", "out"):
+            raise ControlError(f"port {self.name!r}: direction must be 'in' or 'out', "
+                               f"got {self.direction!r}")
+        if self.type not in PORT_TYPES:
+            raise ControlError(f"port {self.name!r}: type must be one of "
+                               f"{', '.join(PORT_TYPES)}, got {self.type!r}")
+        if self.dim is not None and (self.type != "vector" or self.dim < 1):
+            raise ControlError(f"port {self.name!r}: dim {self.dim!r} needs a vector "
+                               "type and a positive size")
+
+    def with_dim(self, dim: int | None) -> PortSpec:
+        """A copy with ``dim`` set (vector ports only; other types stay dimensionless)."""
+        if self.type != "vector":
+            return self
+        return PortSpec(self.name, self.direction, self.type, dim, self.required, self.doc)
+
+    def check_value(self, value: Any) -> None:
+        """Raise :class:`DimensionMismatch` if ``value`` does not fit this port."""
+        if self.type == "vector" and self.dim is not None:
+            size = np.asarray(value).shape
+            if size != (self.dim,):
+                raise DimensionMismatch(
+                    f"port {self.name!r} expects a vector of {self.dim}, got shape {size}")
+
+
+@dataclass(frozen=True, slots=True)
+class Timing:
+    """Timing of a Module-Task: ``period_ns``, ``wcet_ns`` and optional ``bcet_ns`` [ns].
+
+    With ``bcet_ns`` the executive may draw execution times in ``[bcet_ns, wcet_ns]``.
+    """
+
+    period_ns: int
+    wcet_ns: int
+    bcet_ns: int | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.period_ns, int) or self.period_ns <= 0:
+            raise ControlError(f"timing: period_ns must be a positive integer, "
+                               f"got {self.period_ns!r}")
+        if not isinstance(self.wcet_ns, int) or self.wcet_ns < 0:
+            raise ControlError(f"timing: wcet_ns must be a non-negative integer, "
+                               f"got {self.wcet_ns!r}")
+        if self.bcet_ns is not None and not 0 <= self.bcet_ns <= self.wcet_ns:
+            raise ControlError(f"timing: bcet_ns must be in [0, wcet_ns={self.wcet_ns}], "
+                               f"got {self.bcet_ns!r}")
+
+    @classmethod
+    def from_ms(cls, period_ms: float, wcet_ms: float, bcet_ms: float | None = None) -> Timing:
+        """Build from milliseconds (rounded to the nanosecond)."""
+        bcet = None if bcet_ms is None else round(bcet_ms * 1e6)
+        return cls(round(period_ms * 1e6), round(wcet_ms * 1e6), bcet)
+
+
+@dataclass(frozen=True)
+class ModuleContext:
+    """What a module instance may know about its Robot-Task.
+
+    ``robot`` is the robot type the task runs on; ``task_function`` and ``law`` are the
+    task's validated :class:`~orccad_app.control.spec.Spec` s (each module builds its own
+    fresh object from them, so modules never share state); ``duration_s`` is the task's
+    nominal duration T [s]. Build one by names with
+    :func:`orccad_app.control.spec.module_context`.
+    """
+
+    robot: RobotType | None = None
+    task_function: Spec | None = None
+    law: Spec | None = None
+    duration_s: float | None = None
+    robot_name: str | None = None
+    extras: Mapping[str, Any] = field(default_factory=dict)
+
+    def require_robot(self, who: str) -> RobotType:
+        """The robot, or a :class:`ControlError` saying ``who`` needs one."""
+        if self.robot is None:
+            raise ControlError(f"{who} needs a robot (the Robot-Task's 'on ROBOT')")
+        return self.robot
+
+
+class ModuleKind(ABC):
+    """A kind of Module-Task, registered by a plugin.
+
+    Subclasses set the class attributes and implement :meth:`_instantiate`. A kind with
+    at least one ``event`` output is an *observer*.
+    """
+
+    name: ClassVar[str]
+    summary: ClassVar[str] = ""
+    ports: ClassVar[tuple[PortSpec, ...]] = ()
+    params: ClassVar[tuple[ParamSpec, ...]] = ()
+    default_timing: ClassVar[Timing] = Timing(1_000_000, 100_000)
+
+    @property
+    def is_observer(self) -> bool:
+        """True if the kind has an ``event`` output port."""
+        return any(p.type == "event" and p.direction == "out" for p in self.ports)
+
+    @property
+    def event_ports(self) -> tuple[str, ...]:
+        """Names of the ``event`` output ports."""
+        return tuple(p.name for p in self.ports if p.type == "event" and p.direction == "out")
+
+    def port(self, name: str) -> PortSpec:
+        """The declared port ``name``; raises naming close matches."""
+        for port in self.ports:
+            if port.name == name:
+                return port
+        names = [p.name for p in self.ports]
+        raise ControlError(f"module kind {self.name!r} has no port {name!r}"
+                           f"{close_matches(name, names)}; its ports: {', '.join(names)}")
+
+    def param(self, name: str) -> ParamSpec:
+        """The parameter ``name``; raises naming close matches."""
+        for spec in self.params:
+            if spec.name == name:
+                return spec
+        names = [p.name for p in self.params]
+        raise InvalidParameter(f"module kind {self.name!r} has no parameter {name!r}"
+                               f"{close_matches(name, names)}; its parameters: "
+                               f"{', '.join(names) or 'none'}")
+
+    def sources(self, params: Mapping[str, Any]) -> dict[str, str]:
+        """For each input port, the output port name it normally reads.
+
+        A hint for the compiler when it instantiates an observer named in ``from`` without
+        explicit ``connect``: wire ``ROBOT.<source>`` (a robot sensor) or the output of the
+        same name of another module. The default maps each input to its own name.
+        """
+        return {p.name: p.name for p in self.ports if p.direction == "in"}
+
+    def create(self, params: Mapping[str, Any], context: ModuleContext) -> ModuleInstance:
+        """A new instance for one Robot-Task; validates ``params`` against :attr:`params`."""
+        values = resolve_params(self.name, self.params, params)
+        return self._instantiate(values, context)
+
+    @abstractmethod
+    def _instantiate(self, values: dict[str, Any], context: ModuleContext) -> ModuleInstance:
+        """Build the instance from validated parameter values."""
+
+    def __repr__(self) -> str:
+        return f"<module kind {self.name}>"
+
+
+class ModuleInstance(ABC):
+    """One Module-Task of one Robot-Task: concrete ports, current parameters, state."""
+
+    def __init__(self, kind: ModuleKind, params: dict[str, Any],
+                 ports: tuple[PortSpec, ...]):
+        self.kind = kind
+        self.params = dict(params)
+        self.ports = ports
+        self._t0: float | None = None
+
+    def port(self, name: str) -> PortSpec:
+        """The concrete port ``name`` of this instance."""
+        for port in self.ports:
+            if port.name == name:
+                return port
+        return self.kind.port(name)
+
+    def init(self) -> None:
+        """Called when the module is activated, before its first job; resets its clock.
+
+        Subclasses that keep state extend this (and call ``super().init()``).
+        """
+        self._t0 = None
+
+    @abstractmethod
+    def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        """One job at executive time ``t_s`` [s]: inputs read → outputs to write.
+
+        ``inputs`` maps input port names to values; an unconnected or never-written port
+        is absent (or ``None``). Outputs not in the returned dict are not written.
+        """
+
+    def set_param(self, name: str, value: Any) -> None:
+        """Change parameter ``name`` (type-1 exception); validated like at creation."""
+        spec = self.kind.param(name)
+        self.params[name] = spec.coerce(value, f"{self.kind.name}")
+        self._param_changed(name)
+
+    def _param_changed(self, name: str) -> None:
+        """Hook for subclasses that cache derived values of parameters."""
+
+    def task_time(self, t_s: float) -> float:
+        """Seconds since this instance's first job after :meth:`init` [s]."""
+        if self._t0 is None:
+            self._t0 = t_s
+        return t_s - self._t0
+
+    def __repr__(self) -> str:
+        return f"<{self.kind.name} module {self.params}>"

@@ -1,0 +1,180 @@
+"""The ``trajectory`` and ``control_law`` module kinds of a Robot-Task.
+
+Both read the Robot-Task's task function and law from the :class:`ModuleContext`.
+Reference ports are named after the task function's reference (``qd`` for joint tracking,
+``xd`` for Cartesian tracking): ``qd`` [rad], ``qd_dot`` [rad/s], ``qd_ddot`` [rad/s²].
+
+``trajectory`` (default 2 ms period, 0.3 ms WCET)
+    out ``qd``, ``qd_dot``, ``qd_ddot``; in ``q`` (optional: the start of a trajectory
+    given without one, e.g. ``min_jerk(goal = …, duration = 2.0)``).
+``control_law`` (default 1 ms period, 0.5 ms WCET)
+    in ``qd`` and ``q`` (required), ``qd_dot``, ``qd_ddot``, ``qdot`` (optional:
+    when unconnected, ``qd_dot`` and ``qdot`` are estimated by backward differences and
+    ``qd_ddot`` from successive ``qd_dot``); out ``tau`` [N·m] (after the actuator
+    constraint), ``e`` (the task error) and ``saturated`` (a joint at a torque bound).
+    Parameters are the law's (``module ctrl : control_law(kp = 300.0)`` overrides the
+    Robot-Task's ``law``); ``set_param("kp", 200.0)`` retunes it between jobs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from orccad_app.control.errors import ControlError
+from orccad_app.control.estimation import BackwardDifference
+from orccad_app.control.laws.base import ControlLaw
+from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
+from orccad_app.control.params import ParamSpec
+from orccad_app.control.task_functions import TaskFunction
+from orccad_app.control.trajectories import Sample
+
+__all__ = ["TrajectoryModule", "ControlLawModule", "MODULE_KINDS"]
+
+
+def _reference_ports(ref: str, direction: str, required: bool) -> tuple[PortSpec, ...]:
+    return (PortSpec(ref, direction, "vector", None, True, "reference position"),
+            PortSpec(f"{ref}_dot", direction, "vector", None, required, "reference velocity"),
+            PortSpec(f"{ref}_ddot", direction, "vector", None, required,
+                     "reference acceleration"))
+
+
+def _task_function(who: str, context: ModuleContext) -> TaskFunction:
+    robot = context.require_robot(who)
+    if context.task_function is None:
+        raise ControlError(f"{who} needs the Robot-Task's task_function")
+    return context.task_function.build(robot)
+
+
+def _concrete(ports: tuple[PortSpec, ...], ref: str, ref_dim: int,
+              dof: int) -> tuple[PortSpec, ...]:
+    """Ports with the reference renamed (``qd`` → ``ref``) and dims fixed: reference ports
+    and ``e`` have the task dimension, other vectors the robot's number of joints."""
+    concrete = []
+    for port in ports:
+        is_task = port.name.startswith("qd") or port.name == "e"
+        name = ref + port.name[2:] if port.name.startswith("qd") else port.name
+        spec = PortSpec(name, port.direction, port.type, None, port.required, port.doc)
+        concrete.append(spec.with_dim(ref_dim if is_task else dof))
+    return tuple(concrete)
+
+
+class TrajectoryModule(ModuleKind):
+    """Samples the task function's trajectory at each job (time from its first job)."""
+
+    name = "trajectory"
+    summary = "samples the Robot-Task's reference trajectory"
+    ports = _reference_ports("qd", "out", True) + (
+        PortSpec("q", "in", "vector", None, False, "measured joints, for a missing start"),)
+    params = ()
+    default_timing = Timing.from_ms(2.0, 0.3)
+
+    def _instantiate(self, values: dict[str, Any], context: ModuleContext) -> ModuleInstance:
+        return _TrajectoryInstance(self, values, context)
+
+
+class _TrajectoryInstance(ModuleInstance):
+    def __init__(self, kind: ModuleKind, values: dict[str, Any], context: ModuleContext):
+        self._context = context
+        self.task_function = _task_function(kind.name, context)
+        self.ref = self.task_function.reference_name
+        ports = _concrete(kind.ports, self.ref, self.task_function.dim, self.task_function.dof)
+        super().__init__(kind, values, ports)
+
+    def init(self) -> None:
+        super().init()
+        self.task_function = _task_function(self.kind.name, self._context)
+
+    def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        if self.task_function.trajectory.needs_start:
+            q = inputs.get("q")
+            if q is None:
+                return {}
+            self.task_function.start_from(np.asarray(q, dtype=float))
+        sample = self.task_function.reference(self.task_time(t_s))
+        return {self.ref: sample.pos, f"{self.ref}_dot": sample.vel,
+                f"{self.ref}_ddot": sample.acc}
+
+
+class ControlLawModule(ModuleKind):
+    """Runs the Robot-Task's control law: reference and joint state in, torque out."""
+
+    name = "control_law"
+    summary = "the Robot-Task's control law (eq. 5 family) and actuator constraint"
+    ports = _reference_ports("qd", "in", False) + (
+        PortSpec("q", "in", "vector", None, True, "joint positions [rad]"),
+        PortSpec("qdot", "in", "vector", None, False, "joint velocities [rad/s]"),
+        PortSpec("tau", "out", "vector", None, True, "joint torques [N·m]"),
+        PortSpec("e", "out", "vector", None, True, "task error e(q, t)"),
+        PortSpec("saturated", "out", "bool", None, True, "a torque is at its bound"),
+    )
+    params: tuple[ParamSpec, ...] = ()
+    default_timing = Timing.from_ms(1.0, 0.5)
+
+    def create(self, params: Mapping[str, Any], context: ModuleContext) -> ModuleInstance:
+        """An instance whose law is the Robot-Task's, with ``params`` overriding its gains."""
+        if context.law is None:
+            raise ControlError("control_law needs the Robot-Task's law")
+        return _ControlLawInstance(self, dict(params), context)
+
+    def _instantiate(self, values: dict[str, Any], context: ModuleContext) -> ModuleInstance:
+        return _ControlLawInstance(self, values, context)
+
+
+class _ControlLawInstance(ModuleInstance):
+    def __init__(self, kind: ModuleKind, overrides: dict[str, Any], context: ModuleContext):
+        self._context = context
+        self._overrides = overrides
+        self.law = self._build_law()
+        self.ref = self.law.task_function.reference_name
+        ports = _concrete(kind.ports, self.ref, self.law.task_function.dim, self.law.robot.dof)
+        super().__init__(kind, dict(self.law.params), ports)
+        self._velocity = BackwardDifference()
+        self._ref_velocity = BackwardDifference(on_change=True)
+        self._ref_acceleration = BackwardDifference(on_change=True)
+
+    def _build_law(self) -> ControlLaw:
+        task_function = _task_function("control_law", self._context)
+        spec = self._context.law
+        return spec.kind.create({**spec.params, **self._overrides}, self._context.robot,
+                                task_function)
+
+    def init(self) -> None:
+        super().init()
+        self.law.reset()
+        for estimator in (self._velocity, self._ref_velocity, self._ref_acceleration):
+            estimator.reset()
+
+    def set_param(self, name: str, value: Any) -> None:
+        """Retune the law (type-1 exception); validated against the law's parameters."""
+        self.law.set_param(name, value)
+        self.params = dict(self.law.params)
+
+    def _reference(self, t_s: float, inputs: Mapping[str, Any]) -> Sample | None:
+        pos = inputs.get(self.ref)
+        if pos is None:
+            return None
+        pos = np.asarray(pos, dtype=float)
+        vel = inputs.get(f"{self.ref}_dot")
+        vel = self._ref_velocity.update(t_s, pos) if vel is None else np.asarray(vel, float)
+        acc = inputs.get(f"{self.ref}_ddot")
+        if acc is None:
+            acc = self._ref_acceleration.update(t_s, vel)
+        return Sample(pos=pos, vel=vel, acc=np.asarray(acc, dtype=float))
+
+    def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        reference = self._reference(t_s, inputs)
+        q = inputs.get("q")
+        if reference is None or q is None:
+            return {}
+        q = np.asarray(q, dtype=float)
+        qdot = inputs.get("qdot")
+        qdot = self._velocity.update(t_s, q) if qdot is None else np.asarray(qdot, float)
+        out = self.law.command(t_s, q, qdot, reference)
+        return {"tau": out.tau, "e": out.e, "saturated": bool(out.saturated.any())}
+
+
+#: The built-in generic module kinds, registered by the ``orccad_control`` plugin.
+MODULE_KINDS: tuple[ModuleKind, ...] = (TrajectoryModule(), ControlLawModule())

@@ -1,0 +1,223 @@
+"""Robot types: a physical resource described by one MJCF file.
+
+The same MJCF file feeds MuJoCo (the simulated plant) and Pinocchio (the controller's
+models M̂, N̂ and kinematics), so the two cannot drift apart. :meth:`RobotType.from_mjcf`
+reads everything it can from the file:
+
+- joints (hinge/slide, one per degree of freedom) → ``resources`` and joint limits
+  ``range`` [rad];
+- ``jointpos`` / ``jointvel`` sensors → the ``q`` and ``qdot`` sensor ports;
+- ``motor`` actuators → the ``tau`` actuator port and torque limits ``ctrlrange`` [N·m];
+- optional ``<custom><numeric name="actuator_alpha"/"actuator_beta">`` → the torque–speed
+  line of :class:`~orccad_app.control.constraints.ActuatorConstraint`;
+- a ``<site>`` named ``end_effector`` → the frame of Cartesian task functions.
+
+Port naming follows the plan language: a robot declared ``robot arm : arm3dof;`` exposes
+``arm.q`` and ``arm.qdot`` (sensors: ``out`` ports, the robot produces them) and
+``arm.tau`` (actuator: an ``in`` port).
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from orccad_app.control.constraints import ActuatorConstraint
+from orccad_app.control.errors import ControlError
+from orccad_app.control.module import PortSpec, Timing
+from orccad_app.control.params import ParamSpec, close_matches, resolve_params
+
+__all__ = ["RobotPort", "RobotType"]
+
+
+@dataclass(frozen=True)
+class RobotPort:
+    """A sensor or actuator port of a robot, bound to MuJoCo elements.
+
+    ``mj_names`` are the MuJoCo sensor names (sensor ports) or actuator names (actuator
+    ports), one per component, in joint order. ``unit`` documents the value ([rad],
+    [rad/s], [N·m]). ``quantum`` (quantization step) and ``noise_std`` are the defaults
+    the executive applies when sampling a sensor.
+    """
+
+    spec: PortSpec
+    unit: str
+    mj_names: tuple[str, ...]
+    quantum: float | None = None
+    noise_std: float = 0.0
+
+    @property
+    def name(self) -> str:
+        """The port name, e.g. ``"q"``."""
+        return self.spec.name
+
+    @property
+    def dim(self) -> int:
+        """Number of components."""
+        return len(self.mj_names)
+
+
+@dataclass(frozen=True, eq=False)
+class RobotType:
+    """A robot model provided by a plugin. See the module docstring."""
+
+    name: str
+    summary: str
+    mjcf_path: Path
+    resources: tuple[str, ...]
+    sensors: tuple[RobotPort, ...]
+    actuators: tuple[RobotPort, ...]
+    actuator_constraint: ActuatorConstraint
+    joint_limits: tuple[np.ndarray, np.ndarray]
+    end_effector: str | None = None
+    timestep_s: float = 0.001
+    params: tuple[ParamSpec, ...] = ()
+    param_values: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def dof(self) -> int:
+        """Number of joints (= dimension of ``q``)."""
+        return len(self.resources)
+
+    @property
+    def torque_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(tau_min, tau_max)`` [N·m] per joint."""
+        return self.actuator_constraint.tau_min, self.actuator_constraint.tau_max
+
+    @property
+    def ports(self) -> tuple[RobotPort, ...]:
+        """Sensor ports then actuator ports."""
+        return self.sensors + self.actuators
+
+    @property
+    def default_timing(self) -> Timing:
+        """The plant's integration step as a timing: ``period_ns`` = MJCF timestep."""
+        return Timing(round(self.timestep_s * 1e9), 0)
+
+    def port(self, name: str) -> RobotPort:
+        """The port ``name`` (``q``, ``qdot``, ``tau``…); raises naming close matches."""
+        for port in self.ports:
+            if port.name == name:
+                return port
+        names = [port.name for port in self.ports]
+        raise ControlError(f"robot type {self.name!r} has no port {name!r}"
+                           f"{close_matches(name, names)}; its ports: {', '.join(names)}")
+
+    def configure(self, params: Mapping[str, Any]) -> RobotType:
+        """This type with type parameters (``robot auv : auv(battery_wh = 400.0)``)."""
+        values = resolve_params(self.name, self.params, params)
+        return replace(self, param_values=values)
+
+    def pinocchio_model(self) -> Any:
+        """A fresh ``pinocchio.Model`` built from :attr:`mjcf_path` (``buildModelFromMJCF``).
+
+        Armature and joint damping are read from the file (``model.armature``,
+        ``model.damping``); gravity is Pinocchio's default (0, 0, -9.81) m/s² like MuJoCo's.
+        """
+        return _pinocchio_model(str(self.mjcf_path)).copy()
+
+    def mujoco_model(self) -> Any:
+        """A fresh ``mujoco.MjModel`` compiled from :attr:`mjcf_path`."""
+        import mujoco
+
+        return mujoco.MjModel.from_xml_path(str(self.mjcf_path))
+
+    @classmethod
+    def from_mjcf(cls, name: str, path: str | Path, summary: str = "",
+                  params: tuple[ParamSpec, ...] = (), **overrides: Any) -> RobotType:
+        """Describe the robot in the MJCF file ``path``; see the module docstring."""
+        import mujoco
+
+        path = Path(path).resolve()
+        if not path.is_file():
+            raise ControlError(f"robot type {name!r}: MJCF file not found: {path}")
+        try:
+            model = mujoco.MjModel.from_xml_path(str(path))
+        except ValueError as error:
+            raise ControlError(f"robot type {name!r}: cannot load {path}: {error}") from None
+        fields = _describe(model, name)
+        fields.update(overrides)
+        return cls(name=name, summary=summary, mjcf_path=path, params=params, **fields)
+
+
+@functools.lru_cache(maxsize=16)
+def _pinocchio_model(path: str) -> Any:
+    import pinocchio
+
+    return pinocchio.buildModelFromMJCF(path)
+
+
+def _names(model: Any, obj: Any, ids: list[int]) -> tuple[str, ...]:
+    import mujoco
+
+    return tuple(mujoco.mj_id2name(model, obj, i) or f"#{i}" for i in ids)
+
+
+def _describe(model: Any, name: str) -> dict[str, Any]:
+    """Resources, ports, limits and end effector read from a compiled ``MjModel``."""
+    import mujoco
+
+    kinds = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
+    joints = [j for j in range(model.njnt) if int(model.jnt_type[j]) in kinds]
+    if len(joints) != model.nq or model.nq != model.nv:
+        raise ControlError(f"robot type {name!r}: only hinge and slide joints are supported")
+    dof = len(joints)
+    lower = np.where(model.jnt_limited[joints] != 0, model.jnt_range[joints, 0], -np.inf)
+    upper = np.where(model.jnt_limited[joints] != 0, model.jnt_range[joints, 1], np.inf)
+    sensors = (_sensor_port(model, name, mujoco.mjtSensor.mjSENS_JOINTPOS, "q", "[rad]"),
+               _sensor_port(model, name, mujoco.mjtSensor.mjSENS_JOINTVEL, "qdot", "[rad/s]"))
+    tau, order = _actuator_port(model, name, dof)
+    limits = model.actuator_ctrlrange[order]
+    constraint = ActuatorConstraint(limits[:, 0], limits[:, 1],
+                                    _numeric(model, "actuator_alpha", dof, np.inf),
+                                    _numeric(model, "actuator_beta", dof, 0.0))
+    site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "end_effector")
+    return dict(resources=_names(model, mujoco.mjtObj.mjOBJ_JOINT, joints),
+                sensors=sensors, actuators=(tau,), actuator_constraint=constraint,
+                joint_limits=(lower, upper),
+                end_effector="end_effector" if site >= 0 else None,
+                timestep_s=float(model.opt.timestep))
+
+
+def _sensor_port(model: Any, name: str, kind: Any, port: str, unit: str) -> RobotPort:
+    import mujoco
+
+    ids = sorted((i for i in range(model.nsensor) if int(model.sensor_type[i]) == int(kind)),
+                 key=lambda i: model.sensor_objid[i])
+    if len(ids) != model.njnt:
+        raise ControlError(f"robot type {name!r}: port {port!r} needs one "
+                           f"{mujoco.mjtSensor(kind).name} sensor per joint, "
+                           f"found {len(ids)} for {model.njnt} joints")
+    names = _names(model, mujoco.mjtObj.mjOBJ_SENSOR, ids)
+    doc = f"joint {'positions' if port == 'q' else 'velocities'} {unit}"
+    return RobotPort(PortSpec(port, "out", "vector", len(ids), doc=doc), unit, names)
+
+
+def _actuator_port(model: Any, name: str, dof: int) -> tuple[RobotPort, list[int]]:
+    import mujoco
+
+    if model.nu != dof or not np.all(model.actuator_ctrllimited[: model.nu]):
+        raise ControlError(f"robot type {name!r}: port 'tau' needs one motor with a "
+                           f"ctrlrange per joint, found {model.nu} for {dof} joints")
+    if np.any(model.actuator_gear[: model.nu, 0] != 1.0):
+        raise ControlError(f"robot type {name!r}: port 'tau' needs direct-drive motors "
+                           f"(gear 1), found gears {model.actuator_gear[: model.nu, 0].tolist()}")
+    order = sorted(range(model.nu), key=lambda i: model.actuator_trnid[i, 0])
+    names = _names(model, mujoco.mjtObj.mjOBJ_ACTUATOR, order)
+    spec = PortSpec("tau", "in", "vector", dof, doc="joint torques [N·m]")
+    return RobotPort(spec, "[N·m]", names), order
+
+
+def _numeric(model: Any, key: str, dof: int, default: float) -> np.ndarray:
+    import mujoco
+
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_NUMERIC, key)
+    if index < 0:
+        return np.full(dof, default)
+    start, size = model.numeric_adr[index], model.numeric_size[index]
+    return np.array(model.numeric_data[start:start + size], dtype=float)

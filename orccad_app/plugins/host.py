@@ -1,0 +1,282 @@
+"""The plugin host: a typed facade over ``pluggy.PluginManager``.
+
+Start-up (:meth:`PluginHost.load`):
+
+1. load the plugins of the entry-point group ``orccad`` — the built-in ones
+   (``orccad_control``, ``orccad_arm3dof``, ``orccad_observers``) come through the same
+   path as third-party ones — except those named in ``ORCCAD_DISABLE_PLUGINS``
+   (comma-separated);
+2. ``check_pending()``: a hook implementation that matches no specification (a typo) is
+   an error of its plugin;
+3. call the registration hooks of each plugin, then ``orccad_plugins_loaded``.
+
+A plugin that fails to import, fails validation, raises in a hook or registers an invalid
+or duplicate item is recorded in :attr:`PluginHost.failures` with its name, its
+contributions are withdrawn and it is unregistered; the other plugins keep working.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from importlib import metadata
+from typing import Any
+
+import pluggy
+
+from orccad_app.control.module import ModuleKind
+from orccad_app.diagnostics import OrccadError
+from orccad_app.plugins import hookspecs
+from orccad_app.plugins.registry import Registries, Registry
+
+__all__ = [
+    "ENTRY_POINT_GROUP",
+    "DISABLE_ENV",
+    "PluginInfo",
+    "PluginFailure",
+    "PluginHost",
+    "default_host",
+    "reset_default_host",
+]
+
+#: Entry-point group of ORCCAD plugins.
+ENTRY_POINT_GROUP = hookspecs.PROJECT
+#: Environment variable listing plugin names not to load, comma-separated.
+DISABLE_ENV = "ORCCAD_DISABLE_PLUGINS"
+
+_IMPL_DEFAULTS = dict(wrapper=False, hookwrapper=False, optionalhook=False,
+                      tryfirst=False, trylast=False, specname=None)
+
+
+@dataclass(frozen=True)
+class PluginInfo:
+    """A loaded plugin: its ``name``, Python ``module`` and distribution, if any."""
+
+    name: str
+    module: str
+    distribution: str | None = None
+    version: str | None = None
+
+
+@dataclass(frozen=True)
+class PluginFailure:
+    """Plugin ``plugin`` failed at ``stage`` (``import``, ``validation`` or a hook)."""
+
+    plugin: str
+    stage: str
+    message: str
+
+    def format(self) -> str:
+        """One line for users: ``plugin 'x' disabled: <stage>: <message>``."""
+        return f"plugin {self.plugin!r} disabled: {self.stage}: {self.message}"
+
+
+class _Manager(pluggy.PluginManager):
+    """Also accepts unmarked functions named ``orccad_*`` as hook implementations."""
+
+    def parse_hookimpl_opts(self, plugin: Any, name: str) -> Any:
+        opts = super().parse_hookimpl_opts(plugin, name)
+        if opts is None and name.startswith(f"{hookspecs.PROJECT}_"):
+            if inspect.isroutine(getattr(plugin, name, None)):
+                return dict(_IMPL_DEFAULTS)
+        return opts
+
+
+class _Collector:
+    """The ``register`` callable given to a registration hook: collects the items."""
+
+    def __init__(self) -> None:
+        self.items: list[Any] = []
+
+    def __call__(self, item: Any) -> None:
+        self.items.append(item)
+
+
+def _describe(error: BaseException) -> str:
+    if isinstance(error, OrccadError):
+        return error.message
+    return f"{type(error).__name__}: {error}"
+
+
+def _blocked_from_env() -> set[str]:
+    return {name.strip() for name in os.environ.get(DISABLE_ENV, "").split(",") if name.strip()}
+
+
+class PluginHost:
+    """Plugins, their registries and their failures. Build one with :meth:`load`."""
+
+    def __init__(self, blocked: Iterable[str] = ()):
+        self.manager = _Manager(hookspecs.PROJECT)
+        self.manager.add_hookspecs(hookspecs)
+        self.registries = Registries.empty()
+        self.plugins: dict[str, PluginInfo] = {}
+        self.failures: list[PluginFailure] = []
+        self.blocked: set[str] = set(blocked)
+        for name in self.blocked:
+            self.manager.set_blocked(name)
+        self._started = False
+
+    # -- registries --------------------------------------------------------------------
+
+    @property
+    def robot_types(self) -> Registry[Any]:
+        """Robot types (:class:`~orccad_app.control.RobotType`)."""
+        return self.registries.robot_types
+
+    @property
+    def control_laws(self) -> Registry[Any]:
+        """Control laws (:class:`~orccad_app.control.LawKind`)."""
+        return self.registries.control_laws
+
+    @property
+    def task_functions(self) -> Registry[Any]:
+        """Task functions (:class:`~orccad_app.control.TaskFunctionKind`)."""
+        return self.registries.task_functions
+
+    @property
+    def trajectories(self) -> Registry[Any]:
+        """Trajectories (:class:`~orccad_app.control.TrajectoryKind`)."""
+        return self.registries.trajectories
+
+    @property
+    def observers(self) -> Registry[ModuleKind]:
+        """Observer module kinds (with an ``event`` output)."""
+        return self.registries.observers
+
+    @property
+    def module_kinds(self) -> Registry[ModuleKind]:
+        """Other module kinds (``trajectory``, ``control_law``…)."""
+        return self.registries.module_kinds
+
+    def module_kind(self, name: str) -> ModuleKind:
+        """A module kind or observer by name (what ``module x : NAME`` may use)."""
+        if name in self.module_kinds:
+            return self.module_kinds.get(name)
+        if name in self.observers:
+            return self.observers.get(name)
+        raise self.module_kinds.unknown(name, self.observers.names())
+
+    # -- loading -----------------------------------------------------------------------
+
+    @classmethod
+    def load(cls, plugins: Iterable[tuple[str, Any]] = (), entry_points: bool = True,
+             blocked: Iterable[str] | None = None) -> PluginHost:
+        """A started host: entry-point plugins (unless ``entry_points=False``), then the
+        extra ``(name, plugin)`` pairs. ``blocked`` defaults to ``ORCCAD_DISABLE_PLUGINS``."""
+        host = cls(_blocked_from_env() if blocked is None else blocked)
+        if entry_points:
+            host.load_entry_points()
+        for name, plugin in plugins:
+            host.add_plugin(plugin, name)
+        return host.start()
+
+    def load_entry_points(self, group: str = ENTRY_POINT_GROUP) -> None:
+        """Import and register every plugin of ``group`` not blocked (first name wins)."""
+        for entry_point in metadata.entry_points(group=group):
+            name = entry_point.name
+            if name in self.blocked or name in self.plugins:
+                continue
+            dist = getattr(entry_point, "dist", None)
+            try:
+                plugin = entry_point.load()
+            except Exception as error:  # noqa: BLE001 - any import error is the plugin's
+                self.failures.append(PluginFailure(name, "import", _describe(error)))
+                continue
+            self.add_plugin(plugin, name, dist.name if dist else None,
+                            dist.version if dist else None)
+
+    def add_plugin(self, plugin: Any, name: str, distribution: str | None = None,
+                   version: str | None = None) -> bool:
+        """Register ``plugin`` under ``name`` before :meth:`start`; False if refused."""
+        if self._started:
+            raise OrccadError(f"plugin {name!r}: the plugin host has already started")
+        if name in self.blocked:
+            return False
+        try:
+            self.manager.register(plugin, name=name)
+        except (pluggy.PluginValidationError, ValueError) as error:
+            self.failures.append(PluginFailure(name, "validation", _describe(error)))
+            return False
+        module = getattr(plugin, "__name__", type(plugin).__qualname__)
+        self.plugins[name] = PluginInfo(name, module, distribution, version)
+        return True
+
+    def start(self) -> PluginHost:
+        """``check_pending``, then the registration hooks, then ``orccad_plugins_loaded``."""
+        if self._started:
+            return self
+        self._started = True
+        self._check_pending()
+        for hook_name, registry_name in hookspecs.REGISTRATION_HOOKS:
+            self._call_registration(hook_name, getattr(self.registries, registry_name))
+        self._call_each("orccad_plugins_loaded", lambda _plugin: {"host": self})
+        return self
+
+    def _check_pending(self) -> None:
+        while True:
+            try:
+                self.manager.check_pending()
+                return
+            except pluggy.PluginValidationError as error:
+                name = self.manager.get_name(error.plugin) or repr(error.plugin)
+                self.disable(name, "validation", str(error))
+
+    def _call_registration(self, hook_name: str, registry: Registry[Any]) -> None:
+        for plugin, kwargs in self._call_each(hook_name, lambda _: {"register": _Collector()}):
+            for item in kwargs["register"].items:
+                try:
+                    registry.add(item, plugin)
+                except OrccadError as error:
+                    self.disable(plugin, hook_name, error.message)
+                    break
+
+    def _call_each(self, hook_name: str, arguments: Callable[[str], dict[str, Any]]
+                   ) -> list[tuple[str, dict[str, Any]]]:
+        """Call ``hook_name`` of each plugin alone, in registration order, isolating
+        failures; returns ``(plugin, arguments)`` of the calls that succeeded."""
+        done = []
+        hook = getattr(self.manager.hook, hook_name)
+        for impl in hook.get_hookimpls():  # registration order (pluggy calls them reversed)
+            name = impl.plugin_name
+            if name not in self.plugins:
+                continue
+            kwargs = arguments(name)
+            try:
+                impl.function(**{arg: kwargs[arg] for arg in impl.argnames})
+            except Exception as error:  # noqa: BLE001 - a plugin must not crash the host
+                self.disable(name, hook_name, _describe(error))
+                continue
+            done.append((name, kwargs))
+        return done
+
+    def disable(self, plugin: str, stage: str, message: str) -> None:
+        """Record a failure of ``plugin``, withdraw its contributions and unregister it."""
+        self.failures.append(PluginFailure(plugin, stage, message))
+        self.registries.remove_plugin(plugin)
+        self.plugins.pop(plugin, None)
+        registered = self.manager.get_plugin(plugin)
+        if registered is not None:
+            self.manager.unregister(registered)
+
+    def provider(self, category: str, name: str) -> str:
+        """The plugin that provides ``name`` in registry ``category`` (e.g. ``observers``)."""
+        return getattr(self.registries, category).plugin_of(name)
+
+
+_DEFAULT: PluginHost | None = None
+
+
+def default_host() -> PluginHost:
+    """The process-wide host, loaded from entry points on first use."""
+    global _DEFAULT
+    if _DEFAULT is None:
+        _DEFAULT = PluginHost.load()
+    return _DEFAULT
+
+
+def reset_default_host() -> None:
+    """Forget the process-wide host (tests, or after installing a plugin)."""
+    global _DEFAULT
+    _DEFAULT = None

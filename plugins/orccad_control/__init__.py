@@ -1,0 +1,48 @@
+"""Built-in plugin ``orccad_control``: the control library of ``orccad_app.control``.
+
+Registers the trajectories (``cosine``, ``min_jerk``, ``constant``), the task functions
+(``joint_tracking``, ``cartesian_tracking``), the control laws (``pid``, ``generic``,
+``computed_torque``) and the generic module kinds (``trajectory``, ``control_law``). It is
+loaded through the ``orccad`` entry-point group like any third-party plugin.
+"""
+
+from orccad_app.control.laws import LAW_KINDS
+from orccad_app.control.module_kinds import MODULE_KINDS
+from orccad_app.control.task_functions import TASK_FUNCTION_KINDS
+from orccad_app.control.trajectories import TRAJECTORY_KINDS
+from orccad_app.plugins import hookimpl
+
+__all__ = [
+    "orccad_register_control_laws",
+    "orccad_register_task_functions",
+    "orccad_register_trajectories",
+    "orccad_register_module_kinds",
+]
+
+
+@hookimpl
+def orccad_register_control_laws(register):
+    """PID (eq. 8), the generic scheme (eq. 5) and computed torque."""
+    for kind in LAW_KINDS:
+        register(kind)
+
+
+@hookimpl
+def orccad_register_task_functions(register):
+    """Joint tracking (eq. 6) and Cartesian end-effector position tracking."""
+    for kind in TASK_FUNCTION_KINDS:
+        register(kind)
+
+
+@hookimpl
+def orccad_register_trajectories(register):
+    """Cosine (eq. 9-10), minimum jerk and constant."""
+    for kind in TRAJECTORY_KINDS:
+        register(kind)
+
+
+@hookimpl
+def orccad_register_module_kinds(register):
+    """The ``trajectory`` and ``control_law`` Module-Tasks."""
+    for kind in MODULE_KINDS:
+        register(kind)
