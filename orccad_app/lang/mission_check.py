@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.declarations import check_type
 from orccad_app.lang.scope import (Binding, ConditionKind, NameKind, Problems, Scope,
                                    classify_condition, signal_leaves)
 
@@ -299,11 +300,13 @@ class MissionChecker:
     def _localsignals(self, stmt: ast.LocalSignals, scope: Scope) -> None:
         inner = scope.child()
         for decl in stmt.signals:
+            check_type(decl.type, decl.loc, self.problems)
             self.declare(inner, decl.name, Binding(NameKind.SIGNAL, decl), decl.loc)
         self.block(stmt.body, inner)
 
     def _vardecl(self, stmt: ast.VarDecl, scope: Scope) -> None:
         self.data(stmt.value, scope)
+        check_type(stmt.type, stmt.loc, self.problems)
         self.declare(scope, stmt.name, Binding(NameKind.VARIABLE, stmt), stmt.loc)
 
     def _assign(self, stmt: ast.Assign, scope: Scope) -> None:
