@@ -8,12 +8,15 @@ processor and cost nothing.
 
 The heuristic (optimal placement is NP-hard, RR-1801 §2.2.3):
 
-1. *greedy*: Module-Tasks by decreasing utilization (ties by name) each go to the processor
-   that already holds the most traffic with them, among processors whose utilization stays
-   within ``bound``; ties go to the least loaded, then the first processor;
-2. *improvement*: move single Module-Tasks to another processor while a move strictly lowers
-   the inter-processor traffic and respects the bound (first improving move in a fixed order,
-   repeated until none is left).
+1. *clustering*: start from one cluster per Module-Task and repeatedly merge the two clusters
+   with the heaviest traffic between them whose joint utilization stays within ``bound``
+   (ties by names), until no linked pair can merge;
+2. *packing*: clusters by decreasing utilization each go to the processor that already holds
+   the most traffic with them, among those where they fit; ties go to the most loaded (best
+   fit), then the first processor. A cluster that fits nowhere is placed Module-Task by
+   Module-Task the same way;
+3. *improvement*: move single Module-Tasks to another processor while a move strictly lowers
+   the inter-processor traffic and respects the bound.
 
 It is deterministic. It raises :class:`OrccadError` when a Module-Task fits nowhere.
 """
@@ -65,13 +68,47 @@ def traffic_graph(tcs: TCS) -> nx.Graph:
 
 
 def _cut(graph: nx.Graph, assignment: dict[str, str]) -> float:
-    return sum(data["traffic"] for u, v, data in graph.edges(data=True)
-               if assignment[u] != assignment[v])
+    return float(sum(data["traffic"] for u, v, data in graph.edges(data=True)
+                     if assignment[u] != assignment[v]))
 
 
 def _affinity(graph: nx.Graph, node: str, processor: str, assignment: dict[str, str]) -> float:
     return sum(data["traffic"] for other, data in graph[node].items()
                if assignment.get(other) == processor)
+
+
+def _clusters(graph: nx.Graph, util: dict[str, float], bound: float) -> list[list[str]]:
+    clusters = [[name] for name in sorted(util)]
+    while True:
+        best = None
+        for i, first in enumerate(clusters):
+            for j in range(i + 1, len(clusters)):
+                second = clusters[j]
+                load = sum(util[n] for n in first) + sum(util[n] for n in second)
+                if load > bound + 1e-12:
+                    continue
+                weight = sum(graph[u][v]["traffic"] for u in first for v in second
+                             if graph.has_edge(u, v))
+                if weight > 0 and (best is None or weight > best[0]):
+                    best = (weight, i, j)
+        if best is None:
+            return clusters
+        _, i, j = best
+        clusters[i] = sorted(clusters[i] + clusters.pop(j))
+
+
+def _place(members: list[str], graph: nx.Graph, util: dict[str, float], names: list[str],
+           loads: dict[str, float], assignment: dict[str, str], bound: float) -> bool:
+    need = sum(util[n] for n in members)
+    fitting = [p for p in names if loads[p] + need <= bound + 1e-12]
+    if not fitting:
+        return False
+    best = max(fitting, key=lambda p: (sum(_affinity(graph, n, p, assignment) for n in members),
+                                       loads[p], -names.index(p)))
+    for name in members:
+        assignment[name] = best
+    loads[best] += need
+    return True
 
 
 def suggest_placement(tcs: TCS, processors: list[str] | int, bound: float = 1.0) -> Placement:
@@ -84,15 +121,16 @@ def suggest_placement(tcs: TCS, processors: list[str] | int, bound: float = 1.0)
     util = {task.name: task.utilization for task in tcs.module_tasks}
     loads = {name: 0.0 for name in names}
     assignment: dict[str, str] = {}
-    for task in sorted(util, key=lambda n: (-util[n], n)):
-        fitting = [p for p in names if loads[p] + util[task] <= bound + 1e-12]
-        if not fitting:
-            raise OrccadError(f"placement: module-task '{task}' (utilization {util[task]:.3f}) "
-                              f"fits on no processor under the bound {bound}")
-        best = max(fitting, key=lambda p: (_affinity(graph, task, p, assignment), -loads[p],
-                                           -names.index(p)))
-        assignment[task] = best
-        loads[best] += util[task]
+    clusters = _clusters(graph, util, bound)
+    clusters.sort(key=lambda c: (-sum(util[n] for n in c), c))
+    for cluster in clusters:
+        if _place(cluster, graph, util, names, loads, assignment, bound):
+            continue
+        for task in sorted(cluster, key=lambda n: (-util[n], n)):
+            if not _place([task], graph, util, names, loads, assignment, bound):
+                raise OrccadError(f"placement: module-task '{task}' (utilization "
+                                  f"{util[task]:.3f}) fits on no processor under the bound "
+                                  f"{bound}")
     _improve(graph, util, names, loads, assignment, bound)
     ordered = {task.name: assignment[task.name] for task in tcs.module_tasks}
     return Placement(ordered, loads, _cut(graph, assignment))
