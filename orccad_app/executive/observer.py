@@ -37,7 +37,7 @@ class Observer:
         """The running job loses its processor to a more urgent one."""
 
     def on_resume(self, t_ns: int, module: str, job: int, processor: str) -> None:
-        """A preempted (or unblocked-then-ready) job gets its processor back."""
+        """A preempted job gets its processor back."""
 
     def on_compute_end(self, t_ns: int, module: str, job: int, processor: str) -> None:
         """The job's execution time is consumed; it now writes its outputs."""

@@ -92,9 +92,7 @@ class Processor:
         """``job`` has read its inputs: it competes for the processor from now."""
         job.key = self.scheduler.key(job)
         self._ready.append(job)
-        if not self._dispatch_pending:
-            self._dispatch_pending = True
-            self._kernel.schedule(self._kernel.now, _DISPATCH, self._dispatch)
+        self.request_dispatch()
 
     def abort(self, job: Job) -> None:
         """Remove a killed job, running or ready."""
@@ -102,11 +100,11 @@ class Processor:
             self._account()
             self._kernel.cancel(self._finish_entry)
             self.running = None
-            self.make_ready_dispatch()
+            self.request_dispatch()
         elif job in self._ready:
             self._ready.remove(job)
 
-    def make_ready_dispatch(self) -> None:
+    def request_dispatch(self) -> None:
         """Ask for a scheduling decision at the current instant."""
         if not self._dispatch_pending and self._ready:
             self._dispatch_pending = True
@@ -163,9 +161,7 @@ class Processor:
         job.remaining_ns = 0
         self.running = None
         self._finish_entry = None
-        if self._ready and not self._dispatch_pending:
-            self._dispatch_pending = True
-            self._kernel.schedule(self._kernel.now, _DISPATCH, self._dispatch)
+        self.request_dispatch()
         for hook in self._hooks.on_compute_end:
             hook(self._kernel.now, job.runtime.name, job.index, self.name)
         job.runtime.compute_done(job)

@@ -1,24 +1,27 @@
 """The 8 synchronization protocols of a connection (RR-1801 §3.2.1, DESIGN.md §5).
 
-A protocol is named ``producer_end/consumer_end``. Its two ends say who may block:
+A protocol is named ``producer_end/consumer_end``; its ends say who may block:
 
-====================  =====================================  ==========================================
-protocol              producer write                          consumer read
-====================  =====================================  ==========================================
-``asyn/asyn``         never blocks, overwrites                never blocks, last value (stale allowed)
-``syn/syn``           rendez-vous: blocks until a read meets  rendez-vous: blocks until a write meets
-``asyn/syn``          never blocks                            fresh value at once, else next write
-``syn/asyn``          blocks unless read since last write     never blocks
-``asyn/synF``         never blocks                            always blocks until the next write
-``synF/asyn``         always blocks until the next read       never blocks
-``asyn/synD``         never blocks, no traffic                request, blocks for the latest value
-``asyn/synDF``        never blocks                            request, blocks for the next write
-====================  =====================================  ==========================================
+==============  ====================================  ======================================
+protocol        producer write                        consumer read
+==============  ====================================  ======================================
+``asyn/asyn``   never blocks, overwrites              never blocks, last value (may be stale)
+``syn/syn``     rendez-vous: waits for a read         rendez-vous: waits for a write
+``asyn/syn``    never blocks                          fresh value at once, else next write
+``syn/asyn``    waits unless read since last write    never blocks
+``asyn/synF``   never blocks                          always waits for the next write
+``synF/asyn``   always waits for the next read        never blocks
+``asyn/synD``   never blocks, no bus traffic          request, waits for the latest value
+``asyn/synDF``  never blocks                          request, waits for the next write
+==============  ====================================  ======================================
 
-A read is a *demand* and a write a *supply*: a producer blocked on ``syn/asyn`` or ``synF/asyn``
-commits its value at the instant of the read that releases it, just after that read (so nothing
-unread is ever overwritten); a consumer blocked on ``asyn/syn``, ``asyn/synF`` or ``syn/syn`` gets
-the value of the write that releases it.
+Values: a read is a *demand*, a write a *supply*. A consumer released by a write (``syn/syn``,
+``asyn/syn``, ``asyn/synF``, ``asyn/synDF``) gets that write's value. A consumer that never
+blocks cannot wait for a value: it reads what has been delivered so far, and a producer blocked
+on ``syn/asyn`` or ``synF/asyn`` commits its value just after the read that releases it (so
+``syn/asyn`` never overwrites an unread value). Bus traffic between processors: one message per
+write (per transfer for ``syn/syn``); a request and a reply per read for ``synD``/``synDF``
+(the pull variants save bus load when the consumer is slower than the producer).
 """
 
 from __future__ import annotations
