@@ -120,6 +120,25 @@ class Kernel:
         if until_ns > self.now:
             self.now = until_ns
 
+    def run_instant(self) -> int | None:
+        """Process every event of the next pending instant (without moving the clock past
+        it); return that instant [ns], or ``None`` when the queue is empty."""
+        instant = self.peek_ns()
+        if instant is None:
+            return None
+        queue = self._queue
+        pop = heapq.heappop
+        while queue and queue[0][0] == instant:
+            entry = pop(queue)
+            action = entry[3]
+            if action is None:
+                continue
+            self.now = instant
+            entry[3] = None
+            self.events_processed += 1
+            action(entry[4])
+        return instant
+
     def stream(self, name: str) -> np.random.Generator:
         """The random generator called ``name`` (created on first use, then reused)."""
         generator = self._streams.get(name)

@@ -19,6 +19,7 @@ connection between different processors crosses ``bus`` (a zero-time :class:`Bus
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable
 
@@ -105,6 +106,8 @@ class Simulation:
         self.tasks = {task.name: TaskRuntime(self, task, self.processors[task.processor])
                       for task in tcs.module_tasks}
         self.channels: dict[str, Channel] = {}
+        self.lateness_max_s = 0.0
+        """Longest lag behind the wall clock in paced runs [s]."""
         self._wire()
 
     # -- construction ------------------------------------------------------------------------
@@ -259,8 +262,13 @@ class Simulation:
 
     # -- running -----------------------------------------------------------------------------
 
-    def run(self, until_ns: int) -> RunStats:
+    def run(self, until_ns: int, realtime: float | None = None) -> RunStats:
         """Process every event before ``until_ns``, bring plants to it, return the stats.
+
+        :param until_ns: the instant to reach [ns] (events at it are left for the next run).
+        :param realtime: ``None`` runs as fast as possible; a factor ``f > 0`` paces the run to
+            the wall clock, simulated time going ``f`` times as fast as real time; how late
+            the run fell behind is kept in :attr:`lateness_max_s` [s].
 
         A deadlock, a diverging plant or a failing compute object raises an
         :class:`OrccadError`; the statistics then stop at the failing instant.
@@ -268,13 +276,35 @@ class Simulation:
         if not isinstance(until_ns, int) or until_ns < self.kernel.now:
             raise OrccadError(f"run until {until_ns!r} ns: expected an integer instant >= "
                               f"now ({self.kernel.now} ns)")
+        if realtime is not None and not realtime > 0:
+            raise OrccadError(f"realtime factor must be > 0, got {realtime!r}")
         try:
-            self.kernel.run(until_ns)
+            if realtime is None:
+                self.kernel.run(until_ns)
+            else:
+                self._run_paced(until_ns, realtime)
             for plant in self.plants.values():
                 plant.advance_to(until_ns)
         finally:
             self._close()
         return self.stats()
+
+    def _run_paced(self, until_ns: int, factor: float) -> None:
+        kernel = self.kernel
+        wall_start = time.perf_counter()
+        sim_start = kernel.now
+        while True:
+            following = kernel.peek_ns()
+            target = until_ns if following is None or following >= until_ns else following
+            delay = wall_start + (target - sim_start) / 1e9 / factor - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+            elif -delay > self.lateness_max_s:
+                self.lateness_max_s = -delay
+            if target == until_ns:
+                kernel.run(until_ns)
+                return
+            kernel.run_instant()
 
     def _close(self) -> None:
         now = self.kernel.now

@@ -59,3 +59,15 @@ def test_named_streams_depend_only_on_seed_and_name():
 def test_seed_must_be_a_non_negative_integer():
     with pytest.raises(OrccadError, match="seed"):
         Kernel(seed=-1)
+
+
+def test_run_instant_processes_one_instant_and_keeps_the_clock_there():
+    kernel = Kernel()
+    seen = []
+    kernel.schedule(3, EventClass.RELEASE, seen.append, "a")
+    kernel.schedule(3, EventClass.FINISH, lambda _: kernel.schedule(3, EventClass.WAKE,
+                                                                   seen.append, "woken"))
+    kernel.schedule(8, EventClass.RELEASE, seen.append, "later")
+    assert kernel.run_instant() == 3
+    assert seen == ["woken", "a"] and kernel.now == 3
+    assert kernel.run_instant() == 8 and kernel.run_instant() is None

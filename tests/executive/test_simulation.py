@@ -169,3 +169,19 @@ def test_observers_only_get_the_hooks_they_override():
     sim.activate()
     sim.run(ms(20))
     assert finishes.count == 8
+
+
+def test_paced_run_follows_the_wall_clock_and_gives_the_same_result():
+    import time
+
+    fast = Simulation(_tcs())
+    fast.activate()
+    expected = fast.run(ms(60)).tasks["gen"].completed
+    paced = Simulation(_tcs())
+    paced.activate()
+    start = time.perf_counter()
+    stats = paced.run(ms(60), realtime=2.0)  # 60 ms of simulated time in about 30 ms
+    elapsed = time.perf_counter() - start
+    assert elapsed >= 0.029
+    assert stats.tasks["gen"].completed == expected
+    assert paced.lateness_max_s >= 0.0
