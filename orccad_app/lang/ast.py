@@ -29,15 +29,27 @@ Triggers
 ``await immediate S`` → ``Trigger(condition=Name("S"), immediate=True)``, ``await 3 S`` →
 ``count=Number(3)``, ``await 2.5 s`` → ``duration_ns=2_500_000_000`` (``condition`` is
 ``None``). :class:`Await` also exposes the trigger's fields directly.
+
+The nodes live in four modules (expressions in ``ast_expr``, Robot-Tasks in
+``ast_robottask``, temporal logic in ``ast_formula``, the rest here); import them all from
+here.
 """
 
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass
 from typing import Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
+from orccad_app.lang.ast_expr import (VALUE_TYPES, Arg, Binary, Bool, Call, DurationLit, Expr,
+                                      LastValue, Name, Number, String, Unary, Vector, node)
+from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, Formula, FPredicate,
+                                         FSignal, FStatus, FUnary, Property)
+from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust, Connect,
+                                           ExceptionDecl, ExceptionType, MeasurePostcondition,
+                                           MeasurePrecondition, Module, Param, PortRef,
+                                           RobotTask, SignalPostcondition,
+                                           SignalPrecondition)
 
 __all__ = [
     # expressions
@@ -58,125 +70,7 @@ __all__ = [
     "Property", "Assumption", "Program", "SourceFile", "TopItem", "VALUE_TYPES",
 ]
 
-_node = dataclass(frozen=True, slots=True, kw_only=True)
-
-#: Value types of signals, variables and parameters.
-VALUE_TYPES: frozenset[str] = frozenset({"int", "float", "bool", "string", "vector", "duration"})
-
-#: Port-to-port communication protocols (DESIGN.md §5).
-PROTOCOLS: tuple[str, ...] = (
-    "asyn/asyn", "syn/syn", "asyn/syn", "syn/asyn",
-    "asyn/synF", "synF/asyn", "asyn/synD", "asyn/synDF",
-)
-DEFAULT_PROTOCOL = "asyn/asyn"
-
-
-# --------------------------------------------------------------------------- expressions
-
-@_node
-class Name:
-    """An identifier in an expression: a signal (presence), a variable or a parameter."""
-
-    name: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Number:
-    """A numeric literal; ``value`` is ``int`` when written without ``.``/exponent.
-
-    A leading minus is folded in (``-0.5`` is ``Number(value=-0.5, text="-0.5")``); the
-    constant ``pi`` is ``Number(value=math.pi, text="pi")``.
-    """
-
-    value: int | float
-    text: str = ""
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class String:
-    """A string literal, escapes resolved."""
-
-    value: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Bool:
-    """``true`` or ``false``."""
-
-    value: bool
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Vector:
-    """``[e1, e2, ...]``."""
-
-    items: tuple[Expr, ...]
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class DurationLit:
-    """A duration literal such as ``2.5 s``, in integer nanoseconds."""
-
-    duration_ns: int
-    text: str = ""
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class LastValue:
-    """``?S``: the last value of the valued signal ``S``."""
-
-    signal: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Unary:
-    """``op operand`` with ``op`` in ``"-"``, ``"not"``."""
-
-    op: str
-    operand: Expr
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Binary:
-    """``left op right``; ``op`` is one of ``+ - * / < <= > >= == != and or``."""
-
-    op: str
-    left: Expr
-    right: Expr
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Arg:
-    """One argument of a call: ``name = value`` or positional (``name`` is ``None``)."""
-
-    name: str | None
-    value: Expr
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Call:
-    """``func(args)``: a parameterized kind (law, observer, trajectory...) or function."""
-
-    func: str
-    args: tuple[Arg, ...] = ()
-    loc: SourceLocation = NOWHERE
-
-    def arg(self, name: str) -> Arg | None:
-        """The named argument ``name``, or ``None``."""
-        return next((a for a in self.args if a.name == name), None)
-
-
-Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, Unary, Binary, Call]
+_node = node
 
 
 # --------------------------------------------------------------------------- declarations
@@ -215,162 +109,6 @@ class Robot:
     type: str
     args: tuple[Arg, ...] = ()
     loc: SourceLocation = NOWHERE
-
-
-@_node
-class Param:
-    """A Robot-Task parameter ``name: type = default`` (type and default optional)."""
-
-    name: str
-    type: str | None = None
-    default: Expr | None = None
-    loc: SourceLocation = NOWHERE
-
-
-# --------------------------------------------------------------------------- Robot-Tasks
-
-@_node
-class PortRef:
-    """``component.port`` (a module or the robot, and one of its ports or parameters)."""
-
-    component: str
-    port: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Module:
-    """``module NAME : KIND(args) period .. wcet .. [bcet ..] on CPU priority N;``.
-
-    Omitted timing parts are ``None`` (the law's defaults apply).
-    """
-
-    name: str
-    kind: str
-    args: tuple[Arg, ...] = ()
-    period_ns: int | None = None
-    wcet_ns: int | None = None
-    bcet_ns: int | None = None
-    processor: str | None = None
-    priority: int | None = None
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Connect:
-    """``connect a.b -> c.d [: protocol];`` (protocol one of :data:`PROTOCOLS`)."""
-
-    source: PortRef
-    target: PortRef
-    protocol: str = DEFAULT_PROTOCOL
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class SignalPrecondition:
-    """``precondition S;`` - synchronization pre-condition: wait for signal ``S``."""
-
-    signal: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class MeasurePrecondition:
-    """``precondition measure obs(args) [within DUR];`` - measurement pre-condition."""
-
-    observer: Call
-    within_ns: int | None = None
-    loc: SourceLocation = NOWHERE
-
-
-class ExceptionType(str, enum.Enum):
-    """Exception handling types of RR-1801 §3.4.2; ``number`` is the paper's type."""
-
-    ADJUST = "adjust"  #: type 1: change a module parameter, the task goes on
-    ABORT = "abort"    #: type 2: kill the RT, signal the application
-    FATAL = "fatal"    #: type 3: kill the RT and the whole application
-
-    @property
-    def number(self) -> int:
-        """1, 2 or 3."""
-        return {"adjust": 1, "abort": 2, "fatal": 3}[self.value]
-
-
-@_node
-class Adjust:
-    """``adjust module.param = value`` of a type-1 exception."""
-
-    target: PortRef
-    value: Expr
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class ExceptionDecl:
-    """``exception NAME from SOURCE : fatal|abort|adjust m.p = e;``.
-
-    ``source`` names a declared module of the task or an observer kind; ``source.args`` is
-    empty when written without parentheses (``from jl``).
-    """
-
-    name: str
-    source: Call
-    type: ExceptionType
-    adjust: Adjust | None = None
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class MeasurePostcondition:
-    """``postcondition measure obs(args);``."""
-
-    observer: Call
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class SignalPostcondition:
-    """``postcondition emit S;`` - emitted at the good end."""
-
-    signal: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class RobotTask:
-    """``robottask NAME(params) on ROBOT { ... }``, its items grouped by kind."""
-
-    name: str
-    params: tuple[Param, ...]
-    robot: str
-    duration_ns: int | None = None
-    task_function: Call | None = None
-    law: Call | None = None
-    modules: tuple[Module, ...] = ()
-    connections: tuple[Connect, ...] = ()
-    preconditions: tuple[SignalPrecondition | MeasurePrecondition, ...] = ()
-    exceptions: tuple[ExceptionDecl, ...] = ()
-    postconditions: tuple[MeasurePostcondition | SignalPostcondition, ...] = ()
-    loc: SourceLocation = NOWHERE
-
-    def module(self, name: str) -> Module | None:
-        """The module called ``name``, or ``None``."""
-        return next((m for m in self.modules if m.name == name), None)
-
-    def param(self, name: str) -> Param | None:
-        """The parameter called ``name``, or ``None``."""
-        return next((p for p in self.params if p.name == name), None)
-
-    def raisable(self) -> tuple[str, ...]:
-        """Names a ``run`` of this task can raise in the application (type 2).
-
-        The ``abort`` exceptions, then ``OBSERVER_timeout`` for each measurement
-        pre-condition with a watchdog. (``Timeout`` comes from ``run ... within``.)
-        """
-        names = [e.name for e in self.exceptions if e.type is ExceptionType.ABORT]
-        names += [f"{p.observer.func}_timeout" for p in self.preconditions
-                  if isinstance(p, MeasurePrecondition) and p.within_ns is not None]
-        return tuple(names)
 
 
 # --------------------------------------------------------------------------- statements
@@ -615,7 +353,6 @@ class Assign:
 Stmt = Union[Block, Nothing, Pause, Halt, Emit, Sustain, Await, Run, If, Loop, Repeat, Every,
              Abort, Suspend, Trap, Exit, Try, Par, Race, LocalSignals, VarDecl, Assign]
 
-
 # --------------------------------------------------------------------------- missions
 
 @_node
@@ -631,85 +368,6 @@ class Mission:
     body: Block
     on_fatal: Block | None = None
     loc: SourceLocation = NOWHERE
-
-
-# --------------------------------------------------------------------------- temporal logic
-
-@_node
-class FSignal:
-    """A signal name in a formula: present in the instant."""
-
-    name: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class FPredicate:
-    """``active(RT)``, ``started(RT)``, ``ended(RT)`` or ``raised(E)``."""
-
-    predicate: str
-    argument: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class FStatus:
-    """``done``, ``failed`` or ``aborted``: the mission's status."""
-
-    status: str
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class FBool:
-    """``true`` or ``false``."""
-
-    value: bool
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class FUnary:
-    """``op f``; op in not, next, always, eventually, never, previously, once, historically."""
-
-    op: str
-    operand: Formula
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class FBinary:
-    """``f op g``; op in ``and``, ``or``, ``->``, ``<->``, ``until``, ``since``."""
-
-    op: str
-    left: Formula
-    right: Formula
-    loc: SourceLocation = NOWHERE
-
-
-Formula = Union[FSignal, FPredicate, FStatus, FBool, FUnary, FBinary]
-
-
-@_node
-class Property:
-    """``property MISSION.NAME: formula;`` (``mission`` is ``None`` when written
-    ``property NAME: ...``: it then applies to every mission of the file)."""
-
-    mission: str | None
-    name: str
-    formula: Formula
-    loc: SourceLocation = NOWHERE
-
-
-@_node
-class Assumption:
-    """``assume MISSION.NAME: formula;`` - an environment assumption, same syntax."""
-
-    mission: str | None
-    name: str
-    formula: Formula
-    loc: SourceLocation = NOWHERE
-
 
 # --------------------------------------------------------------------------- root
 
