@@ -53,9 +53,10 @@ def _concrete(ports: tuple[PortSpec, ...], ref: str, ref_dim: int,
     """Ports with the reference renamed (``qd`` → ``ref``) and dims fixed: reference ports
     and ``e`` have the task dimension, other vectors the robot's number of joints."""
     concrete = []
+    reference = {"qd": ref, "qd_dot": f"{ref}_dot", "qd_ddot": f"{ref}_ddot"}
     for port in ports:
-        is_task = port.name.startswith("qd") or port.name == "e"
-        name = ref + port.name[2:] if port.name.startswith("qd") else port.name
+        is_task = port.name in reference or port.name == "e"
+        name = reference.get(port.name, port.name)
         spec = PortSpec(name, port.direction, port.type, None, port.required, port.doc)
         concrete.append(spec.with_dim(ref_dim if is_task else dof))
     return tuple(concrete)

@@ -169,8 +169,8 @@ def _describe(model: Any, name: str) -> dict[str, Any]:
     dof = len(joints)
     lower = np.where(model.jnt_limited[joints] != 0, model.jnt_range[joints, 0], -np.inf)
     upper = np.where(model.jnt_limited[joints] != 0, model.jnt_range[joints, 1], np.inf)
-    sensors = (_sensor_port(model, name, mujoco.mjtSensor.mjSENS_JOINTPOS, "q", "[rad]"),
-               _sensor_port(model, name, mujoco.mjtSensor.mjSENS_JOINTVEL, "qdot", "[rad/s]"))
+    sensors = (_sensor_port(model, name, "jointpos", "q", "[rad]"),
+               _sensor_port(model, name, "jointvel", "qdot", "[rad/s]"))
     tau, order = _actuator_port(model, name, dof)
     limits = model.actuator_ctrlrange[order]
     constraint = ActuatorConstraint(limits[:, 0], limits[:, 1],
@@ -184,14 +184,16 @@ def _describe(model: Any, name: str) -> dict[str, Any]:
                 timestep_s=float(model.opt.timestep))
 
 
-def _sensor_port(model: Any, name: str, kind: Any, port: str, unit: str) -> RobotPort:
+def _sensor_port(model: Any, name: str, element: str, port: str, unit: str) -> RobotPort:
+    """The sensor port made of the MJCF ``<element>`` sensors (jointpos, jointvel)."""
     import mujoco
 
-    ids = sorted((i for i in range(model.nsensor) if int(model.sensor_type[i]) == int(kind)),
+    kind = int(getattr(mujoco.mjtSensor, f"mjSENS_{element.upper()}"))
+    ids = sorted((i for i in range(model.nsensor) if int(model.sensor_type[i]) == kind),
                  key=lambda i: model.sensor_objid[i])
     if len(ids) != model.njnt:
         raise ControlError(f"robot type {name!r}: port {port!r} needs one "
-                           f"{mujoco.mjtSensor(kind).name} sensor per joint, "
+                           f"<{element}> sensor per joint, "
                            f"found {len(ids)} for {model.njnt} joints")
     names = _names(model, mujoco.mjtObj.mjOBJ_SENSOR, ids)
     doc = f"joint {'positions' if port == 'q' else 'velocities'} {unit}"
