@@ -130,6 +130,8 @@ class MissionChecker:
             self.error(f"undeclared signal '{name.name}'", name.loc)
 
     def trigger(self, trigger: ast.Trigger, scope: Scope) -> None:
+        if trigger.duration_ns is not None and trigger.immediate:
+            self.error("'immediate' does not apply to a duration", trigger.loc)
         if trigger.count is not None:
             count = trigger.count
             if isinstance(count, ast.Number) and (not isinstance(count.value, int)

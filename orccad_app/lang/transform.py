@@ -301,6 +301,8 @@ class ToAst(RobotTaskRules, Transformer):
 
     @_rule
     def trigger_immediate(self, meta, _immediate, expr):
+        if isinstance(expr, ast.DurationLit):
+            return ast.Trigger(duration_ns=expr.duration_ns, immediate=True, loc=self.loc(meta))
         return ast.Trigger(condition=expr, immediate=True, loc=self.loc(meta))
 
     @_rule

@@ -142,6 +142,7 @@ def test_counts_and_triggers():
         "bad duration unit 'sec' (expected one of s, ms, us, ns)"]
     assert messages("await (A or 2 s);", "input A;") == [
         "a duration cannot be combined with a condition"]
+    assert messages("await immediate 2 s;") == ["'immediate' does not apply to a duration"]
     assert messages("repeat 2.5 { pause; }") == [
         "repeat count must be a non-negative integer, not 2.5"]
 
