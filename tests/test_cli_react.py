@@ -19,17 +19,18 @@ def test_react_abro_jsonl_prints_esterels_abro():
     result = orccad("react", "missions/abro.orc", "--inputs", "missions/abro.in", "--jsonl")
     assert result.returncode == 0, result.stderr
     records = [json.loads(line) for line in result.stdout.splitlines()]
-    assert [r["instant"] for r in records] == list(range(1, 11))
-    assert [r["outputs"] for r in records] == [[], [], [], ["O"], [], [], ["O"], [], [], ["O"]]
-    assert records[3] == {"instant": 4, "inputs": ["B"], "outputs": ["O"], "values": {},
+    assert [r["instant"] for r in records] == list(range(1, 10))
+    assert [r["outputs"] for r in records] == [[], [], ["O"], [], [], ["O"], [], [], ["O"]]
+    assert records[2] == {"instant": 3, "inputs": ["B"], "outputs": ["O"], "values": {},
                           "status": "running"}
 
 
 def test_react_reads_the_script_from_stdin_and_prints_a_table():
-    result = orccad("react", "missions/abro.orc", stdin="A\nB\n")
+    result = orccad("react", "missions/abro.orc", stdin="\nA\nB\n")
     assert result.returncode == 0
     lines = result.stdout.splitlines()
-    assert len(lines) == 2 and "O" in lines[1] and "[running]" in lines[1]
+    assert len(lines) == 3 and "-> O" in lines[2] and "[running]" in lines[2]
+    assert "-> -" in lines[1]
 
 
 def test_react_with_times_reports_them(tmp_path):
