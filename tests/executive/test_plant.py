@@ -141,7 +141,8 @@ def test_noise_and_quantization_are_seeded():
     assert 0 < np.max(np.abs(first[:1] - 0.3)) < 5e-3
 
 
-def test_divergence_raises_a_clear_error():
+def test_divergence_raises_a_clear_error(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to ./MUJOCO_LOG.TXT
     stiff = PENDULUM.replace('type="hinge"', 'type="hinge" stiffness="1e12"').replace(
         'integrator="RK4"', 'integrator="Euler"').replace('timestep="0.001"',
                                                           'timestep="0.01"')
