@@ -194,6 +194,10 @@ class PluginHost:
             raise OrccadError(f"plugin {name!r}: the plugin host has already started")
         if name in self.blocked:
             return False
+        if name in self.plugins:
+            self.failures.append(PluginFailure(name, "validation", "a plugin of that name is "
+                                               f"already loaded from {self.plugins[name].module}"))
+            return False
         try:
             self.manager.register(plugin, name=name)
         except (pluggy.PluginValidationError, ValueError) as error:

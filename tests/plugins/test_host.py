@@ -1,0 +1,181 @@
+"""The plugin host: entry points, failure isolation, blocking, check_pending."""
+
+import pytest
+
+from orccad_app.control.trajectories import COSINE, TrajectoryKind, Cosine
+from orccad_app.control.params import ParamSpec
+from orccad_app.diagnostics import OrccadError
+from orccad_app.plugins import (
+    PluginHost,
+    default_host,
+    hookimpl,
+    reset_default_host,
+)
+
+from tests.plugins.conftest import install_dist_info, run_cli
+
+BUILT_IN = {"robot_types": {"arm3dof": "orccad_arm3dof"},
+            "control_laws": {"pid": "orccad_control", "generic": "orccad_control",
+                             "computed_torque": "orccad_control"},
+            "task_functions": {"joint_tracking": "orccad_control",
+                               "cartesian_tracking": "orccad_control"},
+            "trajectories": {"cosine": "orccad_control", "min_jerk": "orccad_control",
+                             "constant": "orccad_control"},
+            "observers": {name: "orccad_observers" for name in (
+                "joint_limits", "tracking_error", "singularity", "torque_saturation",
+                "at_rest", "at_goal", "sensor_threshold")},
+            "module_kinds": {"trajectory": "orccad_control", "control_law": "orccad_control"}}
+
+SINE = TrajectoryKind("sine", "test trajectory", (ParamSpec("q0", "vector", None),),
+                      lambda p: Cosine(p["q0"]))
+
+
+class GoodPlugin:
+    @staticmethod
+    @hookimpl
+    def orccad_register_trajectories(register):
+        register(SINE)
+
+
+class RaisingPlugin:
+    """Registers a trajectory, then fails in a later hook: everything is withdrawn."""
+
+    @staticmethod
+    @hookimpl
+    def orccad_register_trajectories(register):
+        register(TrajectoryKind("wave", "", (), lambda p: None))
+
+    @staticmethod
+    @hookimpl
+    def orccad_register_observers(register):
+        raise RuntimeError("sensor table missing")
+
+
+def load(*plugins):
+    return PluginHost.load(plugins=plugins, blocked=())
+
+
+def test_built_in_plugins_come_through_the_entry_points(host):
+    assert set(host.plugins) >= {"orccad_control", "orccad_arm3dof", "orccad_observers"}
+    assert all(info.distribution == "orccad" for info in host.plugins.values())
+    for category, expected in BUILT_IN.items():
+        registry = getattr(host.registries, category)
+        assert {name: registry.plugin_of(name) for name in expected} == expected
+    assert host.failures == []
+
+
+def test_a_plugin_that_raises_is_reported_and_the_others_keep_working():
+    host = load(("good", GoodPlugin()), ("raising", RaisingPlugin()))
+    [failure] = host.failures
+    assert (failure.plugin, failure.stage) == ("raising", "orccad_register_observers")
+    assert failure.message == "RuntimeError: sensor table missing"
+    assert "plugin 'raising' disabled" in failure.format()
+    assert "wave" not in host.trajectories and "raising" not in host.plugins
+    assert host.trajectories.plugin_of("sine") == "good"
+    assert "pid" in host.control_laws and "joint_limits" in host.observers
+
+
+def test_invalid_items_disable_their_plugin():
+    class WrongType:
+        @staticmethod
+        @hookimpl
+        def orccad_register_control_laws(register):
+            register(COSINE)  # a trajectory kind, not a law kind
+
+    host = load(("wrong", WrongType()))
+    [failure] = host.failures
+    assert failure.plugin == "wrong"
+    assert "control law 'cosine': must be a LawKind, got TrajectoryKind" in failure.message
+
+
+def test_duplicate_names_name_the_first_provider():
+    class Clash:
+        @staticmethod
+        @hookimpl
+        def orccad_register_trajectories(register):
+            register(COSINE)
+
+    host = load(("clash", Clash()))
+    [failure] = host.failures
+    assert failure.message == "trajectory 'cosine' is already provided by plugin 'orccad_control'"
+    assert host.trajectories.plugin_of("cosine") == "orccad_control"
+
+
+def test_a_misspelt_hook_is_caught_by_check_pending():
+    class Typo:
+        @staticmethod
+        def orccad_register_trajectory(register):  # recognized by its prefix, no such hook
+            register(SINE)
+
+    host = load(("typo", Typo()))
+    [failure] = host.failures
+    assert failure.stage == "validation" and "orccad_register_trajectory" in failure.message
+    assert "sine" not in host.trajectories
+
+
+def test_a_hook_with_unknown_arguments_fails_validation():
+    class BadArguments:
+        @staticmethod
+        @hookimpl
+        def orccad_register_trajectories(register, robot):
+            register(SINE)
+
+    host = load(("bad", BadArguments()))
+    assert [(f.plugin, f.stage) for f in host.failures] == [("bad", "validation")]
+
+
+def test_a_failing_start_up_check_disables_the_plugin():
+    class Picky(GoodPlugin):
+        @staticmethod
+        @hookimpl
+        def orccad_plugins_loaded(host):
+            raise OrccadError("needs the 'auv' robot type")
+
+    host = load(("picky", Picky()))
+    [failure] = host.failures
+    assert failure.stage == "orccad_plugins_loaded" and failure.message == (
+        "needs the 'auv' robot type")
+    assert "sine" not in host.trajectories
+
+
+def test_blocked_plugins_are_not_loaded():
+    host = PluginHost.load(blocked=["orccad_observers"])
+    assert "orccad_observers" not in host.plugins and len(host.observers) == 0
+    assert "arm3dof" in host.robot_types
+
+
+def test_module_kind_finds_module_kinds_and_observers(host):
+    assert host.module_kind("control_law").name == "control_law"
+    assert host.module_kind("joint_limits").is_observer
+    with pytest.raises(OrccadError, match="unknown module kind 'joint_limit' "
+                                          r"\(did you mean 'joint_limits'"):
+        host.module_kind("joint_limit")
+    assert host.provider("observers", "at_rest") == "orccad_observers"
+
+
+def test_the_default_host_is_loaded_once():
+    reset_default_host()
+    first = default_host()
+    assert default_host() is first and "arm3dof" in first.robot_types
+    reset_default_host()
+    assert default_host() is not first
+
+
+def test_the_environment_variable_blocks_named_plugins():
+    import os
+
+    env = dict(os.environ, ORCCAD_DISABLE_PLUGINS="orccad_observers, orccad_arm3dof")
+    result = run_cli("plugins", env=env)
+    assert result.returncode == 0
+    assert "observers: none" in result.stdout and "robot types: none" in result.stdout
+    assert "disabled by ORCCAD_DISABLE_PLUGINS: orccad_arm3dof, orccad_observers" in result.stdout
+    assert "pid" in result.stdout
+
+
+def test_a_plugin_that_fails_to_import_is_reported_by_name(tmp_path):
+    install_dist_info(tmp_path, "broken-plugin", "1.0", {"broken": "no_such_module_xyz"})
+    result = run_cli("plugins", pythonpath=tmp_path)
+    assert result.returncode == 0
+    assert "warning: plugin 'broken' disabled: import: ModuleNotFoundError" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert "arm3dof" in result.stdout and "joint_limits" in result.stdout
