@@ -23,10 +23,15 @@ from orccad_app.reactive import ir
 
 __all__ = [
     "InputTest", "DataBranch", "Action", "Leaf", "Node", "Transition", "Automaton",
-    "transitions", "RUNNING", "DONE",
+    "transitions", "RUNNING", "DONE", "FAILED", "ABORTED", "TERMINAL",
 ]
 
-RUNNING, DONE = "running", "done"
+#: Status of an instant: the program goes on, terminated normally, failed (uncaught type-2
+#: exception) or aborted (type-3 exception).
+RUNNING, DONE, FAILED, ABORTED = "running", "done", "failed", "aborted"
+
+#: The control-state key of a terminated program, while compiling.
+TERMINAL = ("terminated",)
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,7 +86,9 @@ class Automaton:
     """A deterministic, minimized automaton compiled from a reactive program.
 
     ``trees[i]`` is the reaction of state ``i``; state 0 is the initial state.
-    ``waiting[i]`` lists where in the source the program is paused in state ``i``.
+    ``waiting[i]`` lists where in the source the program is paused in state ``i``;
+    ``labels[i]`` the labels of the marked regions it is in (e.g. active Robot-Task phases).
+    ``terminal`` is the number of the state of a terminated program, if reachable.
     """
 
     program: ir.Program
@@ -89,6 +96,8 @@ class Automaton:
     waiting: tuple[tuple[SourceLocation, ...], ...]
     data_tests: tuple[ir.DataTest, ...]
     variables: tuple[ir.VarDecl, ...]
+    labels: tuple[frozenset, ...] = ()
+    terminal: int | None = None
     initial: int = 0
 
     @property

@@ -21,7 +21,8 @@ from collections import deque
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import DONE, RUNNING, Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, TERMINAL, Action,
+                                          Automaton, DataBranch, InputTest, Leaf)
 from orccad_app.reactive.engine import BOOT, Outcome, react
 from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
@@ -32,8 +33,6 @@ __all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL"]
 DEFAULT_MAX_STATES = 20_000
 #: Reaction-tree leaves allowed per state before the compiler gives up.
 MAX_LEAVES_PER_STATE = 200_000
-#: The control state of a terminated program.
-TERMINAL = ("terminated",)
 
 
 class _NeedInput(Exception):
@@ -132,11 +131,16 @@ class _Explorer:
         return Action(event[0], event[1], event[2], self._trie(runs, pos + 1))
 
     def _leaf(self, outcome: Outcome) -> Leaf:
-        order = self.prep.program.outputs
-        emitted = tuple(s for s in order if s in outcome.emitted)
-        if outcome.code == TERMINATED:
-            return Leaf(TERMINAL, emitted, DONE)
-        return Leaf(outcome.state, emitted, RUNNING)
+        program = self.prep.program
+        emitted = tuple(s for s in program.outputs if s in outcome.emitted)
+        target = TERMINAL if outcome.code == TERMINATED else outcome.state
+        if program.aborted is not None and program.aborted in outcome.emitted:
+            status = ABORTED
+        elif program.failed is not None and program.failed in outcome.emitted:
+            status = FAILED
+        else:
+            status = DONE if outcome.code == TERMINATED else RUNNING
+        return Leaf(target, emitted, status)
 
     def _ambiguous(self, event) -> OrccadError:
         loc = self.prep.program.loc
@@ -174,7 +178,8 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
                 seen.add(target)
                 queue.append(target)
     waiting = {key: _waiting(prep, key) for key in trees}
-    return minimize(program, trees, BOOT, waiting, prep.data_tests, _variables(prep))
+    labels = {key: _labels(prep, key) for key in trees}
+    return minimize(program, trees, BOOT, waiting, labels, prep.data_tests, _variables(prep))
 
 
 def _targets(tree):
@@ -194,6 +199,13 @@ def _waiting(prep: Prepared, key) -> tuple:
     if key is BOOT or key == TERMINAL:
         return ()
     return tuple(prep.pauses[pid].src.loc for pid in key)
+
+
+def _labels(prep: Prepared, key) -> frozenset:
+    """Labels of the marked regions holding an active pause of control state ``key``."""
+    if key is BOOT or key == TERMINAL:
+        return frozenset()
+    return frozenset(label for label, lo, hi in prep.marks if any(lo <= p < hi for p in key))
 
 
 def _variables(prep: Prepared) -> tuple[ir.VarDecl, ...]:

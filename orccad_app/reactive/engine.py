@@ -27,7 +27,7 @@ from typing import Any, Protocol
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
 from orccad_app.reactive.prepare import (
-    ASSIGN, EMIT, EXIT, LOCAL, LOOP, NOTHING, PAR, PAUSE, PRESENT, SEQ, SUSPEND, TRAP,
+    ASSIGN, EMIT, EXIT, LOCAL, LOOP, MARK, NOTHING, PAR, PAUSE, PRESENT, SEQ, SUSPEND, TRAP,
     KNode, Prepared, max_combine,
 )
 
@@ -160,6 +160,8 @@ class _Walk:
             for decl in node.src.signals:
                 inner[decl] = (decl, depth)
             return self.go(node.children[0], depth, sure, inner)
+        if kind == MARK:
+            return self.go(node.children[0], depth, sure, scope)
         assert kind == NOTHING
         return 0, 1
 

@@ -37,7 +37,7 @@ __all__ = [
     "Const", "VarRef", "SigValue", "Clock", "Unary", "Binary", "VectorExpr", "Expr",
     "SigRef", "SigNot", "SigAnd", "SigOr", "DataTest", "Test",
     "Nothing", "Pause", "Emit", "Present", "Seq", "Loop", "Par", "Trap", "Exit",
-    "Suspend", "Local", "Assign", "Stmt", "Program",
+    "Suspend", "Local", "Assign", "Mark", "Stmt", "Program",
     "INPUT", "OUTPUT", "LOCAL",
 ]
 
@@ -256,15 +256,36 @@ class Assign:
     loc: SourceLocation = NOWHERE
 
 
-Stmt = Union[Nothing, Pause, Emit, Present, Seq, Loop, Par, Trap, Exit, Suspend, Local, Assign]
+@dataclass(frozen=True, slots=True, eq=False)
+class Mark:
+    """A transparent region with a label: no behaviour of its own.
+
+    A control state is *in* the region when one of its active pauses is inside ``body``; the
+    compiled automaton lists, for each state, the labels of the regions it is in (e.g. which
+    Robot-Task instance is active, and in which phase).
+    """
+
+    label: tuple
+    body: "Stmt"
+    loc: SourceLocation = NOWHERE
+
+
+Stmt = Union[Nothing, Pause, Emit, Present, Seq, Loop, Par, Trap, Exit, Suspend, Local, Assign,
+             Mark]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class Program:
-    """A compilable reactive program: its interface signals, in declaration order, and body."""
+    """A compilable reactive program: its interface signals, in declaration order, and body.
+
+    ``failed`` and ``aborted`` are hidden valued outputs (the exception's name): emitting one
+    gives the instant the status ``failed`` or ``aborted`` (see the application level).
+    """
 
     name: str
     inputs: tuple[SignalDecl, ...]
     outputs: tuple[SignalDecl, ...]
     body: Stmt
     loc: SourceLocation = NOWHERE
+    failed: SignalDecl | None = None
+    aborted: SignalDecl | None = None

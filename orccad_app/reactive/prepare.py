@@ -25,16 +25,17 @@ from orccad_app.reactive import ir
 __all__ = [
     "KNode", "Prepared", "prepare",
     "NOTHING", "PAUSE", "EMIT", "PRESENT", "SEQ", "LOOP", "PAR", "TRAP", "EXIT", "SUSPEND",
-    "LOCAL", "ASSIGN", "TERMINATED", "PAUSED",
+    "LOCAL", "ASSIGN", "MARK", "TERMINATED", "PAUSED",
 ]
 
-(NOTHING, PAUSE, EMIT, PRESENT, SEQ, LOOP, PAR, TRAP, EXIT, SUSPEND, LOCAL, ASSIGN) = range(12)
+(NOTHING, PAUSE, EMIT, PRESENT, SEQ, LOOP, PAR, TRAP, EXIT, SUSPEND, LOCAL, ASSIGN,
+ MARK) = range(13)
 TERMINATED, PAUSED = 0, 1
 
 _KIND = {
     ir.Nothing: NOTHING, ir.Pause: PAUSE, ir.Emit: EMIT, ir.Present: PRESENT, ir.Seq: SEQ,
     ir.Loop: LOOP, ir.Par: PAR, ir.Trap: TRAP, ir.Exit: EXIT, ir.Suspend: SUSPEND,
-    ir.Local: LOCAL, ir.Assign: ASSIGN,
+    ir.Local: LOCAL, ir.Assign: ASSIGN, ir.Mark: MARK,
 }
 
 
@@ -66,6 +67,7 @@ class Prepared:
     pauses: list[KNode] = field(default_factory=list)
     data_tests: list[ir.DataTest] = field(default_factory=list)
     data_test_index: dict[int, int] = field(default_factory=dict)  # id(DataTest) -> number
+    marks: list[tuple[tuple, int, int]] = field(default_factory=list)  # (label, lo, hi)
     nodes: int = 0
 
 
@@ -76,7 +78,7 @@ def _children(stmt: ir.Stmt) -> tuple[ir.Stmt, ...]:
         return stmt.branches
     if isinstance(stmt, ir.Present):
         return (stmt.then, stmt.orelse)
-    if isinstance(stmt, (ir.Loop, ir.Trap, ir.Suspend, ir.Local)):
+    if isinstance(stmt, (ir.Loop, ir.Trap, ir.Suspend, ir.Local, ir.Mark)):
         return (stmt.body,)
     return ()
 
@@ -121,6 +123,8 @@ class _Builder:
         node.hi = len(self.out.pauses)
         if node.kind == SEQ:
             node.child_los = tuple(child.lo for child in node.children)
+        elif node.kind == MARK and node.hi > node.lo:
+            self.out.marks.append((stmt.label, node.lo, node.hi))
         if node.kind == EXIT:
             node.code = self.trap_level[stmt.trap]  # level for now; made a code below
         elif node.kind == TRAP:
@@ -177,7 +181,7 @@ def surface_codes(node: KNode, memo: dict[int, int]) -> int:
         codes = surface_codes(node.children[0], memo)
         if codes >> node.code & 1:
             codes = (codes & ~(1 << node.code)) | 1
-    else:  # LOOP, SUSPEND, LOCAL
+    else:  # LOOP, SUSPEND, LOCAL, MARK
         codes = surface_codes(node.children[0], memo)
     memo[node.index] = codes
     return codes
