@@ -16,8 +16,10 @@ from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
+from orccad_app.robottask.application import (ABSTRACT, COMPOSED, AbstractApplicationLowerer,
+                                              ApplicationLowerer)
 
-__all__ = ["Source", "load", "select_mission", "compile_mission"]
+__all__ = ["Source", "load", "select_mission", "compile_mission", "COMPOSED", "ABSTRACT"]
 
 
 @dataclass(frozen=True)
@@ -60,7 +62,13 @@ def select_mission(source: Source, name: str | None) -> ast.Mission:
     return missions[0]
 
 
-def compile_mission(source: Source, mission: ast.Mission, *,
+def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSED,
                     max_states: int = DEFAULT_MAX_STATES) -> Automaton:
-    """The minimized application automaton of ``mission``."""
-    return compile_program(lower_mission(source.program, mission), max_states=max_states)
+    """The minimized automaton of ``mission``.
+
+    ``view`` is ``composed`` (the application automaton with the RTAs of its Robot-Tasks
+    inlined: what is checked and run) or ``abstract`` (Robot-Tasks seen through their start
+    and outcome signals: what ``orccad react`` drives). See :mod:`orccad_app.robottask.application`.
+    """
+    lowerer = AbstractApplicationLowerer if view == ABSTRACT else ApplicationLowerer
+    return compile_program(lower_mission(source.program, mission, lowerer), max_states=max_states)

@@ -1,8 +1,10 @@
 """``orccad react FILE [--mission M] [--inputs F] [--jsonl]``: run the automaton alone.
 
 One instant per script line (see :mod:`orccad_app.reactive.script`); without ``--inputs`` the
-script is read from standard input. Exit status 1 when the mission ends ``failed`` or
-``aborted``.
+script is read from standard input. Robot-Tasks are seen through their interface: ``run X``
+emits ``X.start`` and waits for the inputs ``X.good_end`` or ``X.<exception>``, so a
+mission's logic is tested without the plant. Exit status 1 when the mission ends ``failed``
+or ``aborted``.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from pathlib import Path
 
 from orccad_app.commands.compile import positive_int
 from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import compile_mission, load, select_mission
+from orccad_app.pipeline import ABSTRACT, compile_mission, load, select_mission
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
@@ -46,7 +48,7 @@ def _read_script(path: str | None) -> tuple[str, str]:
 
 def run(args: argparse.Namespace) -> int:
     source = load(args.file)
-    automaton = compile_mission(source, select_mission(source, args.mission),
+    automaton = compile_mission(source, select_mission(source, args.mission), view=ABSTRACT,
                                 max_states=args.max_states)
     text, name = _read_script(args.inputs)
     instants = parse_script(text, name, automaton.inputs)
@@ -58,6 +60,8 @@ def run(args: argparse.Namespace) -> int:
             record = {"instant": number, "inputs": list(instant.inputs),
                       "outputs": list(reaction.outputs), "values": reaction.values,
                       "status": reaction.status}
+            if reaction.reason is not None:
+                record["reason"] = reaction.reason
             if timed:
                 record["time_s"] = reactor.store.clock_ns / 1e9
             print(json.dumps(record))
@@ -65,7 +69,8 @@ def run(args: argparse.Namespace) -> int:
             clock = f"@{reactor.store.clock_ns / 1e9:g} " if timed else ""
             outputs = " ".join(_with_value(o, reaction.values) for o in reaction.outputs)
             inputs = " ".join(instant.inputs) or "-"
-            print(f"{number:>4}  {clock}{inputs:<20} -> {outputs or '-':<20} [{reaction.status}]")
+            status = reaction.status + (f" {reaction.reason}" if reaction.reason else "")
+            print(f"{number:>4}  {clock}{inputs:<20} -> {outputs or '-':<20} [{status}]")
     return 1 if reactor.status in ("failed", "aborted") else 0
 
 

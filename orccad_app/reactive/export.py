@@ -28,6 +28,8 @@ def guard_text(automaton: Automaton, t: Transition) -> str:
 def _action_text(action) -> str:
     if action.kind == "assign":
         return f"{action.target.name} := {format_expr(action.expr)}"
+    if action.target.name in ("_failed", "_aborted"):  # the mission's status and its reason
+        return f"{action.target.name[1:]} {getattr(action.expr, 'value', '?')}"
     return f"emit {action.target.name}({format_expr(action.expr)})"
 
 

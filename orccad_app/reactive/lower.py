@@ -20,21 +20,21 @@ from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
 
-__all__ = ["lower_mission", "mission_interface"]
+__all__ = ["lower_mission", "mission_interface", "Lowerer", "Scope", "not_yet"]
 
 
 
 @dataclass
-class _Scope:
+class Scope:
     """One lexical level: signals, variables and traps declared there."""
 
-    parent: "_Scope | None" = None
+    parent: "Scope | None" = None
     signals: dict[str, ir.SignalDecl] = field(default_factory=dict)
     variables: dict[str, ir.VarDecl] = field(default_factory=dict)
     traps: dict[str, ir.TrapDecl] = field(default_factory=dict)
 
     def lookup(self, table: str, name: str):
-        scope: _Scope | None = self
+        scope: Scope | None = self
         while scope is not None:
             found = getattr(scope, table).get(name)
             if found is not None:
@@ -42,8 +42,8 @@ class _Scope:
             scope = scope.parent
         return None
 
-    def child(self) -> "_Scope":
-        return _Scope(parent=self)
+    def child(self) -> "Scope":
+        return Scope(parent=self)
 
 
 def _kind(direction: ast.Direction) -> str:
@@ -65,60 +65,73 @@ def mission_interface(program: ast.Program, mission: ast.Mission) -> tuple[tuple
     return tuple(inputs), tuple(outputs)
 
 
-def lower_mission(program: ast.Program, mission: ast.Mission) -> ir.Program:
-    """The kernel program of ``mission`` (its body; Robot-Task statements excluded)."""
-    inputs, outputs = mission_interface(program, mission)
-    scope = _Scope()
-    for decl in (*inputs, *outputs):
-        scope.signals[decl.name] = decl
-    if mission.on_fatal is not None:
-        _not_yet("'on fatal'", mission.on_fatal.loc)
-    body = _Lowerer().block(mission.body, scope)
-    return ir.Program(mission.name, inputs, outputs, body, mission.loc)
+def lower_mission(program: ast.Program, mission: ast.Mission,
+                  lowerer: type["Lowerer"] | None = None) -> ir.Program:
+    """The kernel program of ``mission``.
+
+    The base :class:`Lowerer` handles the reactive statements; the application level passes
+    its subclass, which adds ``run``, ``try`` and ``on fatal``.
+    """
+    return (lowerer or Lowerer)(program, mission).lower()
 
 
-def _not_yet(what: str, loc: SourceLocation):
+def not_yet(what: str, loc: SourceLocation):
     raise OrccadError(f"{what} needs Robot-Tasks, which the application level compiles; "
-                      "this build handles missions made of reactive statements only", loc)
+                      "use the application compiler for this mission", loc)
 
 
-class _Lowerer:
+class Lowerer:
     """Statement-by-statement translation; one instance per mission."""
 
+    def __init__(self, program: ast.Program, mission: ast.Mission):
+        self.source = program
+        self.mission = mission
+        self.inputs, self.outputs = mission_interface(program, mission)
+        self.scope = Scope()
+        for decl in (*self.inputs, *self.outputs):
+            self.scope.signals[decl.name] = decl
+
+    def lower(self) -> ir.Program:
+        """The whole mission; subclasses wrap the body (statuses, ``on fatal``)."""
+        if self.mission.on_fatal is not None:
+            not_yet("'on fatal'", self.mission.on_fatal.loc)
+        body = self.block(self.mission.body, self.scope)
+        return ir.Program(self.mission.name, self.inputs, self.outputs, body, self.mission.loc)
+
     # ------------------------------------------------------------------ statements
-    def block(self, block: ast.Block, scope: _Scope) -> ir.Stmt:
+    def block(self, block: ast.Block, scope: Scope) -> ir.Stmt:
         inner = scope.child()
         return d.seq(*(self.stmt(s, inner) for s in block.statements), loc=block.loc)
 
-    def stmt(self, s: ast.Stmt, scope: _Scope) -> ir.Stmt:
+    def stmt(self, s: ast.Stmt, scope: Scope) -> ir.Stmt:
         method = getattr(self, "_" + type(s).__name__.lower(), None)
         if method is None:
-            _not_yet(f"'{type(s).__name__.lower()}'", s.loc)
+            not_yet(f"'{type(s).__name__.lower()}'", s.loc)
         return method(s, scope)
 
-    def _block(self, s: ast.Block, scope: _Scope) -> ir.Stmt:
+    def _block(self, s: ast.Block, scope: Scope) -> ir.Stmt:
         return self.block(s, scope)
 
-    def _nothing(self, s: ast.Nothing, scope: _Scope) -> ir.Stmt:
+    def _nothing(self, s: ast.Nothing, scope: Scope) -> ir.Stmt:
         return ir.Nothing(s.loc)
 
-    def _pause(self, s: ast.Pause, scope: _Scope) -> ir.Stmt:
+    def _pause(self, s: ast.Pause, scope: Scope) -> ir.Stmt:
         return ir.Pause(s.loc)
 
-    def _halt(self, s: ast.Halt, scope: _Scope) -> ir.Stmt:
+    def _halt(self, s: ast.Halt, scope: Scope) -> ir.Stmt:
         return d.halt(s.loc)
 
-    def _emit(self, s: ast.Emit, scope: _Scope) -> ir.Stmt:
+    def _emit(self, s: ast.Emit, scope: Scope) -> ir.Stmt:
         signal = self._emittable(s.signal, s.value, s.signal_loc or s.loc, scope)
         value = None if s.value is None else self.expr(s.value, scope)
         return ir.Emit(signal, value, s.loc)
 
-    def _sustain(self, s: ast.Sustain, scope: _Scope) -> ir.Stmt:
+    def _sustain(self, s: ast.Sustain, scope: Scope) -> ir.Stmt:
         signal = self._emittable(s.signal, s.value, s.signal_loc or s.loc, scope)
         value = None if s.value is None else self.expr(s.value, scope)
         return d.sustain(signal, value, s.loc)
 
-    def _await(self, s: ast.Await, scope: _Scope) -> ir.Stmt:
+    def _await(self, s: ast.Await, scope: Scope) -> ir.Stmt:
         trigger = s.trigger
         if trigger.duration_ns is not None:
             return d.await_duration(ir.Const(trigger.duration_ns, trigger.loc), s.loc)
@@ -129,12 +142,12 @@ class _Lowerer:
             return d.await_count(self.expr(trigger.count, scope), test, s.loc)
         return d.await_signal(test, immediate=trigger.immediate, loc=s.loc)
 
-    def _if(self, s: ast.If, scope: _Scope) -> ir.Stmt:
+    def _if(self, s: ast.If, scope: Scope) -> ir.Stmt:
         test = self.condition(s.condition, scope)
         orelse = ir.Nothing(s.loc) if s.orelse is None else self.block(s.orelse, scope)
         return ir.Present(test, self.block(s.then, scope), orelse, s.loc)
 
-    def _loop(self, s: ast.Loop, scope: _Scope) -> ir.Stmt:
+    def _loop(self, s: ast.Loop, scope: Scope) -> ir.Stmt:
         body = self.block(s.body, scope)
         if s.each is None:
             return ir.Loop(body, s.loc)
@@ -142,10 +155,10 @@ class _Lowerer:
         run = d.abort(d.seq(body, d.halt(s.loc)), test, loc=s.loc)
         return d.seq(*setup, ir.Loop(d.seq(run, *rearm), s.loc, "loop … each"))
 
-    def _repeat(self, s: ast.Repeat, scope: _Scope) -> ir.Stmt:
+    def _repeat(self, s: ast.Repeat, scope: Scope) -> ir.Stmt:
         return d.repeat(self.expr(s.count, scope), self.block(s.body, scope), s.loc)
 
-    def _every(self, s: ast.Every, scope: _Scope) -> ir.Stmt:
+    def _every(self, s: ast.Every, scope: Scope) -> ir.Stmt:
         body = self.block(s.body, scope)
         if s.trigger.duration_ns is not None:
             return d.every_duration(ir.Const(s.trigger.duration_ns, s.trigger.loc), body, s.loc)
@@ -153,21 +166,21 @@ class _Lowerer:
         test = self.condition(s.trigger.condition, scope)
         return d.every_signal(test, body, immediate=s.trigger.immediate, loc=s.loc)
 
-    def _abort(self, s: ast.Abort, scope: _Scope) -> ir.Stmt:
+    def _abort(self, s: ast.Abort, scope: Scope) -> ir.Stmt:
         setup, test, _ = self.trigger(s.trigger, scope, "abort")
         handler = None if s.handler is None else self.block(s.handler, scope)
         body = self.block(s.body, scope)
         return d.seq(*setup, d.abort(body, test, weak=s.weak, immediate=s.trigger.immediate,
                                      handler=handler, loc=s.loc))
 
-    def _suspend(self, s: ast.Suspend, scope: _Scope) -> ir.Stmt:
+    def _suspend(self, s: ast.Suspend, scope: Scope) -> ir.Stmt:
         if s.trigger.duration_ns is not None:
             raise OrccadError("'suspend' needs a signal condition, not a duration", s.trigger.loc)
         self._no_count(s.trigger, "suspend")
         test = self.condition(s.trigger.condition, scope)
         return d.suspend(self.block(s.body, scope), test, immediate=s.trigger.immediate, loc=s.loc)
 
-    def _trap(self, s: ast.Trap, scope: _Scope) -> ir.Stmt:
+    def _trap(self, s: ast.Trap, scope: Scope) -> ir.Stmt:
         inner = scope.child()
         trap = ir.TrapDecl(s.name, s.loc)
         inner.traps[s.name] = trap
@@ -175,19 +188,19 @@ class _Lowerer:
         handler = None if s.handler is None else self.block(s.handler, scope)
         return d.trap_handle(trap, body, handler, s.loc)
 
-    def _exit(self, s: ast.Exit, scope: _Scope) -> ir.Stmt:
+    def _exit(self, s: ast.Exit, scope: Scope) -> ir.Stmt:
         trap = scope.lookup("traps", s.name)
         if trap is None:
             raise OrccadError(f"'exit {s.name}' is not inside a trap named {s.name}", s.loc)
         return ir.Exit(trap, s.loc)
 
-    def _par(self, s: ast.Par, scope: _Scope) -> ir.Stmt:
+    def _par(self, s: ast.Par, scope: Scope) -> ir.Stmt:
         return ir.Par(tuple(self.block(b, scope) for b in s.branches), s.loc)
 
-    def _race(self, s: ast.Race, scope: _Scope) -> ir.Stmt:
+    def _race(self, s: ast.Race, scope: Scope) -> ir.Stmt:
         return d.race(tuple(self.block(b, scope) for b in s.branches), s.loc)
 
-    def _localsignals(self, s: ast.LocalSignals, scope: _Scope) -> ir.Stmt:
+    def _localsignals(self, s: ast.LocalSignals, scope: Scope) -> ir.Stmt:
         inner = scope.child()
         decls = []
         for decl in s.signals:
@@ -196,13 +209,13 @@ class _Lowerer:
             decls.append(local)
         return ir.Local(tuple(decls), self.block(s.body, inner), s.loc)
 
-    def _vardecl(self, s: ast.VarDecl, scope: _Scope) -> ir.Stmt:
+    def _vardecl(self, s: ast.VarDecl, scope: Scope) -> ir.Stmt:
         value = self.expr(s.value, scope)  # the initial value cannot see the new variable
         var = ir.VarDecl(s.name, s.loc)
         scope.variables[s.name] = var
         return ir.Assign(var, value, s.loc)
 
-    def _assign(self, s: ast.Assign, scope: _Scope) -> ir.Stmt:
+    def _assign(self, s: ast.Assign, scope: Scope) -> ir.Stmt:
         var = scope.lookup("variables", s.name)
         if var is None:
             raise OrccadError(f"undeclared variable '{s.name}' (declare it with 'var "
@@ -210,7 +223,7 @@ class _Lowerer:
         return ir.Assign(var, self.expr(s.value, scope), s.loc)
 
     # ------------------------------------------------------------------ helpers
-    def _emittable(self, name: str, value, loc: SourceLocation, scope: _Scope) -> ir.SignalDecl:
+    def _emittable(self, name: str, value, loc: SourceLocation, scope: Scope) -> ir.SignalDecl:
         signal = self.signal(name, loc, scope)
         if signal.kind == ir.INPUT:
             raise OrccadError(f"'{name}' is an input signal: the mission cannot emit it", loc)
@@ -225,13 +238,13 @@ class _Lowerer:
         if trigger.count is not None:
             raise OrccadError(f"a count is only allowed in 'await', not in '{what}'", trigger.loc)
 
-    def signal(self, name: str, loc: SourceLocation, scope: _Scope) -> ir.SignalDecl:
+    def signal(self, name: str, loc: SourceLocation, scope: Scope) -> ir.SignalDecl:
         signal = scope.lookup("signals", name)
         if signal is None:
             raise OrccadError(f"undeclared signal '{name}'", loc)
         return signal
 
-    def trigger(self, trigger: ast.Trigger, scope: _Scope, what: str):
+    def trigger(self, trigger: ast.Trigger, scope: Scope, what: str):
         """(set-up statements, test, re-arm statements) of a preemption trigger."""
         if trigger.duration_ns is None:
             self._no_count(trigger, what)
@@ -244,7 +257,7 @@ class _Lowerer:
         return (start,), test, (rearm,)
 
     # ------------------------------------------------------------------ conditions
-    def _mentions_signal(self, e: ast.Expr, scope: _Scope) -> bool:
+    def _mentions_signal(self, e: ast.Expr, scope: Scope) -> bool:
         if isinstance(e, ast.Name):
             return scope.lookup("variables", e.name) is None and \
                 scope.lookup("signals", e.name) is not None
@@ -263,7 +276,7 @@ class _Lowerer:
             return self._presence_shaped(e.left) and self._presence_shaped(e.right)
         return False
 
-    def _mentions_variable(self, e: ast.Expr, scope: _Scope) -> bool:
+    def _mentions_variable(self, e: ast.Expr, scope: Scope) -> bool:
         if isinstance(e, ast.Name):
             return scope.lookup("variables", e.name) is not None
         if isinstance(e, ast.Unary):
@@ -272,14 +285,14 @@ class _Lowerer:
             return self._mentions_variable(e.left, scope) or self._mentions_variable(e.right, scope)
         return False
 
-    def condition(self, e: ast.Expr, scope: _Scope) -> ir.Test:
+    def condition(self, e: ast.Expr, scope: Scope) -> ir.Test:
         if self._presence_shaped(e) and not self._mentions_variable(e, scope):
             return self._presence(e, scope)  # unknown names are reported as signals
         if not self._mentions_signal(e, scope):
             return ir.DataTest(self.expr(e, scope), e.loc)
         return self._presence(e, scope)
 
-    def _presence(self, e: ast.Expr, scope: _Scope) -> ir.Test:
+    def _presence(self, e: ast.Expr, scope: Scope) -> ir.Test:
         if isinstance(e, ast.Name):
             if scope.lookup("variables", e.name) is not None:
                 self._mixed(e)
@@ -296,7 +309,7 @@ class _Lowerer:
                           "in two nested 'if' statements", e.loc)
 
     # ------------------------------------------------------------------ expressions
-    def expr(self, e: ast.Expr, scope: _Scope) -> ir.Expr:
+    def expr(self, e: ast.Expr, scope: Scope) -> ir.Expr:
         if isinstance(e, (ast.Number, ast.String, ast.Bool)):
             return ir.Const(e.value, e.loc)
         if isinstance(e, ast.DurationLit):

@@ -13,7 +13,8 @@ from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import DONE, Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.automaton import (ABORTED, FAILED, RUNNING, Action, Automaton,
+                                          DataBranch, InputTest, Leaf)
 from orccad_app.reactive.expr import Store, Unset, compile_expr, format_expr
 
 __all__ = ["Reaction", "Reactor"]
@@ -23,12 +24,17 @@ _LEAF, _INPUT, _DATA, _ACTION = range(4)
 
 @dataclass(frozen=True, slots=True)
 class Reaction:
-    """The result of one instant: outputs emitted (declaration order), their values, status."""
+    """The result of one instant: outputs emitted (declaration order), their values, status.
+
+    ``status`` is the mission's: once ``failed`` or ``aborted`` it stays so (an ``on fatal``
+    block may still be running); ``reason`` names the exception.
+    """
 
     outputs: tuple[str, ...]
     values: dict[str, Any] = field(default_factory=dict)
     status: str = "running"
     state: int = 0
+    reason: str | None = None
 
 
 def _lower(node, data_tests) -> tuple:
@@ -57,8 +63,11 @@ class Reactor:
         self._inputs = {s.name: s for s in automaton.inputs}
         self.state = automaton.initial
         self.store = Store()
-        self.status = "running"
+        self.status = RUNNING
+        self.reason: str | None = None
         self.instant = 0
+        program = automaton.program
+        self._reasons = {FAILED: program.failed, ABORTED: program.aborted}
 
     def react(self, inputs: Mapping[str, Any] | frozenset[str] | set[str] = frozenset(),
               clock_ns: int | None = None) -> Reaction:
@@ -101,13 +110,24 @@ class Reactor:
                               getattr(expr, "loc", None)) from None
         _, target, names, valued, status = node
         self.state = target
-        self.status = status
+        if status in (FAILED, ABORTED) and self.status not in (FAILED, ABORTED):
+            self.status = status
+            self.reason = store.values.get(self._reasons[status])
+        elif self.status == RUNNING:
+            self.status = status
         values = {s.name: store.values.get(s) for s in valued} if valued else {}
-        return Reaction(names, values, status, target)
+        return Reaction(names, values, self.status, target, self.reason)
 
     @property
-    def done(self) -> bool:
-        return self.status == DONE
+    def finished(self) -> bool:
+        """The program has terminated (after its ``on fatal`` block, if any)."""
+        return self.state == self.automaton.terminal
+
+    @property
+    def labels(self) -> frozenset:
+        """Labels of the marked regions the current state is in."""
+        labels = self.automaton.labels
+        return labels[self.state] if labels else frozenset()
 
     def input_decl(self, name: str) -> ir.SignalDecl | None:
         return self._inputs.get(name)

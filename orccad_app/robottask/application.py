@@ -1,0 +1,186 @@
+"""The application level (RR-1801 §4): missions over Robot-Tasks, lowered to one automaton.
+
+``run``, ``try … catch`` and ``on fatal`` are added to the reactive lowering, in one of two
+*views* of the same mission:
+
+``composed`` (the default: ``compile``, ``check``, ``run``)
+    each ``run X(args)`` is replaced by an instance of X's generated RTA (:mod:`.rta`): the
+    application automaton and the RTAs are flattened into one synchronous product. Its inputs
+    are the observers' events (``X.TrackingLost``, ``X.at_goal``…) and the mission's inputs.
+
+``abstract`` (``orccad react``: the mission's logic without the plant)
+    each ``run X(args)`` emits ``X.start`` and waits for the task's *outcome* as inputs:
+    ``X.good_end``, its type-2 exceptions ``X.E`` (and ``X.<obs>_timeout``), its type-3
+    exceptions ``X.F``.
+
+In both views a type-2 exception raised by a task is caught by the innermost enclosing
+``try`` that names it (the task and the ``try`` body are killed, the handler runs); an
+uncaught one ends the mission with status ``failed`` and the exception's name. A type-3
+exception aborts the whole mission in the same instant (every task is killed), status
+``aborted``; the optional ``on fatal`` block then runs to completion. ``run … within D``
+raises ``Timeout`` if the task has not ended after D.
+"""
+
+from __future__ import annotations
+
+from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang import ast
+from orccad_app.reactive import derived as d
+from orccad_app.reactive import ir
+from orccad_app.reactive.lower import Lowerer, Scope
+from orccad_app.robottask.rta import TaskSignals, rta_body, task_signals
+
+__all__ = ["ApplicationLowerer", "AbstractApplicationLowerer", "RunSite", "COMPOSED", "ABSTRACT"]
+
+COMPOSED, ABSTRACT = "composed", "abstract"
+
+
+class RunSite:
+    """One ``run`` statement of the mission: its number, task and arguments."""
+
+    def __init__(self, number: int, task: ast.RobotTask, stmt: ast.Run):
+        self.number = number
+        self.task = task
+        self.stmt = stmt
+
+    def __repr__(self) -> str:
+        return f"RunSite({self.number}, {self.task.name} at {self.stmt.loc})"
+
+
+class ApplicationLowerer(Lowerer):
+    """Lowers a mission with Robot-Tasks, in the composed or the abstract view."""
+
+    view = COMPOSED
+
+    def __init__(self, program: ast.Program, mission: ast.Mission):
+        super().__init__(program, mission)
+        self.tasks = {t.name: t for t in program.robottasks}
+        self.sites: list[RunSite] = []
+        self.extra_inputs: list[ir.SignalDecl] = []
+        self.extra_outputs: list[ir.SignalDecl] = []
+        self.task_sigs: dict[str, TaskSignals] = {}
+        self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
+        self.handlers: list[dict[str, ir.TrapDecl]] = []
+        loc = mission.loc
+        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc)
+        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc)
+        self.failed_trap = ir.TrapDecl("_failed", loc)
+        self.fatal_trap = ir.TrapDecl("_fatal", loc)
+
+    # ------------------------------------------------------------------ the mission
+    def lower(self) -> ir.Program:
+        loc = self.mission.loc
+        body = ir.Trap(self.failed_trap, self.block(self.mission.body, self.scope), loc)
+        if self.mission.on_fatal is None:
+            wrapped = ir.Trap(self.fatal_trap, body, loc)
+        else:
+            finished = ir.TrapDecl("_finished", loc)
+            on_fatal = self.block(self.mission.on_fatal, self.scope)
+            wrapped = ir.Trap(finished, d.seq(
+                ir.Trap(self.fatal_trap, d.seq(body, ir.Exit(finished, loc)), loc), on_fatal), loc)
+        return ir.Program(self.mission.name, (*self.inputs, *self.extra_inputs),
+                          (*self.outputs, *self.extra_outputs), wrapped, loc,
+                          self.failed, self.aborted)
+
+    def raise_(self, name: str, loc: SourceLocation) -> ir.Stmt:
+        """A type-2 exception: to the innermost ``catch`` of ``name``, else mission failure."""
+        for handlers in reversed(self.handlers):
+            if name in handlers:
+                return ir.Exit(handlers[name], loc)
+        return d.seq(ir.Emit(self.failed, ir.Const(name, loc), loc), ir.Exit(self.failed_trap, loc))
+
+    def fatal(self, name: str, loc: SourceLocation) -> ir.Stmt:
+        """A type-3 exception: the mission is aborted in this instant."""
+        return d.seq(ir.Emit(self.aborted, ir.Const(name, loc), loc), ir.Exit(self.fatal_trap, loc))
+
+    # ------------------------------------------------------------------ signals
+    def _add(self, decl: ir.SignalDecl) -> ir.SignalDecl:
+        (self.extra_inputs if decl.kind == ir.INPUT else self.extra_outputs).append(decl)
+        return decl
+
+    def global_signal(self, name: str, loc: SourceLocation, emitted: bool) -> ir.SignalDecl:
+        """A synchronization pre/post-condition: a declared signal, else made implicitly."""
+        decl = self.scope.signals.get(name)
+        if decl is None:
+            decl = self._add(ir.SignalDecl(name, ir.OUTPUT if emitted else ir.INPUT, None, loc))
+            self.scope.signals[name] = decl
+        elif emitted and decl.kind == ir.INPUT:
+            raise OrccadError(f"post-condition '{name}' is declared as an input signal: a "
+                              "Robot-Task cannot emit it", loc)
+        return decl
+
+    def signals_of(self, task: ast.RobotTask) -> TaskSignals:
+        if task.name not in self.task_sigs:
+            sig = task_signals(task, self.global_signal)
+            for decl in (*sig.inputs, *sig.outputs):
+                self._add(decl)
+            self.task_sigs[task.name] = sig
+        return self.task_sigs[task.name]
+
+    def outcomes_of(self, task: ast.RobotTask) -> dict[str, ir.SignalDecl]:
+        """Abstract view: ``start`` (output), ``good_end`` and the exceptions (inputs)."""
+        if task.name not in self.outcomes:
+            x, loc = task.name, task.loc
+            found = {"start": self._add(ir.SignalDecl(f"{x}.start", ir.OUTPUT, None, loc)),
+                     "good_end": self._add(ir.SignalDecl(f"{x}.good_end", ir.INPUT, None, loc))}
+            fatal = [e.name for e in task.exceptions if e.type is ast.ExceptionType.FATAL]
+            for name in (*task.raisable(), *fatal):
+                found[name] = self._add(ir.SignalDecl(f"{x}.{name}", ir.INPUT, None, loc))
+            self.outcomes[task.name] = found
+        return self.outcomes[task.name]
+
+    # ------------------------------------------------------------------ statements
+    def _run(self, s: ast.Run, scope: Scope) -> ir.Stmt:
+        task = self.tasks.get(s.task)
+        if task is None:
+            raise OrccadError(f"unknown Robot-Task '{s.task}'", s.task_loc or s.loc)
+        site = RunSite(len(self.sites), task, s)
+        self.sites.append(site)
+        if self.view == COMPOSED:
+            body = rta_body(self.signals_of(task), site.number, self.raise_, self.fatal)
+        else:
+            body = self._abstract_run(task, site.number, s.loc)
+        if s.within_ns is None:
+            return body
+        done = ir.TrapDecl("_within", s.loc)
+        watchdog = d.seq(d.await_duration(ir.Const(s.within_ns, s.loc), s.loc),
+                         self.raise_("Timeout", s.loc))
+        return ir.Trap(done, ir.Par((d.seq(body, ir.Exit(done, s.loc)), watchdog), s.loc), s.loc)
+
+    def _abstract_run(self, task: ast.RobotTask, site: int, loc: SourceLocation) -> ir.Stmt:
+        signals = self.outcomes_of(task)
+        ended = ir.TrapDecl("_ended", loc)
+
+        def wait(name: str) -> ir.Stmt:
+            return d.await_signal(ir.SigRef(signals[name], loc), loc=loc)
+
+        branches = [d.seq(wait("good_end"), ir.Exit(ended, loc))]
+        branches += [d.seq(wait(e), self.raise_(e, loc)) for e in task.raisable()]
+        branches += [d.seq(wait(e.name), self.fatal(e.name, loc)) for e in task.exceptions
+                     if e.type is ast.ExceptionType.FATAL]
+        outcome = ir.Trap(ended, ir.Par(tuple(branches), loc), loc)
+        return ir.Mark(("rt", task.name, site), d.seq(ir.Emit(signals["start"], None, loc),
+                                                      outcome), loc)
+
+    def _try(self, s: ast.Try, scope: Scope) -> ir.Stmt:
+        done = ir.TrapDecl("_try_done", s.loc)
+        traps = [ir.TrapDecl(f"_catch_{i}", c.loc) for i, c in enumerate(s.catches)]
+        handlers: dict[str, ir.TrapDecl] = {}
+        for trap, catch in zip(traps, s.catches):
+            for name in catch.exceptions:
+                handlers.setdefault(name, trap)  # the first catch naming it wins
+        self.handlers.append(handlers)
+        try:
+            stmt = d.seq(self.block(s.body, scope), ir.Exit(done, s.loc))
+        finally:
+            self.handlers.pop()
+        for trap, catch in reversed(list(zip(traps, s.catches))):
+            stmt = d.seq(ir.Trap(trap, stmt, catch.loc), self.block(catch.body, scope),
+                         ir.Exit(done, catch.loc))
+        return ir.Trap(done, stmt, s.loc)
+
+
+class AbstractApplicationLowerer(ApplicationLowerer):
+    """The abstract view: Robot-Tasks as start/outcome signals (for ``orccad react``)."""
+
+    view = ABSTRACT
