@@ -28,7 +28,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
 from orccad_app.reactive.prepare import (
     ASSIGN, EMIT, EXIT, LOCAL, LOOP, MARK, NOTHING, PAR, PAUSE, PRESENT, SEQ, SUSPEND, TRAP,
-    KNode, Prepared, max_combine,
+    KNode, Prepared,
 )
 
 __all__ = ["Oracle", "Outcome", "react", "BOOT"]
@@ -230,7 +230,13 @@ class _Walk:
             if depth and not self.selected(branch):
                 continue  # a branch that has terminated counts as terminated
             branch_must, branch_codes = self.go(branch, depth, sure, scope)
-            codes = max_combine(codes, branch_codes)
+            # max_combine(codes, branch_codes) inlined and without loops: a code of one side
+            # is a max iff it is ≥ the other side's smallest code (x & -x: lowest bit of x)
+            if codes and branch_codes:
+                codes = ((codes & -(branch_codes & -branch_codes))
+                         | (branch_codes & -(codes & -codes)))
+            else:
+                codes = 0
             if must is not None:
                 must = None if branch_must is None else max(must, branch_must)
         return (must if sure else None), codes
