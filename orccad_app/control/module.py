@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
@@ -145,7 +145,6 @@ class ModuleContext:
     law: Spec | None = None
     duration_s: float | None = None
     robot_name: str | None = None
-    extras: Mapping[str, Any] = field(default_factory=dict)
 
     def require_robot(self, who: str) -> RobotType:
         """The robot, or a :class:`ControlError` saying ``who`` needs one."""

@@ -12,6 +12,7 @@ uses :func:`default_host` to reach the registries::
 
 import pluggy
 
+from orccad_app.plugins.hooks import OrccadHooks
 from orccad_app.plugins.hookspecs import PROJECT, REGISTRATION_HOOKS, STARTUP_HOOKS, hookspec
 from orccad_app.plugins.host import (
     DISABLE_ENV,
@@ -33,6 +34,7 @@ __all__ = [
     "ENTRY_POINT_GROUP",
     "DISABLE_ENV",
     "PluginHost",
+    "OrccadHooks",
     "PluginInfo",
     "PluginFailure",
     "Registry",

@@ -8,7 +8,9 @@ Start-up (:meth:`PluginHost.load`):
    (comma-separated);
 2. ``check_pending()``: a hook implementation that matches no specification (a typo) is
    an error of its plugin;
-3. call the registration hooks of each plugin, then ``orccad_plugins_loaded``.
+3. call the registration hooks of each plugin, then ``orccad_plugins_loaded``, through
+   :attr:`PluginHost.hooks` (:class:`~orccad_app.plugins.hooks.OrccadHooks`, one method
+   per hook).
 
 A plugin that fails to import, fails validation, raises in a hook or registers an invalid
 or duplicate item is recorded in :attr:`PluginHost.failures` with its name, its
@@ -19,16 +21,19 @@ from __future__ import annotations
 
 import inspect
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from dataclasses import dataclass
 from importlib import metadata
 from typing import Any
 
 import pluggy
 
+from orccad_app.control.kinds import LawKind, TaskFunctionKind, TrajectoryKind
 from orccad_app.control.module import ModuleKind
+from orccad_app.control.robot import RobotType
 from orccad_app.diagnostics import OrccadError
 from orccad_app.plugins import hookspecs
+from orccad_app.plugins.hooks import OrccadHooks, describe_error
 from orccad_app.plugins.registry import Registries, Registry
 
 __all__ = [
@@ -84,22 +89,6 @@ class _Manager(pluggy.PluginManager):
         return opts
 
 
-class _Collector:
-    """The ``register`` callable given to a registration hook: collects the items."""
-
-    def __init__(self) -> None:
-        self.items: list[Any] = []
-
-    def __call__(self, item: Any) -> None:
-        self.items.append(item)
-
-
-def _describe(error: BaseException) -> str:
-    if isinstance(error, OrccadError):
-        return error.message
-    return f"{type(error).__name__}: {error}"
-
-
 def _blocked_from_env() -> set[str]:
     return {name.strip() for name in os.environ.get(DISABLE_ENV, "").split(",") if name.strip()}
 
@@ -117,26 +106,28 @@ class PluginHost:
         for name in self.blocked:
             self.manager.set_blocked(name)
         self._started = False
+        #: the typed facade that calls each hook plugin by plugin
+        self.hooks = OrccadHooks(self.manager, lambda name: name in self.plugins, self.disable)
 
     # -- registries --------------------------------------------------------------------
 
     @property
-    def robot_types(self) -> Registry[Any]:
+    def robot_types(self) -> Registry[RobotType]:
         """Robot types (:class:`~orccad_app.control.RobotType`)."""
         return self.registries.robot_types
 
     @property
-    def control_laws(self) -> Registry[Any]:
+    def control_laws(self) -> Registry[LawKind]:
         """Control laws (:class:`~orccad_app.control.LawKind`)."""
         return self.registries.control_laws
 
     @property
-    def task_functions(self) -> Registry[Any]:
+    def task_functions(self) -> Registry[TaskFunctionKind]:
         """Task functions (:class:`~orccad_app.control.TaskFunctionKind`)."""
         return self.registries.task_functions
 
     @property
-    def trajectories(self) -> Registry[Any]:
+    def trajectories(self) -> Registry[TrajectoryKind]:
         """Trajectories (:class:`~orccad_app.control.TrajectoryKind`)."""
         return self.registries.trajectories
 
@@ -182,7 +173,7 @@ class PluginHost:
             try:
                 plugin = entry_point.load()
             except Exception as error:  # noqa: BLE001 - any import error is the plugin's
-                self.failures.append(PluginFailure(name, "import", _describe(error)))
+                self.failures.append(PluginFailure(name, "import", describe_error(error)))
                 continue
             self.add_plugin(plugin, name, dist.name if dist else None,
                             dist.version if dist else None)
@@ -201,7 +192,7 @@ class PluginHost:
         try:
             self.manager.register(plugin, name=name)
         except (pluggy.PluginValidationError, ValueError) as error:
-            self.failures.append(PluginFailure(name, "validation", _describe(error)))
+            self.failures.append(PluginFailure(name, "validation", describe_error(error)))
             return False
         module = getattr(plugin, "__name__", type(plugin).__qualname__)
         self.plugins[name] = PluginInfo(name, module, distribution, version)
@@ -213,9 +204,14 @@ class PluginHost:
             return self
         self._started = True
         self._check_pending()
-        for hook_name, registry_name in hookspecs.REGISTRATION_HOOKS:
-            self._call_registration(hook_name, getattr(self.registries, registry_name))
-        self._call_each("orccad_plugins_loaded", lambda _plugin: {"host": self})
+        hooks, registries = self.hooks, self.registries
+        hooks.register_robot_types(registries.robot_types)
+        hooks.register_control_laws(registries.control_laws)
+        hooks.register_task_functions(registries.task_functions)
+        hooks.register_trajectories(registries.trajectories)
+        hooks.register_observers(registries.observers)
+        hooks.register_module_kinds(registries.module_kinds)
+        hooks.plugins_loaded(self)
         return self
 
     def _check_pending(self) -> None:
@@ -226,34 +222,6 @@ class PluginHost:
             except pluggy.PluginValidationError as error:
                 name = self.manager.get_name(error.plugin) or repr(error.plugin)
                 self.disable(name, "validation", str(error))
-
-    def _call_registration(self, hook_name: str, registry: Registry[Any]) -> None:
-        for plugin, kwargs in self._call_each(hook_name, lambda _: {"register": _Collector()}):
-            for item in kwargs["register"].items:
-                try:
-                    registry.add(item, plugin)
-                except OrccadError as error:
-                    self.disable(plugin, hook_name, error.message)
-                    break
-
-    def _call_each(self, hook_name: str, arguments: Callable[[str], dict[str, Any]]
-                   ) -> list[tuple[str, dict[str, Any]]]:
-        """Call ``hook_name`` of each plugin alone, in registration order, isolating
-        failures; returns ``(plugin, arguments)`` of the calls that succeeded."""
-        done = []
-        hook = getattr(self.manager.hook, hook_name)
-        for impl in hook.get_hookimpls():  # registration order (pluggy calls them reversed)
-            name = impl.plugin_name
-            if name not in self.plugins:
-                continue
-            kwargs = arguments(name)
-            try:
-                impl.function(**{arg: kwargs[arg] for arg in impl.argnames})
-            except Exception as error:  # noqa: BLE001 - a plugin must not crash the host
-                self.disable(name, hook_name, _describe(error))
-                continue
-            done.append((name, kwargs))
-        return done
 
     def disable(self, plugin: str, stage: str, message: str) -> None:
         """Record a failure of ``plugin``, withdraw its contributions and unregister it."""

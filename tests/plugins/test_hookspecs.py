@@ -39,3 +39,11 @@ def test_the_example_plugin_implements_every_hook():
     example = GUIDE.split("## A complete third-party plugin", 1)[1]
     for name in hooks():
         assert f"def {name}(" in example, name
+
+
+def test_the_facade_has_one_method_per_hook():
+    from orccad_app.plugins.hooks import OrccadHooks
+
+    methods = {name for name, _ in inspect.getmembers(OrccadHooks, inspect.isfunction)
+               if not name.startswith("_")}
+    assert methods == {name.removeprefix("orccad_") for name in hooks()}
