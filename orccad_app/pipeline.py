@@ -29,6 +29,13 @@ class Source:
     path: str
     text: str
     program: ast.Program
+    warnings: tuple = ()
+
+    def print_warnings(self, stream=None) -> None:
+        """Print the checker's warnings (``file:line:col: warning: …``) to ``stream``."""
+        import sys
+        for warning in self.warnings:
+            print(warning.format(self.text), file=stream or sys.stderr)
 
 
 def load(path: str | Path) -> Source:
@@ -41,8 +48,8 @@ def load(path: str | Path) -> Source:
     except (OSError, UnicodeDecodeError) as error:
         raise OrccadError(f"{path}: cannot read: {error}") from None
     program = parse(text, path)
-    check(program)
-    return Source(path, text, program)
+    result = check(program)
+    return Source(path, text, program, result.warnings)
 
 
 def select_mission(source: Source, name: str | None) -> ast.Mission:

@@ -10,7 +10,7 @@ from orccad_app.pipeline import compile_mission, load, select_mission
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
 from orccad_app.reactive.export import to_dot, to_json, to_summary
 
-__all__ = ["register", "FORMATS"]
+__all__ = ["register", "FORMATS", "emit_text", "positive_int"]
 
 FORMATS = {"summary": to_summary, "json": to_json, "dot": to_dot}
 
@@ -39,14 +39,19 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     source = load(args.file)
+    source.print_warnings()
     automaton = compile_mission(source, select_mission(source, args.mission),
                                 max_states=args.max_states)
-    text = FORMATS[args.format](automaton)
-    if args.output:
+    emit_text(FORMATS[args.format](automaton), args.output)
+    return 0
+
+
+def emit_text(text: str, output: str | None) -> None:
+    """Print ``text``, or write it to the file ``output``."""
+    if output:
         try:
-            Path(args.output).write_text(text + "\n", encoding="utf-8")
+            Path(output).write_text(text + "\n", encoding="utf-8")
         except OSError as error:
-            raise OrccadError(f"{args.output}: cannot write: {error}") from None
+            raise OrccadError(f"{output}: cannot write: {error}") from None
     else:
         print(text)
-    return 0

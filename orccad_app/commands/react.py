@@ -48,6 +48,7 @@ def _read_script(path: str | None) -> tuple[str, str]:
 
 def run(args: argparse.Namespace) -> int:
     source = load(args.file)
+    source.print_warnings()
     automaton = compile_mission(source, select_mission(source, args.mission), view=ABSTRACT,
                                 max_states=args.max_states)
     text, name = _read_script(args.inputs)

@@ -73,6 +73,7 @@ class CheckResult:
     interfaces: Mapping[str, MissionInterface]
     name_kinds: Mapping[ast.Name, NameKind] = field(default_factory=dict)
     condition_kinds: Mapping[ast.Expr, ConditionKind] = field(default_factory=dict)
+    warnings: tuple = ()
 
     def interface(self, mission: str) -> MissionInterface:
         """The interface of ``mission`` (``KeyError`` if there is no such mission)."""
@@ -162,7 +163,8 @@ def _run(program: ast.Program, tasks: Iterable[ast.RobotTask]) -> tuple[Problems
     _formulas(program, interfaces, known or None, problems)
     return problems, CheckResult(program=program, interfaces=interfaces,
                                  name_kinds=dict(checker.name_kinds),
-                                 condition_kinds=dict(checker.condition_kinds))
+                                 condition_kinds=dict(checker.condition_kinds),
+                                 warnings=tuple(problems.warnings))
 
 
 def check(program: ast.Program, tasks: Iterable[ast.RobotTask] = ()) -> CheckResult:

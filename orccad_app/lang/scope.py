@@ -80,10 +80,14 @@ class Scope:
 
 
 class Problems:
-    """Errors collected by the checks, in the order found."""
+    """Errors and warnings collected by the checks, in the order found."""
 
     def __init__(self) -> None:
         self.errors: list[OrccadError] = []
+        self.warnings: list[Diagnostic] = []
+
+    def warning(self, message: str, location: SourceLocation) -> None:
+        self.warnings.append(Diagnostic("warning", message, location))
 
     def error(self, message: str, location: SourceLocation,
               previous: SourceLocation | None = None, what: str = "previous declaration"):

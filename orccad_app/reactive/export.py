@@ -71,7 +71,7 @@ def to_json(automaton: Automaton) -> str:
 def to_summary(automaton: Automaton) -> str:
     """A human overview: sizes, interface, and the transitions of each state."""
     lines = [
-        f"mission {automaton.name}",
+        f"automaton {automaton.name}",
         f"  states: {automaton.state_count}",
         f"  transitions: {automaton.transition_count}",
         f"  inputs: {', '.join(_signal_type(s) for s in automaton.inputs) or '-'}",

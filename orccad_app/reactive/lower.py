@@ -50,12 +50,16 @@ def _kind(direction: ast.Direction) -> str:
     return {ast.Direction.INPUT: ir.INPUT, ast.Direction.OUTPUT: ir.OUTPUT}.get(direction, ir.LOCAL)
 
 
-def mission_interface(program: ast.Program, mission: ast.Mission) -> tuple[tuple, tuple]:
-    """The mission's input and output declarations: file-level first, in source order."""
+def mission_interface(program: ast.Program, mission: ast.Mission | None) -> tuple[tuple, tuple]:
+    """The mission's input and output declarations: file-level first, in source order.
+
+    With ``mission`` None, the file-level declarations only.
+    """
     inputs: list[ir.SignalDecl] = []
     outputs: list[ir.SignalDecl] = []
     seen: dict[str, SourceLocation] = {}
-    for decl in (*program.signals, *mission.signals):
+    own = mission.signals if mission is not None else ()
+    for decl in (*program.signals, *own):
         if decl.name in seen:
             raise OrccadError(f"signal '{decl.name}' is declared twice (first at "
                               f"{seen[decl.name]})", decl.loc)

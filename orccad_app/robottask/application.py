@@ -28,6 +28,7 @@ from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
 from orccad_app.reactive.lower import Lowerer, Scope
+from orccad_app.robottask.conflicts import check_resources
 from orccad_app.robottask.rta import TaskSignals, rta_body, task_signals
 
 __all__ = ["ApplicationLowerer", "AbstractApplicationLowerer", "RunSite", "COMPOSED", "ABSTRACT"]
@@ -69,6 +70,7 @@ class ApplicationLowerer(Lowerer):
 
     # ------------------------------------------------------------------ the mission
     def lower(self) -> ir.Program:
+        check_resources(self.source, self.mission)
         loc = self.mission.loc
         body = ir.Trap(self.failed_trap, self.block(self.mission.body, self.scope), loc)
         if self.mission.on_fatal is None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from orccad_app.lang import diagnose, parse
+from orccad_app.lang import check, diagnose, parse
 
 TASKS = """\
 robot arm : arm3dof;
@@ -120,16 +120,21 @@ def test_run_checks_tasks_and_arguments():
     assert messages("run Track(q0 = x);", tasks=True) == ["undeclared variable 'x'"]
 
 
-def test_catch_needs_a_raisable_exception():
+def warnings(body: str, tasks: bool = True) -> list[str]:
+    text = (TASKS if tasks else "") + "mission M {\n" + body + "\n}\n"
+    return [w.message for w in check(parse(text, "m.orc")).warnings]
+
+
+def test_catch_of_an_exception_nothing_can_raise_is_a_warning():
     ok = ("try { run Track(q0 = [1]) within 5 s; } catch Lost, Timeout { } "
           "catch at_rest_timeout { }")
-    assert messages(ok, tasks=True) == []
-    assert messages("try { run Home(); } catch Lost { }", tasks=True) == [
-        "no Robot-Task run in this try can raise 'Lost'"]
-    assert messages("try { run Home(); } catch Timeout { }", tasks=True) == [
-        "no Robot-Task run in this try can raise 'Timeout'"]
-    assert messages("try { run Track(q0 = [1]); } catch Limit { }", tasks=True) == [
-        "no Robot-Task run in this try can raise 'Limit'"]  # fatal: not catchable
+    assert messages(ok, tasks=True) == [] and warnings(ok) == []
+    never = "no Robot-Task run in this try can raise '{}': this catch never runs"
+    for body, name in [("try { run Home(); } catch Lost { }", "Lost"),
+                       ("try { run Home(); } catch Timeout { }", "Timeout"),
+                       ("try { run Track(q0 = [1]); } catch Limit { }", "Limit")]:  # fatal
+        assert messages(body, tasks=True) == []
+        assert warnings(body) == [never.format(name)]
     assert messages("try { run Track(q0 = [1]); } catch Lost { } catch Lost { }",
                     tasks=True) == ["exception 'Lost' caught twice"]
 
