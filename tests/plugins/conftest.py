@@ -19,9 +19,13 @@ def host():
 
 
 def run_cli(*args, env=None, pythonpath=None):
-    """Run ``python -m orccad_app.cli ARGS`` in a subprocess; returns the CompletedProcess."""
-    environment = dict(os.environ if env is None else env)
-    environment.pop("ORCCAD_DISABLE_PLUGINS", None) if env is None else None
+    """Run ``python -m orccad_app.cli ARGS`` in a subprocess; returns the CompletedProcess.
+
+    Without ``env``, the current environment minus ``ORCCAD_DISABLE_PLUGINS``.
+    """
+    if env is None:
+        env = {k: v for k, v in os.environ.items() if k != "ORCCAD_DISABLE_PLUGINS"}
+    environment = dict(env)
     if pythonpath:
         environment["PYTHONPATH"] = os.pathsep.join(
             [str(pythonpath), environment.get("PYTHONPATH", "")]).rstrip(os.pathsep)
