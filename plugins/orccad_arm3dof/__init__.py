@@ -18,8 +18,19 @@ from orccad_app.plugins import hookimpl
 
 __all__ = ["MJCF_PATH", "ARM3DOF", "orccad_register_robot_types"]
 
+
+
+def _mjcf_path() -> Path:
+    """The packaged file, or the repository's when a checkout could not make the symbolic
+    link (it is then a small text file holding the link's target)."""
+    packaged = Path(__file__).with_name("arm3dof.xml")
+    if packaged.read_bytes().lstrip().startswith(b"<"):
+        return packaged
+    return Path(__file__).resolve().parents[2] / "robots" / "arm3dof.xml"
+
+
 #: The arm's MJCF file (resolves to ``robots/arm3dof.xml`` in a source checkout).
-MJCF_PATH = Path(__file__).with_name("arm3dof.xml")
+MJCF_PATH = _mjcf_path()
 
 #: The robot type: 3 joints j1 (waist), j2 (shoulder), j3 (elbow), end effector site.
 ARM3DOF = RobotType.from_mjcf(
