@@ -1,0 +1,95 @@
+"""Mission sources and helpers shared by the benchmarks (not a test module).
+
+Every benchmark compiles its missions from plan-language text, exactly as ``orccad compile``
+does: parse → lower → compile (:func:`compile_source`).
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:  # run as ``python bench/x.py`` from the repository root
+    sys.path.insert(0, str(ROOT))
+
+from orccad_app.lang.parser import parse  # noqa: E402
+from orccad_app.reactive.compiler import compile_program  # noqa: E402
+from orccad_app.reactive.lower import lower_mission  # noqa: E402
+
+ABRO = (ROOT / "missions" / "abro.orc").read_text(encoding="utf-8")
+
+#: The inputs of the generated sequential missions.
+SEQ_INPUTS = ("A", "B", "C")
+
+
+def sequential(n: int) -> str:
+    """A mission of ``n`` top-level statements, cycling through five kinds.
+
+    ``emit O;`` · ``await A;`` · ``if B { emit O; } else { emit P; }`` · ``await (B or C);``
+    · ``emit P;`` — so about 2 in 5 statements wait (one control state each) and every
+    reaction tests one or two inputs. The last statement is followed by nothing: the mission
+    terminates.
+    """
+    kinds = (
+        "emit O;",
+        "await A;",
+        "if B { emit O; } else { emit P; }",
+        "await (B or C);",
+        "emit P;",
+    )
+    body = "\n".join("    " + kinds[i % len(kinds)] for i in range(n))
+    return ("mission Seq {\n    input A, B, C;\n    output O, P;\n" + body + "\n}\n")
+
+
+def par_of_awaits(n: int) -> str:
+    """``par { await A1; } || … || { await AN; }`` then ``emit O``: 2^N control states."""
+    inputs = ", ".join(f"A{i}" for i in range(1, n + 1))
+    branches = " || ".join(f"{{ await A{i}; }}" for i in range(1, n + 1))
+    return (f"mission Par{n} {{\n    input {inputs};\n    output O;\n"
+            f"    par {branches}\n    emit O;\n}}\n")
+
+
+def compile_source(text: str, filename: str = "bench.orc", **options):
+    """parse → lower → compile, as the pipeline does (the name check is not needed here)."""
+    program = parse(text, filename)
+    return compile_program(lower_mission(program, program.missions[0]), **options)
+
+
+def machine() -> str:
+    """One line describing where the figures were measured."""
+    return (f"{os.cpu_count()} cores (nproc), {platform.machine()}, "
+            f"Python {platform.python_version()} ({platform.python_implementation()}), "
+            f"{platform.system()} {platform.release()}")
+
+
+def percentile(sorted_values: list[float], q: float) -> float:
+    """The ``q`` quantile (0…1) of already sorted values, nearest rank."""
+    index = min(len(sorted_values) - 1, max(0, round(q * (len(sorted_values) - 1))))
+    return sorted_values[index]
+
+
+def per_call_ns(fn, calls: int, repeats: int) -> list[float]:
+    """``repeats`` measurements of the mean time of one ``fn()`` over ``calls`` calls (ns).
+
+    Timing batches instead of single calls keeps ``perf_counter_ns``' own cost (~50–100 ns)
+    out of sub-microsecond figures; the median and p90 are then taken over the batches.
+    """
+    out = []
+    clock = time.perf_counter_ns
+    for _ in range(repeats):
+        start = clock()
+        for _ in range(calls):
+            fn()
+        out.append((clock() - start) / calls)
+    out.sort()
+    return out
+
+
+def summary(samples_ns: list[float]) -> tuple[float, float]:
+    """(median, p90) in µs of sorted per-call samples in ns."""
+    return statistics.median(samples_ns) / 1000, percentile(samples_ns, 0.9) / 1000
