@@ -49,6 +49,10 @@ def load(path: str | Path) -> Source:
         raise OrccadError(f"{path}: cannot read: {error}") from None
     program = parse(text, path)
     result = check(program)
+    if program.robottasks:
+        from orccad_app.plugins.host import default_host  # loads plugins: only when needed
+        from orccad_app.robottask.model import check_tasks
+        check_tasks(program, default_host())
     return Source(path, text, program, result.warnings)
 
 

@@ -1,0 +1,242 @@
+"""A Robot-Task instantiated against the plugin registries: its checked control scheme.
+
+:func:`instantiate` turns a ``robottask`` block and the arguments of one ``run`` into a
+:class:`TaskInstance`: the robot type, the control law and task function (their coherence
+checks — ``dim e = dim q``, positive gains, shapes — run here), every Module-Task with its
+kind, parameters and timing, the observers named by exceptions and conditions (a declared
+module, or an observer kind instantiated with its default timing), and the connections,
+checked: ports exist, producer to consumer, same type and dimension, each input fed once,
+required inputs fed. Every error names the bad value and carries the clause's location.
+
+The timed executive builds its Module-Tasks from a :class:`TaskInstance`; the compiler
+instantiates every task once per ``run`` so that each set of arguments is checked.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, Timing
+from orccad_app.control.spec import module_context
+from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang import ast
+from orccad_app.robottask.values import call_form, evaluate, task_arguments
+from orccad_app.robottask.wiring import Endpoint, wire
+
+__all__ = ["ModuleSpec", "Adjustment", "TaskInstance", "instantiate", "check_tasks",
+           "DEFAULT_PROCESSOR"]
+
+DEFAULT_PROCESSOR = "cpu0"
+
+
+@dataclass
+class ModuleSpec:
+    """One Module-Task of a task instance."""
+
+    name: str
+    kind: ModuleKind
+    instance: ModuleInstance
+    timing: Timing
+    processor: str
+    priority: int
+    loc: SourceLocation
+    implicit: bool = False  # made for an observer named in 'from' or a condition
+    params: dict = field(default_factory=dict)  # as given, for a fresh instance
+
+    def fresh(self, context: ModuleContext) -> ModuleInstance:
+        """A new instance with the same parameters (the executive makes one per run)."""
+        return self.kind.create(self.params, context)
+
+
+@dataclass(frozen=True)
+class Adjustment:
+    """A type-1 exception's parameter update: ``module.param = value``."""
+
+    exception: str
+    module: str
+    param: str
+    value: Any
+
+
+@dataclass
+class TaskInstance:
+    """A Robot-Task ready to run: modules, connections, events, adjustments."""
+
+    task: ast.RobotTask
+    params: dict[str, Any]
+    robot_name: str
+    context: ModuleContext
+    modules: dict[str, ModuleSpec] = field(default_factory=dict)
+    connections: list = field(default_factory=list)
+    events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
+    adjustments: dict[str, Adjustment] = field(default_factory=dict)
+    measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
+
+    @property
+    def duration_s(self) -> float | None:
+        ns = self.task.duration_ns
+        return None if ns is None else ns / 1e9
+
+
+def _located(error: OrccadError, loc: SourceLocation) -> OrccadError:
+    if error.location is None or error.location.line <= 0:
+        return OrccadError(error.message, loc, error.notes)
+    return error
+
+
+def _context(task: ast.RobotTask, params: dict, robots: Mapping[str, ast.Robot], host):
+    robot = robots.get(task.robot)
+    if robot is None:
+        raise OrccadError(f"unknown robot '{task.robot}'", task.loc)
+    try:
+        robot_type = host.robot_types.get(robot.type)
+        robot_args = call_form(ast.Call(func=robot.type, args=robot.args), {})[1]
+        if robot_args:
+            robot_type = robot_type.configure(robot_args)
+    except OrccadError as error:
+        raise _located(error, robot.loc) from None
+    tf = None if task.task_function is None else call_form(task.task_function, params)
+    law = None if task.law is None else call_form(task.law, params)
+    try:
+        return module_context(host, robot_type, tf, law, task.duration_ns and
+                              task.duration_ns / 1e9, task.robot)
+    except OrccadError as error:  # point at the clause the message is about
+        clause = task.task_function if tf and error.message.startswith(tf[0]) else task.law
+        raise _located(error, (clause or task).loc) from None
+
+
+def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[str, ModuleSpec]:
+    modules: dict[str, ModuleSpec] = {}
+    for m in task.modules:
+        try:
+            kind = host.module_kind(m.kind)
+            values = {a.name: evaluate(a.value, params) for a in m.args}
+            if any(a.name is None for a in m.args):
+                raise OrccadError(f"arguments of module kind '{m.kind}' must be named", m.loc)
+            instance = kind.create(values, context)
+            default = kind.default_timing
+            timing = Timing(m.period_ns or default.period_ns,
+                            m.wcet_ns if m.wcet_ns is not None else default.wcet_ns,
+                            m.bcet_ns if m.bcet_ns is not None else None)
+        except OrccadError as error:
+            raise _located(error, m.loc) from None
+        if m.priority is not None and m.priority < 1:
+            raise OrccadError(f"priority of module '{m.name}' must be ≥ 1 (1 is the highest), "
+                              f"got {m.priority}", m.loc)
+        modules[m.name] = ModuleSpec(m.name, kind, instance, timing,
+                                     m.processor or DEFAULT_PROCESSOR, m.priority or 0, m.loc,
+                                     params=values)
+    return modules
+
+
+def _observer(call: ast.Call, loc: SourceLocation, inst: TaskInstance, host) -> str:
+    """The module watching for a condition or exception: declared, or made from a kind."""
+    declared = inst.modules.get(call.func)
+    if declared is not None and not call.args:
+        if not declared.kind.is_observer:
+            raise OrccadError(f"module '{call.func}' ({declared.kind.name}) is not an observer: "
+                              "it has no event output", call.loc)
+        return call.func
+    try:
+        kind = host.observers.get(call.func)
+        values = call_form(call, inst.params)[1]
+        instance = kind.create(values, inst.context)
+    except OrccadError as error:
+        raise _located(error, call.loc) from None
+    name, n = call.func, 2
+    while name in inst.modules:
+        name, n = f"{call.func}_{n}", n + 1
+    processor = next(iter(inst.modules.values())).processor if inst.modules else DEFAULT_PROCESSOR
+    inst.modules[name] = ModuleSpec(name, kind, instance, kind.default_timing, processor, 0,
+                                    loc, implicit=True, params=values)
+    return name
+
+
+def _conditions(inst: TaskInstance, host) -> None:
+    task = inst.task
+    measuring = []
+    for pre in task.preconditions:
+        if isinstance(pre, ast.MeasurePrecondition):
+            module = _observer(pre.observer, pre.loc, inst, host)
+            inst.events[pre.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+            measuring.append(module)
+    for exc in task.exceptions:
+        module = _observer(exc.source, exc.loc, inst, host)
+        inst.events[exc.name] = (module, inst.modules[module].kind.event_ports[0])
+        if exc.adjust is not None:
+            inst.adjustments[exc.name] = _adjustment(exc, inst)
+    for post in task.postconditions:
+        if isinstance(post, ast.MeasurePostcondition):
+            module = _observer(post.observer, post.loc, inst, host)
+            inst.events[post.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+    inst.measuring = tuple(measuring)
+
+
+def _adjustment(exc: ast.ExceptionDecl, inst: TaskInstance) -> Adjustment:
+    target = exc.adjust.target
+    module = inst.modules.get(target.component)
+    if module is None:
+        raise OrccadError(f"adjust: no module '{target.component}' in Robot-Task "
+                          f"'{inst.task.name}'", target.loc)
+    value = evaluate(exc.adjust.value, inst.params)
+    try:  # on a throw-away instance: the update must be valid for this module
+        module.fresh(inst.context).set_param(target.port, value)
+    except OrccadError as error:
+        raise _located(error, exc.adjust.loc) from None
+    return Adjustment(exc.name, target.component, target.port, value)
+
+
+def _priorities(modules: dict[str, ModuleSpec]) -> None:
+    """Modules without a priority get rate-monotonic ones, below the explicit ones."""
+    base = max((m.priority for m in modules.values()), default=0)
+    pending = sorted((m for m in modules.values() if m.priority == 0),
+                     key=lambda m: (m.timing.period_ns, m.name))
+    for offset, module in enumerate(pending, start=1):
+        module.priority = base + offset
+
+
+def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
+                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
+                ) -> TaskInstance:
+    """Check ``task`` with the arguments of one ``run`` and build its instance."""
+    try:
+        params = task_arguments(task, args)
+    except OrccadError as error:
+        raise _located(error, run_loc or task.loc) from None
+    context = _context(task, params, robots, host)
+    inst = TaskInstance(task, params, task.robot, context)
+    inst.modules = _declared_modules(task, params, context, host)
+    _conditions(inst, host)
+    _priorities(inst.modules)
+    robot = Endpoint.robot(task.robot, context.require_robot(f"Robot-Task '{task.name}'"))
+    inst.connections = wire(task, inst.modules, robot)
+    return inst
+
+
+def _runs(node):
+    if isinstance(node, ast.Run):
+        yield node
+    for name in getattr(node, "__dataclass_fields__", ()):
+        value = getattr(node, name)
+        for item in value if isinstance(value, tuple) else (value,):
+            if hasattr(item, "__dataclass_fields__") and not isinstance(item, SourceLocation):
+                yield from _runs(item)
+
+
+def check_tasks(program: ast.Program, host) -> dict[tuple, TaskInstance]:
+    """Instantiate every Robot-Task: once with its defaults (when it has them all) and once
+    per ``run`` with that run's arguments. Returns the instances keyed by
+    ``(task name, run location or None)``; raises on the first incoherence."""
+    robots = {r.name: r for r in program.robots}
+    tasks = {t.name: t for t in program.robottasks}
+    found: dict[tuple, TaskInstance] = {}
+    for task in program.robottasks:
+        if all(p.default is not None for p in task.params):
+            found[(task.name, None)] = instantiate(task, robots, host)
+    for mission in program.missions:
+        for run in _runs(mission):
+            task = tasks.get(run.task)
+            if task is not None:
+                found[(task.name, run.loc)] = instantiate(task, robots, host, run.args, run.loc)
+    return found
