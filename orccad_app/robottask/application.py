@@ -13,7 +13,11 @@
     ``X.good_end``, its type-2 exceptions ``X.E`` (and ``X.<obs>_timeout``), its type-3
     exceptions ``X.F``.
 
-In both views a type-2 exception raised by a task is caught by the innermost enclosing
+In both views the output ``E.raised`` is present in the instant exception ``E`` is raised,
+``X.start`` when task X starts (and, composed, ``X.good_end`` at its good end); each instance
+of a task is a region labelled ``("rt", X, site)`` (composed: with phases ``("phase", X,
+site, n)``), so ``active(X)`` is a property of states. A type-2 exception raised by a task
+is caught by the innermost enclosing
 ``try`` that names it (the task and the ``try`` body are killed, the handler runs); an
 uncaught one ends the mission with status ``failed`` and the exception's name. A type-3
 exception aborts the whole mission in the same instant (every task is killed), status
@@ -84,16 +88,27 @@ class ApplicationLowerer(Lowerer):
                           (*self.outputs, *self.extra_outputs), wrapped, loc,
                           self.failed, self.aborted)
 
+    def raised_signal(self, name: str, loc: SourceLocation) -> ir.SignalDecl:
+        """The output ``E.raised``, present in the instant exception ``E`` is raised."""
+        decl = self.scope.signals.get(f"{name}.raised")
+        if decl is None:
+            decl = self._add(ir.SignalDecl(f"{name}.raised", ir.OUTPUT, None, loc))
+            self.scope.signals[decl.name] = decl
+        return decl
+
     def raise_(self, name: str, loc: SourceLocation) -> ir.Stmt:
         """A type-2 exception: to the innermost ``catch`` of ``name``, else mission failure."""
+        raised = ir.Emit(self.raised_signal(name, loc), None, loc)
         for handlers in reversed(self.handlers):
             if name in handlers:
-                return ir.Exit(handlers[name], loc)
-        return d.seq(ir.Emit(self.failed, ir.Const(name, loc), loc), ir.Exit(self.failed_trap, loc))
+                return d.seq(raised, ir.Exit(handlers[name], loc))
+        return d.seq(raised, ir.Emit(self.failed, ir.Const(name, loc), loc),
+                     ir.Exit(self.failed_trap, loc))
 
     def fatal(self, name: str, loc: SourceLocation) -> ir.Stmt:
         """A type-3 exception: the mission is aborted in this instant."""
-        return d.seq(ir.Emit(self.aborted, ir.Const(name, loc), loc), ir.Exit(self.fatal_trap, loc))
+        return d.seq(ir.Emit(self.raised_signal(name, loc), None, loc),
+                     ir.Emit(self.aborted, ir.Const(name, loc), loc), ir.Exit(self.fatal_trap, loc))
 
     # ------------------------------------------------------------------ signals
     def _add(self, decl: ir.SignalDecl) -> ir.SignalDecl:

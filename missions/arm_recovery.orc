@@ -1,0 +1,92 @@
+// A mission that uses every statement class, with recovery paths, on the 3-DOF arm.
+//
+// Home, then track the cosine trajectory; a lost track or a time-out is retried after
+// re-homing, at most three times; the operator may hold (suspend) or stop (abort, then go
+// home) the mission; a joint-limit violation is fatal and 'on fatal' reports it.
+robot arm : arm3dof;
+
+input Stop, Hold, Gripper : float;
+output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal;
+
+robottask Home(goal: vector = [0.0, 0.0, 0.0]) on arm {
+    duration 1.5 s;
+    task_function joint_tracking(trajectory = constant(value = goal));
+    law pid(kp = 400.0, kv = 40.0);
+    module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
+    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    connect traj.qd     -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect arm.q       -> ctrl.q;
+    connect arm.qdot    -> ctrl.qdot;
+    connect ctrl.tau    -> arm.tau;
+    precondition measure at_rest(tol = 0.05) within 2 s;
+}
+
+robottask TrackPID(q0: vector = [0.5, 0.5, 0.5], kp: float = 400.0) on arm {
+    duration 4 s;
+    task_function joint_tracking(trajectory = cosine(q0 = q0, omega = pi));
+    law pid(kp = kp, kv = 40.0, ki = 10.0);
+    module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
+    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    module jl   : joint_limits(margin = 0.05) period 5 ms wcet 0.05 ms on cpu0 priority 3;
+    connect traj.qd     -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect arm.q       -> ctrl.q;
+    connect arm.qdot    -> ctrl.qdot;
+    connect ctrl.tau    -> arm.tau;
+    connect arm.q       -> jl.q;
+    exception JointLimit from jl : fatal;
+    exception TrackingLost from tracking_error(max = 0.2) : abort;
+    exception Saturated from torque_saturation : adjust ctrl.kp = 200.0;
+}
+
+mission ArmRecovery {
+    emit Started;
+    run Home();
+    var tries := 0;
+    signal Tracked {
+        race {
+            sustain Beat;                              // a heartbeat while the mission runs
+        } || {
+            weak abort {
+                suspend {
+                    trap Success {
+                        repeat 3 {
+                            try {
+                                run TrackPID(kp = 600.0) within 10 s;
+                                emit Tracked;
+                                exit Success;
+                            } catch TrackingLost, Timeout {
+                                tries := tries + 1;
+                                emit Retry(tries);
+                                run Home();
+                            }
+                        }
+                        emit GaveUp;
+                    } handle {
+                        nothing;
+                    }
+                } when Hold;
+            } when Stop do {
+                run Home(goal = [0.0, 0.0, 0.0]);
+            }
+        } || {
+            loop {
+                await Gripper;
+                if ?Gripper > 0.5 { emit Grip(?Gripper); } else { pause; }
+            } each Stop;
+        } || {
+            await immediate Tracked;
+            await 2 Beat;
+            every 1 s { pause; }
+        } || {
+            abort { halt; } when immediate Stop;
+            await 0.5 s;
+            par { nothing; } || { await (Hold or not Hold); }
+        }
+    }
+    emit Finished;
+    on fatal {
+        emit Fatal;
+    }
+}
