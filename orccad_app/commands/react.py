@@ -16,7 +16,7 @@ from pathlib import Path
 
 from orccad_app.commands.compile import positive_int
 from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import ABSTRACT, compile_mission, load, select_mission
+from orccad_app.pipeline import ABSTRACT, COMPOSED, compile_mission, load, select_mission
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
@@ -32,6 +32,9 @@ def register(sub) -> None:
     parser.add_argument("--mission", "-m", help="the mission (default: the file's only one)")
     parser.add_argument("--inputs", "-i", help="the input script (default: standard input)")
     parser.add_argument("--jsonl", action="store_true", help="one JSON object per instant")
+    parser.add_argument("--composed", action="store_true",
+                        help="run the composed model (the Robot-Tasks' RTAs inlined: inputs are "
+                             "their observers' events) instead of the application's view")
     parser.add_argument("--max-states", type=positive_int, default=DEFAULT_MAX_STATES,
                         help=f"state budget (default {DEFAULT_MAX_STATES})")
     parser.set_defaults(func=run)
@@ -49,7 +52,8 @@ def _read_script(path: str | None) -> tuple[str, str]:
 def run(args: argparse.Namespace) -> int:
     source = load(args.file)
     source.print_warnings()
-    automaton = compile_mission(source, select_mission(source, args.mission), view=ABSTRACT,
+    view = COMPOSED if args.composed else ABSTRACT
+    automaton = compile_mission(source, select_mission(source, args.mission), view=view,
                                 max_states=args.max_states)
     text, name = _read_script(args.inputs)
     instants = parse_script(text, name, automaton.inputs)
