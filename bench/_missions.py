@@ -8,9 +8,7 @@ from __future__ import annotations
 
 import os
 import platform
-import statistics
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -71,25 +69,3 @@ def percentile(sorted_values: list[float], q: float) -> float:
     """The ``q`` quantile (0…1) of already sorted values, nearest rank."""
     index = min(len(sorted_values) - 1, max(0, round(q * (len(sorted_values) - 1))))
     return sorted_values[index]
-
-
-def per_call_ns(fn, calls: int, repeats: int) -> list[float]:
-    """``repeats`` measurements of the mean time of one ``fn()`` over ``calls`` calls (ns).
-
-    Timing batches instead of single calls keeps ``perf_counter_ns``' own cost (~50–100 ns)
-    out of sub-microsecond figures; the median and p90 are then taken over the batches.
-    """
-    out = []
-    clock = time.perf_counter_ns
-    for _ in range(repeats):
-        start = clock()
-        for _ in range(calls):
-            fn()
-        out.append((clock() - start) / calls)
-    out.sort()
-    return out
-
-
-def summary(samples_ns: list[float]) -> tuple[float, float]:
-    """(median, p90) in µs of sorted per-call samples in ns."""
-    return statistics.median(samples_ns) / 1000, percentile(samples_ns, 0.9) / 1000
