@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, Timing
-from orccad_app.control.spec import module_context
-from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.control.spec import module_context, resolve
+from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
@@ -98,6 +98,11 @@ def _context(task: ast.RobotTask, params: dict, robots: Mapping[str, ast.Robot],
         raise _located(error, robot.loc) from None
     tf = None if task.task_function is None else call_form(task.task_function, params)
     law = None if task.law is None else call_form(task.law, params)
+    if tf is not None:
+        try:
+            resolve(host, "task function", tf)
+        except OrccadError as error:
+            raise _located(error, task.task_function.loc) from None
     try:
         return module_context(host, robot_type, tf, law, task.duration_ns and
                               task.duration_ns / 1e9, task.robot)
@@ -237,6 +242,14 @@ def check_tasks(program: ast.Program, host) -> dict[tuple, TaskInstance]:
     for mission in program.missions:
         for run in _runs(mission):
             task = tasks.get(run.task)
-            if task is not None:
+            if task is None:
+                continue
+            try:
                 found[(task.name, run.loc)] = instantiate(task, robots, host, run.args, run.loc)
+            except OrccadError as error:
+                if not run.args or error.location == run.loc:
+                    raise
+                note = Diagnostic("note", "in this clause of the Robot-Task", error.location)
+                raise OrccadError(f"{error.message} (with the arguments of this run of "
+                                  f"{task.name})", run.loc, (note, *error.notes)) from None
     return found
