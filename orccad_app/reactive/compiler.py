@@ -178,7 +178,8 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
                 seen.add(target)
                 queue.append(target)
     waiting = {key: _waiting(prep, key) for key in trees}
-    labels = {key: _labels(prep, key) for key in trees}
+    by_pause = _labels_by_pause(prep)
+    labels = {key: _labels(by_pause, key) for key in trees}
     return minimize(program, trees, BOOT, waiting, labels, prep.data_tests, _variables(prep))
 
 
@@ -201,11 +202,20 @@ def _waiting(prep: Prepared, key) -> tuple:
     return tuple(prep.pauses[pid].src.loc for pid in key)
 
 
-def _labels(prep: Prepared, key) -> frozenset:
+def _labels_by_pause(prep: Prepared) -> list[frozenset]:
+    """For each pause, the labels of the marked regions around it."""
+    around: list[set] = [set() for _ in prep.pauses]
+    for label, lo, hi in prep.marks:
+        for pause in range(lo, hi):
+            around[pause].add(label)
+    return [frozenset(labels) for labels in around]
+
+
+def _labels(by_pause: list[frozenset], key) -> frozenset:
     """Labels of the marked regions holding an active pause of control state ``key``."""
     if key is BOOT or key == TERMINAL:
         return frozenset()
-    return frozenset(label for label, lo, hi in prep.marks if any(lo <= p < hi for p in key))
+    return frozenset().union(*(by_pause[p] for p in key))
 
 
 def _variables(prep: Prepared) -> tuple[ir.VarDecl, ...]:
