@@ -19,7 +19,8 @@ from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import (ABSTRACT, COMPOSED, AbstractApplicationLowerer,
                                               ApplicationLowerer)
 
-__all__ = ["Source", "load", "select_mission", "compile_mission", "COMPOSED", "ABSTRACT"]
+__all__ = ["Source", "load", "select_mission", "compile_mission", "compile_mission_sites",
+           "COMPOSED", "ABSTRACT"]
 
 
 @dataclass(frozen=True)
@@ -83,3 +84,13 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
     """
     lowerer = AbstractApplicationLowerer if view == ABSTRACT else ApplicationLowerer
     return compile_program(lower_mission(source.program, mission, lowerer), max_states=max_states)
+
+
+def compile_mission_sites(source: Source, mission: ast.Mission, *,
+                          max_states: int = DEFAULT_MAX_STATES) -> tuple[Automaton, list]:
+    """The composed automaton of ``mission`` and its ``run`` sites
+    (:class:`~orccad_app.robottask.application.RunSite`, in source order: the ``site`` of the
+    labels ``("rt", X, site)``), for the executive, which instantiates each site's task."""
+    lowerer = ApplicationLowerer(source.program, mission)
+    automaton = compile_program(lowerer.lower(), max_states=max_states)
+    return automaton, list(lowerer.sites)

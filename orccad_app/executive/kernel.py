@@ -62,7 +62,7 @@ class Kernel:
     :param seed: the run's seed (a non-negative integer).
     """
 
-    __slots__ = ("now", "seed", "_queue", "_seq", "_streams", "events_processed")
+    __slots__ = ("now", "seed", "_queue", "_seq", "_streams", "events_processed", "stopped")
 
     def __init__(self, seed: int = 0) -> None:
         if not isinstance(seed, int) or seed < 0:
@@ -75,6 +75,8 @@ class Kernel:
         self._streams: dict[str, np.random.Generator] = {}
         self.events_processed = 0
         """How many events have run (cancelled ones excluded)."""
+        self.stopped = False
+        """Set by :meth:`stop`: :meth:`run` returns after the current event."""
 
     def schedule(self, time_ns: int, klass: int, action: Callable[[Any], None],
                  arg: Any = None) -> list[Any]:
@@ -100,11 +102,18 @@ class Kernel:
             heapq.heappop(queue)
         return queue[0][0] if queue else None
 
+    def stop(self) -> None:
+        """Make :meth:`run` return after the current event, the clock left at its instant
+        (a mission that ends before ``until``); the next :meth:`run` clears the request."""
+        self.stopped = True
+
     def run(self, until_ns: int) -> None:
-        """Process every event strictly before ``until_ns``, then set the clock to it."""
+        """Process every event strictly before ``until_ns``, then set the clock to it
+        (unless :meth:`stop` was called: the clock then stays at the stopping instant)."""
         queue = self._queue
         pop = heapq.heappop
         count = 0
+        self.stopped = False
         try:
             while queue and queue[0][0] < until_ns:
                 entry = pop(queue)
@@ -115,6 +124,8 @@ class Kernel:
                 entry[3] = None
                 count += 1
                 action(entry[4])
+                if self.stopped:
+                    return
         finally:
             self.events_processed += count
         if until_ns > self.now:
@@ -137,6 +148,8 @@ class Kernel:
             entry[3] = None
             self.events_processed += 1
             action(entry[4])
+            if self.stopped:
+                break
         return instant
 
     def stream(self, name: str) -> np.random.Generator:

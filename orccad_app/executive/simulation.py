@@ -108,6 +108,9 @@ class Simulation:
         self.channels: dict[str, Channel] = {}
         self.lateness_max_s = 0.0
         """Longest lag behind the wall clock in paced runs [s]."""
+        self.lateness_s: list[float] = []
+        """Paced runs: per processed instant, how late it ran behind the wall clock [s]
+        (0 when on time)."""
         self._wire()
 
     # -- construction ------------------------------------------------------------------------
@@ -271,7 +274,9 @@ class Simulation:
             the run fell behind is kept in :attr:`lateness_max_s` [s].
 
         A deadlock, a diverging plant or a failing compute object raises an
-        :class:`OrccadError`; the statistics then stop at the failing instant.
+        :class:`OrccadError`; the statistics then stop at the failing instant. After
+        ``sim.kernel.stop()`` (e.g. from an observer: the mission ended) the run returns at
+        that instant instead of ``until_ns``.
         """
         if not isinstance(until_ns, int) or until_ns < self.kernel.now:
             raise OrccadError(f"run until {until_ns!r} ns: expected an integer instant >= "
@@ -284,23 +289,28 @@ class Simulation:
             else:
                 self._run_paced(until_ns, realtime)
             for plant in self.plants.values():
-                plant.advance_to(until_ns)
+                plant.advance_to(self.kernel.now)
         finally:
             self._close()
         return self.stats()
 
     def _run_paced(self, until_ns: int, factor: float) -> None:
         kernel = self.kernel
+        kernel.stopped = False
         wall_start = time.perf_counter()
         sim_start = kernel.now
-        while True:
+        lateness = self.lateness_s
+        while not kernel.stopped:
             following = kernel.peek_ns()
             target = until_ns if following is None or following >= until_ns else following
             delay = wall_start + (target - sim_start) / 1e9 / factor - time.perf_counter()
             if delay > 0:
                 time.sleep(delay)
-            elif -delay > self.lateness_max_s:
-                self.lateness_max_s = -delay
+                lateness.append(0.0)
+            else:
+                lateness.append(-delay)
+                if -delay > self.lateness_max_s:
+                    self.lateness_max_s = -delay
             if target == until_ns:
                 kernel.run(until_ns)
                 return

@@ -37,6 +37,11 @@ def _check_ports(owner: str, ports: tuple[Port, ...]) -> dict[str, Port]:
     return by_name
 
 
+def _is_module_name(name: Any) -> bool:
+    """An identifier, or identifiers joined by dots (``TrackPID.ctrl`` in a mission's TCS)."""
+    return isinstance(name, str) and all(part.isidentifier() for part in name.split("."))
+
+
 class _HasPorts:
     """Port look-up shared by Module-Tasks and physical resources."""
 
@@ -68,7 +73,7 @@ class _HasPorts:
 class ModuleTask(_HasPorts):
     """A periodic Module-Task.
 
-    :param name: identifier, unique in the TCS.
+    :param name: identifier (or dotted identifiers, ``TrackPID.ctrl``), unique in the TCS.
     :param period_ns: activation period [ns], > 0.
     :param wcet_ns: worst-case execution time [ns], >= 0.
     :param compute: the compute object (see the module docstring).
@@ -98,8 +103,9 @@ class ModuleTask(_HasPorts):
     _by_name: dict[str, Port] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name.isidentifier():
-            raise OrccadError(f"invalid module-task name {self.name!r}: expected an identifier")
+        if not _is_module_name(self.name):
+            raise OrccadError(f"invalid module-task name {self.name!r}: expected an identifier "
+                              f"or dotted identifiers (Task.module)")
         self.ports = tuple(self.ports)
         self._by_name = _check_ports(self.name, self.ports)
         self._check_times()

@@ -1,0 +1,363 @@
+"""A mission in the loop: the application automaton and the RTAs drive the executive.
+
+:class:`MissionRun` couples a :class:`~orccad_app.executive.mission_plan.MissionPlan` (the
+composed automaton, one TCS for every ``run`` site, the plants) to a
+:class:`~orccad_app.executive.simulation.Simulation` (DESIGN.md §5, *Reactions*):
+
+**When the automaton reacts.** Observers' events (a written event port ``X.module.event`` is the
+automaton input ``X.E``), injected inputs (``--inject SIG@T``) and timers are signals. The
+automaton reacts, in zero time, at every instant where one of them can matter:
+
+- at every instant with an observer event or an injection (all of the instant's signals in one
+  reaction, after the jobs finishing then have written their outputs);
+- on a periodic *tick* (default: the gcd of the module periods, 1 ms for the arm missions),
+  because timers (``await 2 s``, a task's ``duration``, watchdogs, ``within``) are data tests
+  on the clock: a deadline is seen at the first tick at or after it — exactly at it when it is a
+  multiple of the tick. A reaction costs about a microsecond, so ticking is cheaper than
+  finding the next deadline in the automaton's data tests, and it is always correct.
+
+Reactions are events of class ``CONTROL``: a reaction at ``t`` sees the outputs of jobs that
+finished at ``t`` and its activations release at ``t``.
+
+**What a reaction does.** The labels of the new state say which Robot-Task instance runs and in
+which phase (``("phase", X, site, n)``): phase 1 runs no module, phase 2 the measuring modules
+(measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
+release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
+running restarts its modules. ``X.E.adjust`` applies E's type-1 update to the running
+module (``set_param``). ``E.raised`` records an exception. The run stops when the mission
+terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
+failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
+
+**Observers.** Executive observers are passed to the simulation; those that also define
+``on_reaction(t_ns, inputs, outputs, status)``, ``on_task_start(t_ns, task, site)``,
+``on_task_end(t_ns, task, site, outcome)`` or ``on_exception(record)`` get those too (traces).
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from dataclasses import dataclass
+from typing import Any, Iterable
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.bus import Bus
+from orccad_app.executive.deadlock import DeadlockError
+from orccad_app.executive.kernel import EventClass
+from orccad_app.executive.mission_plan import MissionPlan, SitePlan
+from orccad_app.executive.observer import Observer
+from orccad_app.executive.plant import PlantDivergenceError
+from orccad_app.executive.processor import Processor
+from orccad_app.executive.run_result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.executive.simulation import Simulation
+from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.reactive.runtime import Reactor
+
+__all__ = ["MissionRun", "Injection", "parse_injection", "DEFAULT_UNTIL_NS", "MISSION_HOOKS"]
+
+_CONTROL = EventClass.CONTROL
+DEFAULT_UNTIL_NS = 60_000_000_000
+"""Default simulated-time limit of a run [ns] (60 s)."""
+MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception")
+"""Mission-level callbacks an observer may define besides the executive's."""
+_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
+_INJECTION = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:\((.*)\))?\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
+
+
+@dataclass(frozen=True)
+class Injection:
+    """An input signal raised at a simulated instant (``--inject Stop@2.5``).
+
+    :param name: the automaton input (a mission input, or an observer event ``X.E``).
+    :param time_ns: when [ns].
+    :param value: its value for a valued input, else ``None``.
+    """
+
+    name: str
+    time_ns: int
+    value: Any = None
+
+
+def parse_injection(text: str) -> Injection:
+    """``SIG@T`` or ``SIG(value)@T`` with ``T`` in seconds; raise :class:`OrccadError`."""
+    match = _INJECTION.match(text)
+    if match is None:
+        raise OrccadError(f"bad injection {text!r}: expected SIGNAL@SECONDS or "
+                          f"SIGNAL(value)@SECONDS, e.g. Stop@2.5")
+    name, raw, when = match.groups()
+    try:
+        seconds = float(when)
+        value = None if raw is None else _value(raw.strip())
+    except ValueError:
+        raise OrccadError(f"bad injection {text!r}: cannot read the time or the value") from None
+    if not seconds >= 0:
+        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
+    return Injection(name, int(round(seconds * 1e9)), value)
+
+
+def _value(raw: str) -> Any:
+    if raw in ("true", "false"):
+        return raw == "true"
+    try:
+        return int(raw)
+    except ValueError:
+        return float(raw)
+
+
+class _Link(Observer):
+    """Forwards the executive's signals and ``e`` writes to the mission run."""
+
+    def __init__(self, run: MissionRun) -> None:
+        self._run = run
+
+    def on_signal(self, t_ns: int, name: str, value: Any) -> None:
+        self._run.signal(name, value)
+
+    def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port == "e":
+            self._run.task_error(module, value)
+
+
+class MissionRun:
+    """One run of a planned mission. See the module docstring.
+
+    :param plan: the mission's plan (:func:`~orccad_app.executive.mission_plan.plan_mission`).
+    :param seed: the run's seed (execution times drawn in ``[bcet, wcet]``, sensor noise).
+    :param until_ns: the simulated-time limit [ns].
+    :param injections: inputs raised at given instants.
+    :param processors: processor descriptions (scheduler, context switch); others default.
+    :param bus: the bus between processors.
+    :param observers: executive observers (traces), optionally with the mission hooks.
+    :param realtime: ``None`` (as fast as possible) or the pacing factor (sim s / wall s).
+    :param tick_ns: the automaton's periodic reaction [ns] (default ``plan.tick_ns``).
+    """
+
+    def __init__(self, plan: MissionPlan, *, seed: int = 0,
+                 until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
+                 processors: Iterable[Processor] = (), bus: Bus | None = None,
+                 observers: Iterable[Any] = (), realtime: float | None = None,
+                 tick_ns: int | None = None) -> None:
+        if not isinstance(until_ns, int) or until_ns <= 0:
+            raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
+        self.plan = plan
+        self.seed = seed
+        self.until_ns = until_ns
+        self.realtime = realtime
+        self.tick_ns = tick_ns or plan.tick_ns
+        self.reactor = Reactor(plan.automaton)
+        observers = list(observers)
+        self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
+                       for hook in MISSION_HOOKS}
+        self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
+                              plants=plan.plants(), observers=[_Link(self), *observers])
+        self.kernel = self.sim.kernel
+        self._signals = plan.signals
+        self._error_site = {s.error_module: s.site for s in plan.sites if s.error_module}
+        self._outputs = {s.name for s in plan.automaton.outputs if "." not in s.name}
+        self._pending: dict[str, Any] = {}
+        self._scheduled_at = -1
+        self._reacted_at = -1
+        self._state: int | None = None
+        self._phase: dict[int, int] = {}
+        self._active: dict[int, set[str]] = {s.site: set() for s in plan.sites}
+        self._running: dict[int, RobotTaskRecord] = {}
+        self.records: list[RobotTaskRecord] = []
+        self.exceptions: list[ExceptionRecord] = []
+        self.outputs: list[tuple[int, str, Any]] = []
+        self._schedule_inputs(injections)
+
+    def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
+        inputs = {s.name for s in self.plan.automaton.inputs}
+        for injection in injections:
+            if injection.name not in inputs:
+                known = ", ".join(sorted(inputs)) or "none"
+                raise OrccadError(f"--inject {injection.name}: not an input of mission "
+                                  f"'{self.plan.name}' (inputs: {known})")
+            if injection.time_ns >= self.until_ns:
+                raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
+                                  f"after --until ({self.until_ns / 1e9:g} s)")
+            self.kernel.schedule(injection.time_ns, _CONTROL, self._inject, injection)
+        self.kernel.schedule(0, _CONTROL, self._tick)
+
+    # -- signals into the automaton ----------------------------------------------------------
+
+    def signal(self, name: str, value: Any) -> None:
+        """An executive signal: forwarded to the automaton when it is one of its inputs."""
+        target = self._signals.get(name)
+        if target is not None:
+            self._post(target, None)
+
+    def _post(self, name: str, value: Any) -> None:
+        self._pending[name] = value
+        now = self.kernel.now
+        if self._scheduled_at != now:
+            self._scheduled_at = now
+            self.kernel.schedule(now, _CONTROL, self._react)
+
+    def _inject(self, injection: Injection) -> None:
+        self._post(injection.name, injection.value)
+
+    def _tick(self, _: object) -> None:
+        self.kernel.schedule(self.kernel.now + self.tick_ns, _CONTROL, self._tick)
+        self._react(None)
+
+    def task_error(self, module: str, value: Any) -> None:
+        """A control law wrote its task error ``e``: a tracking-error sample of its run."""
+        record = self._running.get(self._error_site.get(module, -1))
+        if record is not None:
+            record.errors.add(value)
+
+    # -- reactions ---------------------------------------------------------------------------
+
+    def _react(self, _: object) -> None:
+        now = self.kernel.now
+        pending = self._pending
+        if not pending and self._reacted_at == now:
+            return
+        self._pending = {}
+        self._reacted_at = now
+        if any(value is not None for value in pending.values()):
+            inputs: Any = pending
+        else:
+            inputs = set(pending)
+        reaction = self.reactor.react(inputs, now)
+        for hook in self._hooks["on_reaction"]:
+            hook(now, tuple(pending), reaction.outputs, reaction.status)
+        emitted = set(reaction.outputs)
+        for name in reaction.outputs:
+            if name in self._outputs:
+                self.outputs.append((now, name, reaction.values.get(name)))
+        raised = self._exceptions(now, reaction.outputs)
+        if self.reactor.state != self._state:
+            self._state = self.reactor.state
+            phases = self._phases()
+        else:
+            phases = self._phase
+        self._update_sites(now, emitted, raised, phases)
+        if self.reactor.finished:
+            self.kernel.stop()
+
+    def _phases(self) -> dict[int, int]:
+        phases: dict[int, int] = {}
+        for label in self.reactor.labels:
+            if label[0] == "phase":
+                phases[label[2]] = max(phases.get(label[2], 0), label[3])
+            elif label[0] == "rt":
+                phases.setdefault(label[2], 1)
+        return phases
+
+    def _running_site(self, task: str) -> SitePlan | None:
+        for site in self.plan.sites:
+            if site.task == task and self._phase.get(site.site, 0) > 0:
+                return site
+        return None
+
+    def _exceptions(self, now: int, outputs: tuple[str, ...]) -> dict[str, str | None]:
+        """Record the exceptions of this reaction; return raised name -> task."""
+        raised: dict[str, str | None] = {}
+        for name in outputs:
+            if name.endswith(".adjust"):
+                task, exception = name.split(".")[:2]
+                site = self._running_site(task)
+                if site is not None and exception in site.adjustments:
+                    module, param, value = site.adjustments[exception]
+                    self.sim.set_param(module, param, value, at_ns=now)
+                self._record(ExceptionRecord(now, exception, 1, task))
+            elif name.endswith(".raised"):
+                exception = name[: -len(".raised")]
+                kind, task = self._origin(exception)
+                raised[exception] = task
+                self._record(ExceptionRecord(now, exception, kind, task))
+        return raised
+
+    def _origin(self, exception: str) -> tuple[int, str | None]:
+        """The type of ``exception`` and the running task that raised it."""
+        for site in self.plan.sites:
+            if self._phase.get(site.site, 0) == 0:
+                continue
+            if exception in site.exception_types:
+                return site.exception_types[exception], site.task
+            if exception.endswith("_timeout") and exception[:-8] in site.instance.events:
+                return 2, site.task
+        return 2, None
+
+    def _record(self, record: ExceptionRecord) -> None:
+        self.exceptions.append(record)
+        for hook in self._hooks["on_exception"]:
+            hook(record)
+
+    def _update_sites(self, now: int, emitted: set[str], raised: dict[str, str | None],
+                      phases: dict[int, int]) -> None:
+        for site in self.plan.sites:
+            number = site.site
+            old = self._phase.get(number, 0)
+            new = phases.get(number, 0)
+            restart = old > 0 and new > 0 and f"{site.task}.start" in emitted
+            if old > 0 and (new == 0 or restart):
+                self._end_task(now, site, _outcome(site.task, emitted, raised))
+            if new > 0 and (old == 0 or restart):
+                self._start_task(now, site)
+            active = self._active[number]
+            wanted = site.wanted(new)
+            stop = [m for m in site.modules if m in active and (restart or m not in wanted)]
+            if stop:
+                self.sim.kill(stop, at_ns=now)
+                active.difference_update(stop)
+            start = [m for m in wanted if m not in active]
+            if start:
+                self.sim.activate(start, at_ns=now)
+                active.update(start)
+        self._phase = phases
+
+    def _start_task(self, now: int, site: SitePlan) -> None:
+        record = RobotTaskRecord(site.task, site.site, now)
+        self._running[site.site] = record
+        self.records.append(record)
+        for hook in self._hooks["on_task_start"]:
+            hook(now, site.task, site.site)
+
+    def _end_task(self, now: int, site: SitePlan, outcome: str) -> None:
+        record = self._running.pop(site.site)
+        record.end_ns = now
+        record.outcome = outcome
+        for hook in self._hooks["on_task_end"]:
+            hook(now, site.task, site.site, outcome)
+
+    # -- running -----------------------------------------------------------------------------
+
+    def run(self) -> RunResult:
+        """Run until the mission ends, ``until_ns``, a run-time failure or Ctrl-C."""
+        wall_start = time.perf_counter()
+        status, reason = None, None
+        try:
+            self.sim.run(self.until_ns, realtime=self.realtime)
+        except _RUN_FAILURES as error:
+            status, reason = "failed", error.message
+        except KeyboardInterrupt:
+            status, reason = "aborted", "interrupted (Ctrl-C)"
+        wall = time.perf_counter() - wall_start
+        if status is None:
+            status, reason = self._final_status()
+        stats = self.sim.stats()
+        return RunResult(self.plan.name, status, reason, self.kernel.now, wall, self.records,
+                         self.exceptions, stats, self.plan.tcs.modules, self.outputs,
+                         self.sim.lateness_s if self.realtime else None, self.seed)
+
+    def _final_status(self) -> tuple[str, str | None]:
+        reactor = self.reactor
+        if reactor.finished:
+            return reactor.status, reactor.reason
+        if reactor.status in ("failed", "aborted"):
+            return reactor.status, reactor.reason
+        return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
+
+
+def _outcome(task: str, emitted: set[str], raised: dict[str, str | None]) -> str:
+    if f"{task}.good_end" in emitted:
+        return "good_end"
+    for exception, origin in raised.items():
+        if origin == task:
+            return exception
+    if "Timeout" in raised:
+        return "Timeout"
+    return "killed"
