@@ -10,7 +10,7 @@ output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal;
 
 robottask Home(goal: vector = [0.0, 0.0, 0.0]) on arm {
     duration 1.5 s;
-    task_function joint_tracking(trajectory = constant(value = goal));
+    task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.0));
     law pid(kp = 400.0, kv = 40.0);
     module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
     module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;

@@ -63,11 +63,14 @@ def _reserved_name(tree: Tree, filename: str) -> OrccadError | None:
     """An error for the first keyword used as an identifier, if any.
 
     The contextual lexer reads a keyword as ``NAME`` where no keyword fits (``emit loop;``);
-    keywords are reserved, so such a token is an error.
+    keywords are reserved, so such a token is an error — except as the name of a named
+    argument, where nothing else can stand: ``min_jerk(goal = g, duration = 1.0)``.
     """
     reserved = keywords()
-    bad = [child for subtree in tree.iter_subtrees() for child in subtree.children
-           if isinstance(child, Token) and child.type == "NAME" and str(child) in reserved]
+    bad = [child for subtree in tree.iter_subtrees()
+           for index, child in enumerate(subtree.children)
+           if isinstance(child, Token) and child.type == "NAME" and str(child) in reserved
+           and not (subtree.data == "named_arg" and index == 0)]
     if not bad:
         return None
     token = min(bad, key=lambda t: (t.line, t.column))

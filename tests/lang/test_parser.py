@@ -357,3 +357,13 @@ def test_arbitrary_text_only_ever_raises_orccad_errors(text):
         parse(text, "noise.orc")
     except OrccadError as error:
         assert error.location is not None
+
+
+def test_a_keyword_may_name_an_argument_but_nothing_else():
+    program = parse("robot arm : arm3dof;\nrobottask T() on arm {\n"
+                    "    task_function joint_tracking(trajectory = min_jerk(goal = [0.0], "
+                    "duration = 1.0));\n}\n", "k.orc")
+    trajectory = program.robottasks[0].task_function.args[0].value
+    assert [a.name for a in trajectory.args] == ["goal", "duration"]
+    with pytest.raises(OrccadError, match="'loop' is a reserved keyword"):
+        parse("mission M { output loop; }", "k.orc")
