@@ -60,6 +60,7 @@ DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
 MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception")
 """Mission-level callbacks an observer may define besides the executive's."""
+_INTERRUPTED = "interrupted (Ctrl-C)"
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
 _INJECTION = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:\((.*)\))?\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
 
@@ -165,6 +166,13 @@ class MissionRun:
         self.exceptions: list[ExceptionRecord] = []
         self.outputs: list[tuple[int, str, Any]] = []
         self._schedule_inputs(injections)
+
+    def add_observer(self, observer: Any) -> None:
+        """Observe the run from now on (executive callbacks and the mission hooks it has)."""
+        self.sim.add_observer(observer)
+        for hook in MISSION_HOOKS:
+            if hasattr(observer, hook):
+                self._hooks[hook].append(getattr(observer, hook))
 
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
         inputs = {s.name for s in self.plan.automaton.inputs}
@@ -334,14 +342,15 @@ class MissionRun:
         except _RUN_FAILURES as error:
             status, reason = "failed", error.message
         except KeyboardInterrupt:
-            status, reason = "aborted", "interrupted (Ctrl-C)"
+            status, reason = "aborted", _INTERRUPTED
         wall = time.perf_counter() - wall_start
         if status is None:
             status, reason = self._final_status()
         stats = self.sim.stats()
         return RunResult(self.plan.name, status, reason, self.kernel.now, wall, self.records,
                          self.exceptions, stats, self.plan.tcs.modules, self.outputs,
-                         self.sim.lateness_s if self.realtime else None, self.seed)
+                         self.sim.lateness_s if self.realtime else None, self.seed,
+                         interrupted=reason == _INTERRUPTED)
 
     def _final_status(self) -> tuple[str, str | None]:
         reactor = self.reactor

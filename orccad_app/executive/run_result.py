@@ -105,6 +105,7 @@ class RunResult:
     :param outputs: mission output signals emitted, ``(t_ns, name, value)``.
     :param lateness_s: paced runs: per instant, lateness behind the wall clock [s].
     :param seed: the run's seed.
+    :param interrupted: the run was stopped by Ctrl-C (status ``aborted``).
     """
 
     mission: str
@@ -119,6 +120,7 @@ class RunResult:
     outputs: list[tuple[int, str, Any]] = field(default_factory=list)
     lateness_s: list[float] | None = None
     seed: int = 0
+    interrupted: bool = False
 
     @property
     def exit_status(self) -> int:

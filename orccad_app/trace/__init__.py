@@ -1,0 +1,24 @@
+"""Traces and reports of executive runs.
+
+:class:`TraceRecorder` observes a run (an executive observer with the mission hooks) and
+writes each event at once to a CSV or MCAP file (:func:`open_trace`); :func:`report_dict` and
+:func:`format_report` turn a :class:`~orccad_app.executive.run_result.RunResult` into the JSON
+report or the text of ``orccad run``.
+"""
+
+from orccad_app.trace.recorder import EVENTS, TraceRecorder, TraceRow, to_json
+from orccad_app.trace.report import format_report, lateness_summary, report_dict
+from orccad_app.trace.writers import CsvTraceWriter, McapTraceWriter, open_trace
+
+__all__ = [
+    "TraceRecorder",
+    "TraceRow",
+    "EVENTS",
+    "to_json",
+    "CsvTraceWriter",
+    "McapTraceWriter",
+    "open_trace",
+    "report_dict",
+    "format_report",
+    "lateness_summary",
+]
