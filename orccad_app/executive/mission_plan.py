@@ -57,6 +57,12 @@ class SitePlan:
     exception_types: dict[str, int] = field(default_factory=dict)
     error_module: str | None = None
 
+    def fresh_computes(self) -> dict[str, Any]:
+        """New compute objects for every module (nominal parameters: a Robot-Task run again
+        does not inherit the type-1 updates of its previous run)."""
+        specs = self.instance.modules.values()
+        return {name: spec.fresh(self.instance.context) for name, spec in zip(self.modules, specs)}
+
     def wanted(self, phase: int) -> tuple[str, ...]:
         """Modules active in ``phase`` (0: not running)."""
         if phase >= 3:
@@ -151,7 +157,7 @@ def plan_mission(source: Any, mission: Any, host: Any = None) -> MissionPlan:
     automaton, sites = compile_mission_sites(source, mission)
     robots = {r.name: r for r in source.program.robots}
     inputs = {s.name for s in automaton.inputs}
-    tcs = TCS(mission.name)
+    tcs = TCS(mission.name, shared_actuators=True)
     plant_specs: dict[str, dict[str, Any]] = {}
     plans = []
     for site, prefix in zip(sites, _prefixes(sites)):

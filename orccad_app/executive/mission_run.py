@@ -228,9 +228,12 @@ class MissionRun:
             inputs: Any = pending
         else:
             inputs = set(pending)
-        reaction = self.reactor.react(inputs, now)
+        reactor = self.reactor
+        reaction = reactor.react(inputs, now)
         for hook in self._hooks["on_reaction"]:
             hook(now, tuple(pending), reaction.outputs, reaction.status)
+        if not reaction.outputs and reactor.state == self._state and not reactor.finished:
+            return  # a tick that changed nothing (the common case)
         emitted = set(reaction.outputs)
         for name in reaction.outputs:
             if name in self._outputs:
@@ -318,6 +321,9 @@ class MissionRun:
         self._phase = phases
 
     def _start_task(self, now: int, site: SitePlan) -> None:
+        if any(record.site == site.site for record in self.records):
+            for name, compute in site.fresh_computes().items():
+                self.sim.replace_compute(name, compute)
         record = RobotTaskRecord(site.task, site.site, now)
         self._running[site.site] = record
         self.records.append(record)

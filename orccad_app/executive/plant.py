@@ -7,11 +7,13 @@
 - consumer (actuator) port ``tau`` (``ctrl``, dim ``nu``), held until the next write
   (zero-order hold) and clamped to the torque limits.
 
-**Time coupling.** The plant integrates in steps of the model's ``opt.timestep``: before a read
-or a write at ``t`` (and at the end of a run) it takes every step that ends at or before ``t``.
-A read thus sees the state of the last step boundary ``<= t``, and a write applies from that
-boundary: both are exact when instants fall on the timestep grid and off by less than one
-timestep otherwise.
+**Time coupling.** The plant integrates in steps of the model's ``opt.timestep`` on the grid
+``k · timestep`` and is brought *exactly* to the instant of every read and write (and to the
+end of a run): when that instant falls between two grid points, a shorter step reaches it,
+and the next advance first completes the step back onto the grid. A read at ``t`` thus sees the
+state at ``t`` and a write at ``t`` acts from ``t``: a Module-Task's execution time delays its
+torque by exactly that time, even below one timestep (RR-1801 §6.2's point). Instants on the
+grid cost no extra step.
 
 **Sensors.** ``noise_std`` adds Gaussian noise per port (stream ``plant/<name>/<port>`` of the
 run's seed), then ``quantization`` rounds to multiples of the step per port.
@@ -23,6 +25,7 @@ run's seed), then ``quantization`` rounds to multiples of the step per port.
 
 from __future__ import annotations
 
+import math
 from typing import Any, Mapping
 
 import mujoco
@@ -36,6 +39,7 @@ __all__ = ["MujocoPlant", "PlantDivergenceError"]
 
 _WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
                      mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
+_WATCHED_INDEX = np.array([int(w) for w in _WATCHED_WARNINGS])
 
 
 class PlantDivergenceError(OrccadError):
@@ -91,12 +95,14 @@ class MujocoPlant:
             self.data.qvel[:] = qvel0
         mujoco.mj_forward(self.model, self.data)
         self.steps = 0
-        """Integration steps taken."""
+        """Integration steps taken (whole and partial)."""
+        self._time_ns = 0
         self.saturations = 0
         """Actuator writes that the torque limits clamped."""
         self._kernel: Kernel | None = None
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
+        self._warning_total = sum(self._warnings)
 
     # -- construction ------------------------------------------------------------------------
 
@@ -151,32 +157,63 @@ class MujocoPlant:
 
     @property
     def time_ns(self) -> int:
-        """The plant's integrated time [ns] (a multiple of the timestep)."""
-        return self.steps * self.timestep_ns
+        """The plant's integrated time [ns]."""
+        return self._time_ns
 
     def advance_to(self, time_ns: int) -> None:
-        """Take every integration step that ends at or before ``time_ns``."""
-        count = (time_ns - self.time_ns) // self.timestep_ns
-        if count <= 0:
+        """Integrate up to ``time_ns`` exactly: back onto the timestep grid, whole steps,
+        then a partial step to an instant between grid points."""
+        now = self._time_ns
+        if time_ns <= now:
             return
-        model, data, step = self.model, self.data, mujoco.mj_step
-        for _ in range(count):
-            step(model, data)
-        self.steps += count
+        dt = self.timestep_ns
+        offset = now % dt
+        if offset:
+            boundary = now - offset + dt
+            if time_ns < boundary:
+                self._partial(time_ns - now)
+                self._check(time_ns)
+                return
+            self._partial(boundary - now)
+            now = boundary
+        count = (time_ns - now) // dt
+        if count > 0:
+            model, data, step = self.model, self.data, mujoco.mj_step
+            for _ in range(count):
+                step(model, data)
+            self.steps += count
+            self._time_ns = now = now + count * dt
+        if time_ns > now:
+            self._partial(time_ns - now)
         self._check(time_ns)
 
+    def _partial(self, duration_ns: int) -> None:
+        """One step shorter than the timestep."""
+        option = self.model.opt
+        full = option.timestep
+        option.timestep = duration_ns / 1e9
+        try:
+            mujoco.mj_step(self.model, self.data)
+        finally:
+            option.timestep = full
+        self.steps += 1
+        self._time_ns += duration_ns
+
     def _warning_counts(self) -> tuple[int, ...]:
-        return tuple(self.data.warning[int(w)].number for w in _WATCHED_WARNINGS)
+        return tuple(self.data.warning.number[_WATCHED_INDEX].tolist())
 
     def _check(self, time_ns: int) -> None:
-        counts = self._warning_counts()
-        finite = np.isfinite(self.data.qpos).all() and np.isfinite(self.data.qvel).all()
-        if finite and counts == self._warnings:
+        data = self.data
+        # one sum each: any NaN or infinity makes it non-finite (cheaper than isfinite().all())
+        finite = math.isfinite(data.qpos.sum() + data.qvel.sum())
+        if finite and data.warning.number[_WATCHED_INDEX].sum() == self._warning_total:
             return
+        counts = self._warning_counts()
         raised = [w.name for w, old, new in zip(_WATCHED_WARNINGS, self._warnings, counts)
                   if new > old]
         what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         self._warnings = counts
+        self._warning_total = sum(counts)
         raise PlantDivergenceError(f"plant '{self.name}' diverged before t = {time_ns} ns "
                                    f"({what}); reduce the timestep or the gains")
 
@@ -198,9 +235,11 @@ class MujocoPlant:
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
         self.advance_to(self._kernel.now)
-        command = np.broadcast_to(np.asarray(value, dtype=float), (self.model.nu,))
+        command = np.asarray(value, dtype=float)
+        if command.shape != self._low.shape:
+            command = np.broadcast_to(command, self._low.shape)
         clamped = np.clip(command, self._low, self._high)
-        if not np.array_equal(clamped, command):
+        if (clamped != command).any():
             self.saturations += 1
         self.data.ctrl[:] = clamped
 

@@ -28,11 +28,13 @@ class ErrorSamples:
 
     def add(self, error: Any) -> None:
         """One sample (a vector of components) [rad or m]."""
-        values = np.asarray(error, dtype=float)
-        self.sum_sq += float(np.dot(values.ravel(), values.ravel()))
+        values = np.asarray(error, dtype=float).ravel()
+        if not values.size:
+            return
+        self.sum_sq += float(values @ values)
         self.count += values.size
-        peak = float(np.max(np.abs(values))) if values.size else 0.0
-        if peak > self.max_abs or math.isnan(peak):
+        peak = float(abs(values).max())
+        if peak > self.max_abs or peak != peak:  # NaN propagates
             self.max_abs = peak
 
     def summary(self) -> dict[str, float] | None:

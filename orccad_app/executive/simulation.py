@@ -256,6 +256,15 @@ class Simulation:
                 hook(sim.kernel.now, module, name, value)
         self.at(at_ns, change)
 
+    def replace_compute(self, module: str, compute: Any) -> None:
+        """Give ``module`` a new compute object, now (used by the next job that starts; call
+        it before re-activating a Module-Task that must start afresh)."""
+        runtime = self._runtimes([module])[0]
+        if not callable(getattr(compute, "compute", None)):
+            raise OrccadError(f"module-task '{module}': compute object {compute!r} has no "
+                              f"compute(t_s, inputs) method")
+        runtime.task.compute = compute
+
     def post_signal(self, name: str, value: Any = True, at_ns: int | None = None) -> None:
         """Surface an external signal (operator input, timer) to observers at ``at_ns``."""
         def emit(sim: Simulation) -> None:

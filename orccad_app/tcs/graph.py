@@ -27,10 +27,16 @@ class TCS:
     """A time-constrained specification: Module-Tasks, physical resources and connections.
 
     :param name: the Robot-Task's name, for messages.
+    :param shared_actuators: allow several producers to feed an actuator port of a physical
+        resource (a mission's TCS holds the modules of every Robot-Task it runs; those that
+        drive the same robot never run together: the application level checks resource
+        conflicts). Module-Task inputs are always fed once.
     """
 
-    def __init__(self, name: str = "tcs", modules: Iterable[Module] = ()) -> None:
+    def __init__(self, name: str = "tcs", modules: Iterable[Module] = (),
+                 shared_actuators: bool = False) -> None:
         self.name = name
+        self.shared_actuators = shared_actuators
         self._modules: dict[str, Module] = {}
         self._connections: list[Connection] = []
         self._feeds: dict[str, Connection] = {}
@@ -68,7 +74,9 @@ class TCS:
         if out_port.type != in_port.type or out_port.dim != in_port.dim:
             raise OrccadError(f"type mismatch: '{producer}' is {out_port.type}[{out_port.dim}] "
                               f"but '{consumer}' is {in_port.type}[{in_port.dim}]", location)
-        if consumer in self._feeds:
+        shared = self.shared_actuators and isinstance(self._modules[connection.consumer_module],
+                                                      PhysicalResource)
+        if consumer in self._feeds and not shared:
             raise OrccadError(f"input port '{consumer}' is fed twice: by "
                               f"'{self._feeds[consumer].producer}' and by '{producer}'", location)
         resource = self._resource_end(connection)
@@ -76,7 +84,7 @@ class TCS:
             raise OrccadError(f"connection {connection.label}: ports of the physical resource "
                               f"'{resource}' use asyn/asyn (sensors are sampled when read, "
                               f"actuators hold the last write)", location)
-        self._feeds[consumer] = connection
+        self._feeds.setdefault(consumer, connection)
         self._connections.append(connection)
         return connection
 
