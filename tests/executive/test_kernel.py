@@ -71,3 +71,15 @@ def test_run_instant_processes_one_instant_and_keeps_the_clock_there():
     assert kernel.run_instant() == 3
     assert seen == ["woken", "a"] and kernel.now == 3
     assert kernel.run_instant() == 8 and kernel.run_instant() is None
+
+
+def test_stop_returns_after_the_current_event_leaving_the_clock_there():
+    kernel = Kernel()
+    seen = []
+    kernel.schedule(5, EventClass.CONTROL, lambda _: (seen.append(5), kernel.stop()))
+    kernel.schedule(5, EventClass.RELEASE, seen.append, "later at 5")
+    kernel.schedule(9, EventClass.CONTROL, seen.append, 9)
+    kernel.run(100)
+    assert (seen, kernel.now, kernel.stopped) == ([5], 5, True)
+    kernel.run(100)  # a new run clears the request and goes on
+    assert (seen, kernel.now) == ([5, "later at 5", 9], 100)

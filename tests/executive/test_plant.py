@@ -174,3 +174,24 @@ def test_plant_ports_must_be_wired_asyn_asyn():
     tcs.add(ModuleTask("ctl", ms(10), ms(1), None, (Port("q", "in"),)))
     with pytest.raises(OrccadError, match="use asyn/asyn"):
         tcs.connect("arm.q", "ctl.q", "asyn/syn")
+
+
+def test_a_write_between_grid_points_acts_from_its_exact_instant():
+    plant = MujocoPlant("wheel", xml=WHEEL)
+    # the job's 0.3 ms execution time delays the torque by exactly 0.3 ms (a partial step)
+    sim = _sim(plant, Constant({0: 1.0}), period=ms(10), wcet=300_000)
+    sim.activate()
+    sim.run(ms(500))
+    assert plant.time_ns == ms(500)
+    assert plant.qvel[0] == pytest.approx(2 * (0.5 - 0.0003), rel=1e-9)
+    # the grid is kept: a read at 500 ms needed no partial step after the one back onto it
+    assert plant.steps == 500 + 1
+
+
+def test_the_plant_reaches_an_instant_between_grid_points_exactly():
+    plant = MujocoPlant("wheel", xml=WHEEL)
+    sim = _sim(plant, Constant({0: 1.0}), period=ms(10), wcet=0)
+    sim.activate()
+    sim.run(ms(10) + 250_000)
+    assert plant.time_ns == ms(10) + 250_000
+    assert plant.qvel[0] == pytest.approx(2 * 0.01025, rel=1e-9)
