@@ -156,7 +156,7 @@ class MissionRun:
         self._error_site = {s.error_module: s.site for s in plan.sites if s.error_module}
         self._outputs = {s.name for s in plan.automaton.outputs if "." not in s.name}
         self._pending: dict[str, Any] = {}
-        self._scheduled_at = -1
+        self._queued = False  # a reaction event is in the kernel's queue
         self._reacted_at = -1
         self._state: int | None = None
         self._phase: dict[int, int] = {}
@@ -198,12 +198,16 @@ class MissionRun:
     def _post(self, name: str, value: Any) -> None:
         self._pending[name] = value
         now = self.kernel.now
-        if self._scheduled_at != now:
-            self._scheduled_at = now
-            self.kernel.schedule(now, _CONTROL, self._react)
+        if not self._queued:
+            self._queued = True
+            self.kernel.schedule(now, _CONTROL, self._queued_reaction)
 
     def _inject(self, injection: Injection) -> None:
         self._post(injection.name, injection.value)
+
+    def _queued_reaction(self, _: object) -> None:
+        self._queued = False
+        self._react(None)
 
     def _tick(self, _: object) -> None:
         self.kernel.schedule(self.kernel.now + self.tick_ns, _CONTROL, self._tick)

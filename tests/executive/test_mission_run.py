@@ -150,3 +150,17 @@ def test_bad_injections_are_reported(text):
 def test_an_injection_must_name_an_input(plan_file):
     with pytest.raises(OrccadError, match="not an input of mission 'ArmPID'"):
         MissionRun(plan_file(PID), injections=[Injection("Stop", 0)])
+
+
+def test_an_event_after_the_instants_reaction_gets_its_own_reaction_at_once(plan_text,
+                                                                           hold_task):
+    # the injection and the tick react first at t = 0; the zero-time observer then fires at
+    # t = 0 too: phase 3 must start at 0, not at the next tick.
+    text = "input Go;\n" + hold_task % (
+        "    module rest : at_rest(tol = 0.05) period 5 ms wcet 0 ms on cpu0;\n"
+        "    connect arm.qdot -> rest.qdot;\n"
+        "    precondition measure rest within 1 s;") + "mission M { run Hold(); }"
+    result, log = _run(plan_text(text), injections=[Injection("Go", 0)])
+    assert result.status == "done"
+    assert [(e[1], e[2]) for e in _events(log, "on_activate")] == \
+        [(0, "Hold.rest"), (0, "Hold.traj"), (0, "Hold.ctrl")]
