@@ -164,3 +164,20 @@ def test_an_event_after_the_instants_reaction_gets_its_own_reaction_at_once(plan
     assert result.status == "done"
     assert [(e[1], e[2]) for e in _events(log, "on_activate")] == \
         [(0, "Hold.rest"), (0, "Hold.traj"), (0, "Hold.ctrl")]
+
+
+def test_a_diverging_plant_fails_the_run_with_its_message(plan_file, monkeypatch):
+    from orccad_app.executive import MujocoPlant, PlantDivergenceError
+
+    original = MujocoPlant._check
+
+    def check(self, time_ns):
+        original(self, time_ns)
+        if time_ns >= 100_000_000:
+            raise PlantDivergenceError(f"plant '{self.name}' diverged before t = {time_ns} ns")
+
+    monkeypatch.setattr(MujocoPlant, "_check", check)
+    result, _ = _run(plan_file(PID))
+    assert (result.status, result.exit_status) == ("failed", 1)
+    assert result.reason == "plant 'arm' diverged before t = 100000000 ns"
+    assert result.sim_time_ns == 100_000_000 and result.robot_tasks[0].outcome == "running"
