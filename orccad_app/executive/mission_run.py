@@ -23,8 +23,9 @@ finished at ``t`` and its activations release at ``t``.
 which phase (``("phase", X, site, n)``): phase 1 runs no module, phase 2 the measuring modules
 (measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
 release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
-running restarts its modules. ``X.E.adjust`` applies E's type-1 update to the running
-module (``set_param``). ``E.raised`` records an exception. The run stops when the mission
+running restarts its modules; every run of a Robot-Task starts with fresh module instances
+(nominal parameters, no state, even when the same plan is run again). ``X.E.adjust`` applies
+E's type-1 update to the running module (``set_param``). ``E.raised`` records an exception. The run stops when the mission
 terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
 failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
@@ -325,9 +326,8 @@ class MissionRun:
         self._phase = phases
 
     def _start_task(self, now: int, site: SitePlan) -> None:
-        if any(record.site == site.site for record in self.records):
-            for name, compute in site.fresh_computes().items():
-                self.sim.replace_compute(name, compute)
+        for name, compute in site.fresh_computes().items():  # nominal parameters, no state
+            self.sim.replace_compute(name, compute)
         record = RobotTaskRecord(site.task, site.site, now)
         self._running[site.site] = record
         self.records.append(record)
