@@ -8,12 +8,14 @@ robot arm : arm3dof;
 input Stop, Hold, Gripper : float;
 output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal;
 
-robottask Home(goal: vector = [0.0, 0.0, 0.0]) on arm {
+// Home brings the arm to the start of TrackPID's cosine, q_d(0) = 2 q0, from where it is.
+robottask Home(goal: vector = [1.0, 1.0, 1.0]) on arm {
     duration 1.5 s;
     task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.0));
     law pid(kp = 400.0, kv = 40.0);
     module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
     module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    connect arm.q       -> traj.q;          // min_jerk starts from the measured position
     connect traj.qd     -> ctrl.qd;
     connect traj.qd_dot -> ctrl.qd_dot;
     connect arm.q       -> ctrl.q;
@@ -68,7 +70,7 @@ mission ArmRecovery {
                     }
                 } when Hold;
             } when Stop do {
-                run Home(goal = [0.0, 0.0, 0.0]);
+                run Home(goal = [0.0, 0.0, 0.0]);  // park
             }
         } || {
             loop {
