@@ -166,6 +166,7 @@ class MissionRun:
         self.records: list[RobotTaskRecord] = []
         self.exceptions: list[ExceptionRecord] = []
         self.outputs: list[tuple[int, str, Any]] = []
+        self._stopped_by: str | None = None
         self._schedule_inputs(injections)
 
     def add_observer(self, observer: Any) -> None:
@@ -202,6 +203,23 @@ class MissionRun:
         if not self._queued:
             self._queued = True
             self.kernel.schedule(now, _CONTROL, self._queued_reaction)
+
+    def inject(self, name: str, value: Any = None) -> None:
+        """Raise the automaton input ``name`` now (from an observer's callback, i.e. on the
+        executive's thread): it reacts in the current instant, after the current event."""
+        if name not in {s.name for s in self.plan.automaton.inputs}:
+            raise OrccadError(f"{name}: not an input of mission '{self.plan.name}'")
+        self._post(name, value)
+
+    def abort(self, reason: str = "stopped by the user") -> None:
+        """End the run after the current event with status ``aborted`` (from a callback)."""
+        self._stopped_by = reason
+        self.kernel.stop()
+
+    @property
+    def phases(self) -> dict[int, int]:
+        """Site number -> phase (1–3) of every running Robot-Task (a copy)."""
+        return dict(self._phase)
 
     def _inject(self, injection: Injection) -> None:
         self._post(injection.name, injection.value)
@@ -354,6 +372,8 @@ class MissionRun:
         except KeyboardInterrupt:
             status, reason = "aborted", _INTERRUPTED
         wall = time.perf_counter() - wall_start
+        if status is None and self._stopped_by is not None and not self.reactor.finished:
+            status, reason = "aborted", self._stopped_by
         if status is None:
             status, reason = self._final_status()
         stats = self.sim.stats()

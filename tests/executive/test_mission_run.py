@@ -181,3 +181,36 @@ def test_a_diverging_plant_fails_the_run_with_its_message(plan_file, monkeypatch
     assert (result.status, result.exit_status) == ("failed", 1)
     assert result.reason == "plant 'arm' diverged before t = 100000000 ns"
     assert result.sim_time_ns == 100_000_000 and result.robot_tasks[0].outcome == "running"
+
+
+class _AtInstant:
+    """Calls ``action(run)`` once, from the first reaction at or after ``t_ns``."""
+
+    def __init__(self, t_ns, action):
+        self.t_ns, self.action, self.run, self.done = t_ns, action, None, False
+
+    def on_reaction(self, t_ns, inputs, outputs, status):
+        if not self.done and t_ns >= self.t_ns:
+            self.done = True
+            self.action(self.run)
+
+
+def test_an_input_injected_from_a_callback_reacts_in_that_instant(plan_file):
+    hook = _AtInstant(1_000_000_000, lambda run: run.inject("TrackPID.TrackingLost"))
+    run = MissionRun(plan_file(PID), observers=[hook])
+    hook.run = run
+    result = run.run()
+    assert (result.status, result.reason, result.sim_time_ns) == \
+        ("failed", "TrackingLost", 1_000_000_000)
+    with pytest.raises(OrccadError, match="not an input"):
+        run.inject("Nope")
+
+
+def test_abort_from_a_callback_ends_the_run_aborted(plan_file):
+    seen = []
+    hook = _AtInstant(500_000_000, lambda run: (seen.append(run.phases), run.abort("user")))
+    run = MissionRun(plan_file(PID), observers=[hook])
+    hook.run = run
+    result = run.run()
+    assert (result.status, result.reason, result.sim_time_ns) == ("aborted", "user", 500_000_000)
+    assert seen == [{0: 3}] and not result.interrupted
