@@ -1,0 +1,56 @@
+"""``orccad tui [FILE] [--mission M] [--run] [--speed F|max] [--seed N]``: the terminal UI.
+
+Browse ``missions/`` and FILE (source with diagnostics, compile summary, ``orccad check``),
+run a mission live (speed control, Robot-Tasks and phases, automaton state, log, plots,
+processor load, the mission's inputs on keys 1–9), read its report and export its trace.
+Textual is imported here, inside the command, so the core never imports it.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["register", "run"]
+
+
+def _speed(text: str) -> float | None:
+    if text == "max":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a factor or 'max', got {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"expected a factor > 0, got {text!r}")
+    return value
+
+
+def register(sub) -> None:
+    parser = sub.add_parser("tui", help="the terminal UI: browse, check and run missions live",
+                            description="The mission runner: browse missions, check them, "
+                                        "run them live and steer them with their inputs.")
+    parser.add_argument("file", nargs="?", help="a .orc file or a folder (missions/ is "
+                                                "always listed)")
+    parser.add_argument("--mission", "-m", help="the mission to run (with --run)")
+    parser.add_argument("--run", action="store_true", help="start running FILE at once")
+    parser.add_argument("--speed", type=_speed, default=1.0, metavar="F|max",
+                        help="initial speed: simulated seconds per wall second, or 'max' "
+                             "(default 1)")
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the runs")
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.tui.app import OrccadApp
+
+    paths = [args.file] if args.file else []
+    if args.file and not Path(args.file).exists():
+        raise OrccadError(f"{args.file}: no such file or folder")
+    selected = args.file if args.file and Path(args.file).is_file() else None
+    app = OrccadApp(paths, selected=selected, mission=args.mission, speed=args.speed,
+                    seed=args.seed, run_now=args.run and selected is not None)
+    app.run()
+    return 0

@@ -1,0 +1,75 @@
+"""``orccad tui``: the mission runner (see ``docs/tui.md``).
+
+The app only routes between screens; what the screens show comes from the same functions as
+the CLI (:mod:`orccad_app.tui.session`) and from an executive observer
+(:mod:`orccad_app.tui.live`).
+"""
+
+from __future__ import annotations
+
+from textual.app import App
+from textual.binding import Binding
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.tui.messages import RunUpdated
+from orccad_app.tui.screens.browser import BrowserScreen
+from orccad_app.tui.screens.report import ReportScreen
+from orccad_app.tui.screens.run import RunScreen
+from orccad_app.tui.session import LiveSession, mission_files
+
+__all__ = ["OrccadApp"]
+
+
+class OrccadApp(App):
+    """The terminal UI.
+
+    :param paths: files and folders to browse (``missions/`` is always added when it exists).
+    :param selected: the file shown first (default: the first one).
+    :param speed: initial speed of runs (sim s per wall s; ``None`` as fast as possible).
+    :param seed: the runs' seed.
+    :param run_now: start running ``selected`` at once.
+    """
+
+    CSS_PATH = "orccad.tcss"
+    TITLE = "ORCCAD"
+    BINDINGS = [Binding("ctrl+s", "screenshot_svg", "Screenshot", show=False)]
+
+    def __init__(self, paths: list[str] = (), *, selected: str | None = None,
+                 mission: str | None = None, speed: float | None = 1.0, seed: int = 0,
+                 run_now: bool = False) -> None:
+        super().__init__()
+        self.files = mission_files([*paths, "missions"])
+        self.selected = selected or (self.files[0] if self.files else None)
+        self.mission = mission
+        self.speed = speed
+        self.seed = seed
+        self.run_now = run_now
+        self.session: LiveSession | None = None
+
+    def on_mount(self) -> None:
+        self.push_screen(BrowserScreen(self.files, self.selected))
+        if self.run_now and self.selected:
+            self.start_run(self.selected, self.mission)
+
+    def start_run(self, path: str, mission: str | None) -> None:
+        """Plan ``mission`` of ``path`` (as ``orccad run`` does) and show its live run."""
+        screen: RunScreen | None = None
+
+        def post(update) -> None:
+            if screen is not None:
+                screen.post_message(RunUpdated(update))
+
+        try:
+            self.session = LiveSession(path, mission, post, speed=self.speed, seed=self.seed)
+        except OrccadError as error:
+            self.notify(error.format(), severity="error", timeout=10)
+            return
+        screen = RunScreen(self.session)
+        self.push_screen(screen)
+
+    def show_report(self, session: LiveSession, report: str) -> None:
+        """Show the final report of a finished run."""
+        self.push_screen(ReportScreen(session, report))
+
+    def action_screenshot_svg(self) -> None:
+        self.notify(f"saved {self.save_screenshot()}")

@@ -1,0 +1,269 @@
+"""Watching and steering a live mission run, without Textual.
+
+:class:`LiveObserver` is an executive observer (with the mission hooks) that runs on the
+executive's thread. At each reaction of the automaton it
+
+- **paces** the run against the wall clock (:class:`Pace`: paused, × factor, or as fast as
+  possible) by sleeping;
+- raises the inputs queued by the user (:meth:`LiveObserver.raise_input`) with
+  :meth:`~orccad_app.executive.mission_run.MissionRun.inject`, so they reach the automaton on
+  its own thread, in the current instant;
+- hands a :class:`LiveUpdate` to ``post`` at most every ``flush_s`` wall seconds: the
+  automaton's state, the phase of every running Robot-Task, new log entries, new plot samples
+  (the task error ``e`` of the control laws, the robots' sensors as their modules read them),
+  per-processor load and deadline misses.
+
+It holds no mission logic: everything it reports is what the executive did.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from orccad_app.executive.observer import Observer
+
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
+
+PHASES = {1: "waiting", 2: "measuring", 3: "running"}
+"""Name of each phase of a Robot-Task's RTA (DESIGN.md §3: pre-conditions, then control)."""
+
+
+class Pace:
+    """Speed of a live run: ``factor`` simulated seconds per wall second, ``0`` paused,
+    ``None`` as fast as possible. Thread-safe: set from the UI, waited on by the executive."""
+
+    def __init__(self, factor: float | None = 1.0) -> None:
+        self._lock = threading.Lock()
+        self._resumed = threading.Event()
+        self.factor: float | None = None
+        self._anchor: tuple[float, int] | None = None
+        self.stopped = False
+        self.set(factor)
+
+    def set(self, factor: float | None) -> None:
+        """Change the speed; pacing restarts from the current instant."""
+        if factor is not None and factor < 0:
+            raise ValueError(f"speed factor must be >= 0, got {factor!r}")
+        with self._lock:
+            self.factor = factor
+            self._anchor = None
+        if factor == 0:
+            self._resumed.clear()
+        else:
+            self._resumed.set()
+
+    def stop(self) -> None:
+        """Release a paused run for good (the run is being aborted)."""
+        self.stopped = True
+        self._resumed.set()
+
+    @property
+    def label(self) -> str:
+        if self.factor is None:
+            return "max"
+        return "paused" if self.factor == 0 else f"{self.factor:g}×"
+
+    def wait(self, t_ns: int) -> None:
+        """Block until simulated instant ``t_ns`` is due on the wall clock."""
+        self._resumed.wait()
+        with self._lock:
+            factor = self.factor
+            if factor is None or factor == 0 or self.stopped:
+                return
+            if self._anchor is None:
+                self._anchor = (time.perf_counter(), t_ns)
+            wall, sim = self._anchor
+        delay = wall + (t_ns - sim) / 1e9 / factor - time.perf_counter()
+        if delay > 0:
+            time.sleep(delay)
+
+
+@dataclass(frozen=True)
+class LogEntry:
+    """One line of the run's log. ``kind``: ``task``, ``input``, ``output``, ``exception``,
+    ``miss``, ``param`` or ``status``."""
+
+    time_ns: int
+    kind: str
+    text: str
+
+    def format(self) -> str:
+        return f"{self.time_ns / 1e9:9.3f} s  {self.kind:<9} {self.text}"
+
+
+@dataclass
+class LiveUpdate:
+    """What changed since the previous update (samples and log entries are new ones only)."""
+
+    time_ns: int
+    state: int | None
+    status: str
+    speed: str
+    tasks: list[tuple[str, int, int]] = field(default_factory=list)
+    log: list[LogEntry] = field(default_factory=list)
+    samples: dict[str, list[float]] = field(default_factory=dict)
+    loads: dict[str, float] = field(default_factory=dict)
+    misses: dict[str, int] = field(default_factory=dict)
+
+
+def sensor_ports(plan: Any) -> dict[tuple[str, str], str]:
+    """``(module, port)`` of every input fed by a robot sensor -> the sensor (``arm.q``)."""
+    robots = {resource.name for resource in plan.tcs.resources}
+    return {tuple(c.consumer.rsplit(".", 1)): c.producer for c in plan.tcs.connections
+            if c.producer.rsplit(".", 1)[0] in robots}
+
+
+def _components(value: Any, limit: int = 6) -> list[float] | None:
+    try:
+        values = np.asarray(value, dtype=float).ravel()
+    except (TypeError, ValueError):
+        return None
+    return [float(v) for v in values[:limit]] if values.size else None
+
+
+class LiveObserver(Observer):
+    """See the module docstring.
+
+    :param run: the :class:`~orccad_app.executive.mission_run.MissionRun` observed.
+    :param post: called with each :class:`LiveUpdate` (on the executive's thread).
+    :param pace: the run's speed.
+    :param sample_ns: plot sampling period [ns] (simulated time).
+    :param flush_s: how often updates are posted [s] (wall time).
+    """
+
+    def __init__(self, run: Any, post: Callable[[LiveUpdate], None], pace: Pace, *,
+                 sample_ns: int = 10_000_000, flush_s: float = 0.1) -> None:
+        self.run, self.post, self.pace = run, post, pace
+        self.sample_ns, self.flush_s = sample_ns, flush_s
+        self._sensors = sensor_ports(run.plan)
+        self._site_task = {site.site: site.task for site in run.plan.sites}
+        self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
+        self._queue: deque[tuple[str, Any]] = deque()
+        self._abort: str | None = None
+        self._present: set[str] = set()
+        self._next_sample: dict[str, int] = {}
+        self._samples: dict[str, list[float]] = {}
+        self._log: list[LogEntry] = []
+        self._busy: dict[str, int] = {}
+        self._running: dict[str, int] = {}
+        self._window = (0, {})  # (start instant, busy per processor at it)
+        self._misses: dict[str, int] = {}
+        self._flushed_at = 0.0
+
+    # -- from the UI's thread --------------------------------------------------------------
+
+    def raise_input(self, name: str, value: Any = None) -> None:
+        """Queue input ``name`` (raised at the next reaction, on the executive's thread)."""
+        self._queue.append((name, value))
+
+    def abort(self, reason: str = "stopped by the user") -> None:
+        """End the run at the next reaction (status ``aborted``)."""
+        self._abort = reason
+        self.pace.stop()
+
+    # -- on the executive's thread -----------------------------------------------------------
+
+    def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
+                    status: str) -> None:
+        if self._abort is not None:
+            self.run.abort(self._abort)
+            return
+        present = {name for name in outputs if name in self._outputs}
+        for name in sorted(present - self._present):  # a sustained output is logged once
+            self._log.append(LogEntry(t_ns, "output", name))
+        self._present = present
+        while self._queue:
+            name, value = self._queue.popleft()
+            self.run.inject(name, value)
+            shown = name if value is None else f"{name}({value})"
+            self._log.append(LogEntry(t_ns, "input", f"{shown} raised by the user"))
+        self.pace.wait(t_ns)
+        if time.perf_counter() - self._flushed_at >= self.flush_s:
+            self.flush(t_ns)
+
+    def flush(self, t_ns: int) -> None:
+        """Post what changed since the last update."""
+        self._flushed_at = time.perf_counter()
+        reactor = self.run.reactor
+        tasks = [(self._site_task[site], site, phase)
+                 for site, phase in sorted(self.run.phases.items()) if phase > 0]
+        update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
+                            self._log, self._samples, self._loads(t_ns), dict(self._misses))
+        self._log, self._samples = [], {}
+        self.post(update)
+
+    def _loads(self, t_ns: int) -> dict[str, float]:
+        start, busy_then = self._window
+        busy = dict(self._busy)
+        for processor, since in self._running.items():
+            busy[processor] = busy.get(processor, 0) + t_ns - since
+        span = t_ns - start
+        loads = {p: (b - busy_then.get(p, 0)) / span if span > 0 else 0.0
+                 for p, b in busy.items()}
+        self._window = (t_ns, busy)
+        return loads
+
+    def _sample(self, t_ns: int, name: str, values: list[float] | None) -> None:
+        if values is None or t_ns < self._next_sample.get(name, 0):
+            return
+        self._next_sample[name] = t_ns + self.sample_ns
+        if len(values) == 1:
+            self._samples.setdefault(name, []).append(values[0])
+            return
+        for index, value in enumerate(values):
+            self._samples.setdefault(f"{name}[{index}]", []).append(value)
+
+    def on_read(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        sensor = self._sensors.get((module, port))
+        if sensor is not None:
+            self._sample(t_ns, sensor, _components(value))
+
+    def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port == "e":
+            values = _components(value, limit=1 << 16)
+            if values is not None:
+                self._sample(t_ns, "tracking error", [math.sqrt(sum(v * v for v in values))])
+
+    def on_start(self, t_ns: int, module: str, job: int, processor: str) -> None:
+        self._running[processor] = t_ns
+
+    on_resume = on_start
+
+    def on_preempt(self, t_ns: int, module: str, job: int, processor: str) -> None:
+        since = self._running.pop(processor, t_ns)
+        self._busy[processor] = self._busy.get(processor, 0) + t_ns - since
+
+    on_compute_end = on_preempt
+
+    def on_finish(self, t_ns: int, module: str, job: int, response_ns: int,
+                  missed: bool) -> None:
+        if missed:
+            self._miss(t_ns, module, "finished after its deadline")
+
+    def on_overrun(self, t_ns: int, module: str, job: int) -> None:
+        self._miss(t_ns, module, "release skipped (previous job unfinished)")
+
+    def _miss(self, t_ns: int, module: str, what: str) -> None:
+        self._misses[module] = self._misses.get(module, 0) + 1
+        self._log.append(LogEntry(t_ns, "miss", f"{module}: {what}"))
+
+    def on_param(self, t_ns: int, module: str, name: str, value: Any) -> None:
+        self._log.append(LogEntry(t_ns, "param", f"{module}.{name} := {value}"))
+
+    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
+        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts"))
+
+    def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
+        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) ends: {outcome}"))
+
+    def on_exception(self, record: Any) -> None:
+        origin = f" from {record.task}" if record.task else ""
+        self._log.append(LogEntry(record.time_ns, "exception",
+                                  f"{record.name} (type {record.type}){origin}"))

@@ -1,0 +1,1 @@
+"""Screens of the terminal UI: the mission browser, the run, the report."""

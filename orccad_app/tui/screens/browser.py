@@ -1,0 +1,144 @@
+"""The mission browser: files, source with diagnostics, compile summary, ``orccad check``."""
+
+from __future__ import annotations
+
+from textual import on, work
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, VerticalScroll
+from textual.screen import Screen
+from textual.widgets import (Button, Footer, Header, Label, ListItem, ListView, Select, Static,
+                             TabbedContent, TabPane)
+
+from orccad_app.tui.messages import CheckDone
+from orccad_app.tui.session import FileView, check_file, check_text, inspect_file
+from orccad_app.tui.widgets.source_view import SourceView
+
+__all__ = ["BrowserScreen"]
+
+
+class BrowserScreen(Screen):
+    """Lists ``files``; shows the selected one's source, summary and check results."""
+
+    AUTO_FOCUS = "#files"
+
+    BINDINGS = [
+        Binding("r", "run", "Run"),
+        Binding("c", "check", "Check"),
+        Binding("s", "show_tab('source')", "Source"),
+        Binding("m", "show_tab('summary')", "Summary"),
+        Binding("q", "app.quit", "Quit"),
+    ]
+
+    def __init__(self, files: list[str], selected: str | None = None) -> None:
+        super().__init__()
+        self.files = files
+        self.selected = selected or (files[0] if files else None)
+        self.view: FileView | None = None
+
+    def compose(self) -> ComposeResult:
+        yield Header()
+        with Horizontal():
+            yield ListView(*[ListItem(Label(path), name=path) for path in self.files],
+                           id="files")
+            with TabbedContent(id="tabs"):
+                with TabPane("Source", id="source"):
+                    with VerticalScroll():
+                        yield SourceView(id="source-view")
+                with TabPane("Summary", id="summary"):
+                    yield Select([], id="mission", prompt="mission", allow_blank=True)
+                    with VerticalScroll():
+                        yield Static(id="summary-text")
+                with TabPane("Check", id="check"):
+                    with Horizontal(id="check-bar"):
+                        yield Button("Check properties (orccad check)", id="check-button")
+                        yield Button("Run", id="run-button", variant="primary")
+                    with VerticalScroll():
+                        yield Static("press c to prove the mission's properties",
+                                     id="check-text")
+        yield Footer()
+
+    def on_mount(self) -> None:
+        self.title = "ORCCAD — missions"
+        if self.selected is not None:
+            files = self.query_one("#files", ListView)
+            if self.selected in self.files:
+                files.index = self.files.index(self.selected)
+            self.open(self.selected)
+
+    @property
+    def mission(self) -> str | None:
+        value = self.query_one("#mission", Select).value
+        if isinstance(value, str):
+            return value
+        return self.view.missions[0] if self.view and self.view.missions else None
+
+    def open(self, path: str) -> None:
+        """Show ``path``: source, diagnostics, compile summary of each mission."""
+        self.selected = path
+        self.view = view = inspect_file(path)
+        self.sub_title = path
+        self.query_one(SourceView).show(view)
+        select = self.query_one("#mission", Select)
+        select.set_options([(name, name) for name in view.missions])
+        if view.missions:
+            select.value = view.missions[0]
+        self._show_summary()
+        self.query_one("#check-text", Static).update(
+            "press c to prove the mission's properties (orccad check)")
+
+    def _show_summary(self) -> None:
+        view, text = self.view, "no mission in this file"
+        if view is not None and not view.ok:
+            text = "\n".join(d.format() for d in view.diagnostics if d.severity == "error")
+        elif view is not None and self.mission in view.summaries:
+            inputs = ", ".join(view.inputs[self.mission]) or "none"
+            text = f"{view.summaries[self.mission]}\n\ndeclared inputs: {inputs}"
+        self.query_one("#summary-text", Static).update(text)
+
+    @on(ListView.Selected, "#files")
+    def _file_selected(self, event: ListView.Selected) -> None:
+        if event.item.name:
+            self.open(event.item.name)
+
+    @on(Select.Changed, "#mission")
+    def _mission_changed(self) -> None:
+        self._show_summary()
+
+    def action_show_tab(self, tab: str) -> None:
+        self.query_one("#tabs", TabbedContent).active = tab
+
+    @on(Button.Pressed, "#check-button")
+    def action_check(self) -> None:
+        if self.view is None or not self.view.ok or self.mission is None:
+            self.notify("nothing to check: the file has errors or no mission", severity="error")
+            return
+        self.action_show_tab("check")
+        self.query_one("#check-text", Static).update(f"checking {self.mission}…")
+        self._check(self.view, self.mission)
+
+    @work(thread=True, exclusive=True, group="check")
+    def _check(self, view: FileView, mission: str) -> None:
+        try:
+            report = check_file(view, mission)
+        except ImportError as error:  # the verifier is an optional part of the core
+            self.post_message(CheckDone(mission, f"orccad check unavailable: {error}", False))
+            return
+        except Exception as error:  # a diagnostic for the user, not a crash of the UI
+            self.post_message(CheckDone(mission, f"check failed: {error}", False))
+            return
+        self.post_message(CheckDone(mission, check_text(report), report.holds))
+
+    @on(CheckDone)
+    def _check_done(self, message: CheckDone) -> None:
+        self.query_one("#check-text", Static).update(message.text)
+        self.notify(f"{message.mission}: " + ("all properties hold" if message.holds
+                                              else "a property fails"),
+                    severity="information" if message.holds else "warning")
+
+    @on(Button.Pressed, "#run-button")
+    def action_run(self) -> None:
+        if self.view is None or not self.view.ok or self.mission is None:
+            self.notify("cannot run: the file has errors or no mission", severity="error")
+            return
+        self.app.start_run(self.view.path, self.mission)

@@ -1,0 +1,198 @@
+"""What the terminal UI does with a file, through the same functions as the CLI (no Textual).
+
+- :func:`inspect_file`: ``orccad compile``'s pipeline (load, select, compile) as a
+  :class:`FileView`: the source, its diagnostics with their lines, and a compile summary per
+  mission;
+- :func:`check_file`: ``orccad check``'s :func:`~orccad_app.verify.checker.check_mission`;
+- :class:`LiveSession`: ``orccad run``'s plan and :class:`MissionRun`, observed by a
+  :class:`~orccad_app.tui.live.LiveObserver`, with the trace kept in memory for export.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
+
+__all__ = ["Diagnostic", "FileView", "inspect_file", "check_file", "check_text",
+           "LiveSession", "mission_files"]
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A message at a line of the source (``line`` 0 when it has no location)."""
+
+    severity: str
+    line: int
+    col: int
+    message: str
+
+    def format(self) -> str:
+        where = f"{self.line}:{self.col}: " if self.line else ""
+        return f"{where}{self.severity}: {self.message}"
+
+
+@dataclass
+class FileView:
+    """A file as the mission browser shows it."""
+
+    path: str
+    text: str
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    missions: list[str] = field(default_factory=list)
+    summaries: dict[str, str] = field(default_factory=dict)
+    inputs: dict[str, list[str]] = field(default_factory=dict)
+    source: Any = None
+
+    @property
+    def ok(self) -> bool:
+        return self.source is not None and not any(d.severity == "error"
+                                                   for d in self.diagnostics)
+
+
+def mission_files(paths: list[str]) -> list[str]:
+    """The ``.orc`` files of ``paths`` (files as given, folders searched), sorted, unique."""
+    found: dict[str, None] = {}
+    for path in paths:
+        item = Path(path)
+        if item.is_dir():
+            for file in sorted(item.glob("*.orc")):
+                found[str(file)] = None
+        elif item.exists():
+            found[str(item)] = None
+    return list(found)
+
+
+def _diagnostic(severity: str, error: Any) -> Diagnostic:
+    loc = getattr(error, "location", None) or getattr(error, "loc", None)
+    return Diagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
+                      getattr(error, "message", str(error)))
+
+
+def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
+    from orccad_app.pipeline import compile_mission_sites
+    from orccad_app.reactive.export import to_summary
+
+    automaton, sites = compile_mission_sites(source, mission)
+    tasks = ", ".join(dict.fromkeys(site.task.name for site in sites)) or "-"
+    inputs = [s.name for s in automaton.inputs if "." not in s.name]
+    head = (f"mission {mission.name}: {automaton.state_count} states, "
+            f"{automaton.transition_count} transitions\n  Robot-Tasks: {tasks}\n")
+    return head + to_summary(automaton), inputs
+
+
+def inspect_file(path: str) -> FileView:
+    """Load, check and compile every mission of ``path``; errors become diagnostics."""
+    from orccad_app.pipeline import load
+
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        return FileView(path, "", [Diagnostic("error", 0, 0, f"cannot read: {error}")])
+    view = FileView(path, text)
+    try:
+        source = load(path)
+    except OrccadError as error:
+        view.diagnostics.append(_diagnostic("error", error))
+        return view
+    view.source = source
+    view.diagnostics += [_diagnostic("warning", w) for w in source.warnings]
+    for mission in source.program.missions:
+        view.missions.append(mission.name)
+        try:
+            view.summaries[mission.name], view.inputs[mission.name] = _summary(source, mission)
+        except OrccadError as error:
+            view.diagnostics.append(_diagnostic("error", error))
+    return view
+
+
+def check_file(view: FileView, mission: str) -> Any:
+    """``orccad check``'s report of ``mission`` (a ``MissionReport``)."""
+    from orccad_app.pipeline import select_mission
+    from orccad_app.verify.checker import check_mission
+
+    return check_mission(view.source.program, select_mission(view.source, mission))
+
+
+def check_text(report: Any) -> str:
+    """The verdicts of a check report, with each counterexample's input script."""
+    model, automaton = report.model, report.composition.automaton
+    lines = [f"mission {report.composition.name}: automaton {automaton.state_count} states, "
+             f"model {len(model.states)} states / {model.step_count} steps"]
+    for outcome in report.outcomes:
+        mark = "ok  " if outcome.holds else "FAIL"
+        detail = f": {outcome.message}" if outcome.message else ""
+        lines.append(f"  {mark}  {outcome.kind} {outcome.name}{detail}")
+        if not outcome.holds and outcome.script is not None:
+            script = outcome.script.text([f"counterexample to {outcome.name}"])
+            lines += [f"        | {line}" for line in script.splitlines()]
+    failed = sum(1 for o in report.outcomes if not o.holds)
+    lines.append("all properties hold" if not failed else f"{failed} failed")
+    return "\n".join(lines)
+
+
+class _Rows:
+    """A trace writer that keeps the rows in memory (exported on demand)."""
+
+    def __init__(self) -> None:
+        self.rows: list[Any] = []
+        self.write = self.rows.append
+
+    def close(self) -> None:
+        """Nothing to close."""
+
+
+class LiveSession:
+    """One live run of ``mission`` of ``path`` (see the module docstring).
+
+    :param post: receives each :class:`~orccad_app.tui.live.LiveUpdate`.
+    :param speed: initial factor (``None`` as fast as possible, ``0`` paused).
+    """
+
+    def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
+                 speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0) -> None:
+        from orccad_app.executive.mission_plan import plan_mission
+        from orccad_app.executive.mission_run import MissionRun
+        from orccad_app.pipeline import load, select_mission
+        from orccad_app.trace import TraceRecorder
+
+        source = load(path)
+        self.path, self.seed = path, seed
+        self.mission = select_mission(source, mission).name
+        plan = plan_mission(source, source.program.mission(self.mission))
+        self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
+        self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)))
+        self.pace = Pace(speed)
+        self.observer = LiveObserver(self.run, post, self.pace)
+        self._trace = _Rows()
+        self.run.add_observer(self.observer)
+        self.run.add_observer(TraceRecorder(self._trace))
+        self.result: Any = None
+
+    def execute(self) -> Any:
+        """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
+        self.result = self.run.run()
+        self.observer.flush(self.run.kernel.now)
+        return self.result
+
+    def report(self) -> str:
+        """``orccad run``'s text report of the finished run."""
+        from orccad_app.trace import format_report
+
+        return format_report(self.result)
+
+    def export(self, path: str) -> str:
+        """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""
+        from orccad_app.trace import open_trace
+
+        writer = open_trace(path, {"mission": self.mission, "file": self.path,
+                                   "seed": str(self.seed)})
+        try:
+            for row in self._trace.rows:
+                writer.write(row)
+        finally:
+            writer.close()
+        return path

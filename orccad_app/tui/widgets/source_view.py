@@ -1,0 +1,42 @@
+"""The source of a ``.orc`` file, highlighted, with its diagnostics at their lines."""
+
+from __future__ import annotations
+
+from rich.console import Group
+from rich.syntax import Syntax
+from rich.text import Text
+from textual.widgets import Static
+
+from orccad_app.tui.widgets.orc_lexer import OrcLexer
+
+__all__ = ["SourceView"]
+
+_STYLE = {"error": "bold red", "warning": "bold yellow"}
+
+
+class SourceView(Static):
+    """Shows a :class:`~orccad_app.tui.session.FileView`: the diagnostics, then the source
+    with their lines highlighted and a marker under each."""
+
+    DEFAULT_CSS = """
+    SourceView { height: auto; padding: 0 1; }
+    """
+
+    def show(self, view) -> None:
+        """Render ``view`` (a ``FileView``)."""
+        parts = []
+        for diagnostic in view.diagnostics:
+            parts.append(Text(f"{view.path}:{diagnostic.format()}",
+                              style=_STYLE.get(diagnostic.severity, "")))
+        if not view.diagnostics:
+            parts.append(Text(f"{view.path}: no diagnostics", style="green"))
+        lines = {d.line for d in view.diagnostics if d.line}
+        syntax = Syntax(view.text, OrcLexer(), line_numbers=True, highlight_lines=lines,
+                        theme="monokai", word_wrap=False)
+        for diagnostic in view.diagnostics:
+            if diagnostic.line:
+                syntax.stylize_range(_STYLE.get(diagnostic.severity, "") + " underline",
+                                     (diagnostic.line, 0), (diagnostic.line + 1, 0))
+        parts.append(Text(""))
+        parts.append(syntax)
+        self.update(Group(*parts))
