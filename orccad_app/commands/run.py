@@ -50,13 +50,15 @@ def register(sub) -> None:
                                         "report.")
     parser.add_argument("file", help="the .orc file")
     parser.add_argument("--mission", "-m", help="the mission (default: the file's only one)")
-    parser.add_argument("--until", type=_seconds, default=60.0, metavar="S",
-                        help="simulated-time limit [s] (default 60); status 'timeout' if the "
-                             "mission is still running then")
+    parser.add_argument("--until", type=_seconds, default=None, metavar="S",
+                        help="simulated-time limit [s] (default 60, or the robot type's "
+                             "longer run_horizon_s); status 'timeout' if the mission is "
+                             "still running then")
     parser.add_argument("--seed", type=_non_negative, default=0, metavar="N",
                         help="seed of execution times and sensor noise (default 0)")
     parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
-                        help="raise input SIG (or SIG(value)) at simulated time T [s]")
+                        help="raise input SIG (or SIG(value)) at simulated time T [s]; "
+                             "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120)")
     parser.add_argument("--realtime", type=_seconds, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR, default 1) and "
                              "report lateness")
@@ -81,7 +83,7 @@ def _processors(plan, args: argparse.Namespace) -> list:
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.executive.mission_plan import plan_mission
-    from orccad_app.executive.mission_run import MissionRun, parse_injection
+    from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
 
@@ -91,7 +93,8 @@ def run(args: argparse.Namespace) -> int:
     mission = select_mission(source, args.mission)
     plan = plan_mission(source, mission)
     writer = None
-    mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(args.until * 1e9)),
+    until_s = args.until if args.until is not None else run_horizon_s(plan, 60.0)
+    mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
     if args.trace:

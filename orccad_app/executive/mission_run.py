@@ -29,6 +29,12 @@ E's type-1 update to the running module (``set_param``). ``E.raised`` records an
 terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
 failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
+**Plant extensions and faults.** A robot type that defines ``plant_extension()`` gets the
+returned :class:`~orccad_app.executive.plant.PlantExtension` attached to its plant (extra
+physics, sensor ports, named faults). ``--inject ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``,
+``auv.battery=5%@60``: a trailing ``%`` is dropped, the fault's unit applies) applies the fault
+``FAULT`` of robot ``ROBOT``'s plant at ``T`` seconds instead of raising a signal.
+
 **Observers.** Executive observers are passed to the simulation; those that also define
 ``on_reaction(t_ns, inputs, outputs, status)``, ``on_task_start(t_ns, task, site)``,
 ``on_task_end(t_ns, task, site, outcome)`` or ``on_exception(record)`` get those too (traces).
@@ -47,14 +53,15 @@ from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.mission_plan import MissionPlan, SitePlan
 from orccad_app.executive.observer import Observer
-from orccad_app.executive.plant import PlantDivergenceError
+from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.run_result import ExceptionRecord, RobotTaskRecord, RunResult
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.reactive.runtime import Reactor
 
-__all__ = ["MissionRun", "Injection", "parse_injection", "DEFAULT_UNTIL_NS", "MISSION_HOOKS"]
+__all__ = ["MissionRun", "Injection", "parse_injection", "run_horizon_s", "DEFAULT_UNTIL_NS",
+           "MISSION_HOOKS"]
 
 _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
@@ -64,6 +71,7 @@ MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception")
 _INTERRUPTED = "interrupted (Ctrl-C)"
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
 _INJECTION = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:\((.*)\))?\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
+_FAULT = re.compile(r"^\s*([A-Za-z_]\w*\.[A-Za-z_]\w*)\s*=\s*([^@]*?)\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
 
 
 @dataclass(frozen=True)
@@ -73,15 +81,23 @@ class Injection:
     :param name: the automaton input (a mission input, or an observer event ``X.E``).
     :param time_ns: when [ns].
     :param value: its value for a valued input, else ``None``.
+    :param fault: ``True`` for a plant fault ``ROBOT.FAULT=VALUE@T`` (``name`` is
+        ``ROBOT.FAULT``, ``value`` the fault's value).
     """
 
     name: str
     time_ns: int
     value: Any = None
+    fault: bool = False
 
 
 def parse_injection(text: str) -> Injection:
-    """``SIG@T`` or ``SIG(value)@T`` with ``T`` in seconds; raise :class:`OrccadError`."""
+    """``SIG@T``, ``SIG(value)@T`` or the plant fault ``ROBOT.FAULT=VALUE@T`` (``T`` in
+    seconds, ``VALUE`` a number with an optional trailing ``%``, or true/false); raise
+    :class:`OrccadError`."""
+    fault = _FAULT.match(text)
+    if fault is not None:
+        return _fault_injection(text, *fault.groups())
     match = _INJECTION.match(text)
     if match is None:
         raise OrccadError(f"bad injection {text!r}: expected SIGNAL@SECONDS or "
@@ -95,6 +111,18 @@ def parse_injection(text: str) -> Injection:
     if not seconds >= 0:
         raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
     return Injection(name, int(round(seconds * 1e9)), value)
+
+
+def _fault_injection(text: str, name: str, raw: str, when: str) -> Injection:
+    try:
+        seconds = float(when)
+        value = _value(raw[:-1].strip() if raw.endswith("%") else raw)
+    except ValueError:
+        raise OrccadError(f"bad injection {text!r}: expected ROBOT.FAULT=VALUE@SECONDS, "
+                          f"e.g. auv.leak=1@120 or auv.battery=5%@60") from None
+    if not seconds >= 0:
+        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
+    return Injection(name, int(round(seconds * 1e9)), value, fault=True)
 
 
 def _value(raw: str) -> Any:
@@ -151,7 +179,7 @@ class MissionRun:
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
-                              plants=plan.plants(), observers=[_Link(self), *observers])
+                              plants=_extended(plan), observers=[_Link(self), *observers])
         self.kernel = self.sim.kernel
         self._signals = plan.signals
         self._error_site = {s.error_module: s.site for s in plan.sites if s.error_module}
@@ -179,6 +207,9 @@ class MissionRun:
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
         inputs = {s.name for s in self.plan.automaton.inputs}
         for injection in injections:
+            if injection.fault:
+                self._schedule_fault(injection)
+                continue
             if injection.name not in inputs:
                 known = ", ".join(sorted(inputs)) or "none"
                 raise OrccadError(f"--inject {injection.name}: not an input of mission "
@@ -188,6 +219,22 @@ class MissionRun:
                                   f"after --until ({self.until_ns / 1e9:g} s)")
             self.kernel.schedule(injection.time_ns, _CONTROL, self._inject, injection)
         self.kernel.schedule(0, _CONTROL, self._tick)
+
+    def _schedule_fault(self, injection: Injection) -> None:
+        robot, fault = injection.name.split(".", 1)
+        plant = self.sim.plants.get(robot)
+        if plant is None:
+            raise OrccadError(f"--inject {injection.name}: no robot '{robot}' in mission "
+                              f"'{self.plan.name}' (robots: {', '.join(self.sim.plants)})")
+        faults = getattr(plant.extension, "faults", None) or {}
+        if fault not in faults:
+            raise OrccadError(f"--inject {injection.name}: robot '{robot}' has no fault "
+                              f"'{fault}' (faults: {', '.join(faults) or 'none'})")
+        if injection.time_ns >= self.until_ns:
+            raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
+                              f"after --until ({self.until_ns / 1e9:g} s)")
+        self.kernel.schedule(injection.time_ns, _CONTROL,
+                             lambda _: plant.inject(fault, injection.value))
 
     # -- signals into the automaton ----------------------------------------------------------
 
@@ -389,6 +436,25 @@ class MissionRun:
         if reactor.status in ("failed", "aborted"):
             return reactor.status, reactor.reason
         return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
+
+
+def _extended(plan: MissionPlan) -> list[Any]:
+    """The plan's fresh plants, each with its robot type's plant extension, if any."""
+    types = {site.instance.robot_name: site.instance.context.robot for site in plan.sites}
+    plants = []
+    for name, spec in plan.plant_specs.items():
+        factory = getattr(types.get(name), "plant_extension", None)
+        extension = factory() if callable(factory) else None
+        plants.append(MujocoPlant(name, **spec, extension=extension))
+    return plants
+
+
+def run_horizon_s(plan: MissionPlan, default_s: float) -> float:
+    """The default simulated-time limit of ``plan`` [s]: ``default_s``, or longer when a
+    robot type declares a longer ``run_horizon_s`` (an AUV mission lasts minutes)."""
+    horizons = [getattr(site.instance.context.robot, "run_horizon_s", 0.0) or 0.0
+                for site in plan.sites]
+    return max([default_s, *horizons])
 
 
 def _outcome(task: str, emitted: set[str], raised: dict[str, str | None]) -> str:

@@ -18,6 +18,13 @@ grid cost no extra step.
 **Sensors.** ``noise_std`` adds Gaussian noise per port (stream ``plant/<name>/<port>`` of the
 run's seed), then ``quantization`` rounds to multiples of the step per port.
 
+**Extensions.** Physics MuJoCo lacks (hydrostatics, a battery, a leak), extra sensor ports and
+named faults come from a :class:`PlantExtension` (``extension=``, or :meth:`MujocoPlant.extend`):
+the plant calls ``extension.step(dt_s)`` before every integration step (whole or partial), reads
+the extension's sensor ports like MJCF sensors (noise and quantization included) and applies
+``--inject ROBOT.FAULT=VALUE@T`` through :meth:`MujocoPlant.inject`. A robot type provides one by
+defining ``plant_extension()`` (see docs/plugins.md, *Plant extensions*).
+
 **Divergence.** After each advance, non-finite ``qpos``/``qvel`` or a new MuJoCo warning
 (bad ``qacc``/``qpos``/``qvel``/``ctrl``; MuJoCo resets the state on those) raises
 :class:`PlantDivergenceError`.
@@ -35,7 +42,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import Kernel
 from orccad_app.tcs.module_task import PhysicalResource
 
-__all__ = ["MujocoPlant", "PlantDivergenceError"]
+__all__ = ["MujocoPlant", "PlantDivergenceError", "PlantExtension"]
 
 _WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
                      mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
@@ -59,6 +66,32 @@ def _load(xml: str | None, path: str | None) -> mujoco.MjModel:
         raise OrccadError(f"cannot load MJCF model {path or '<string>'}: {error}") from None
 
 
+class PlantExtension:
+    """Extra physics, sensor ports and faults of a plant (a robot type's plugin provides it).
+
+    Subclasses set :attr:`sensors` (port -> dim) and :attr:`faults` (fault -> description
+    with its unit) and override the methods; the defaults do nothing.
+    """
+
+    sensors: Mapping[str, int] = {}
+    faults: Mapping[str, str] = {}
+
+    def bind(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        """Called once by the plant before the first step (keep ``model`` and ``data``)."""
+
+    def step(self, dt_s: float) -> None:
+        """Called before each integration step of ``dt_s`` [s]: set ``data.xfrc_applied`` /
+        ``qfrc_applied``, integrate the extension's own states (battery energy...)."""
+
+    def read(self, port: str) -> np.ndarray:
+        """The value of the sensor ``port`` now (an array; 0-d for a ``float`` port)."""
+        raise KeyError(port)
+
+    def inject(self, fault: str, value: Any) -> None:
+        """Apply the fault ``fault`` with ``value`` (a name of :attr:`faults`)."""
+        raise KeyError(fault)
+
+
 class MujocoPlant:
     """A MuJoCo model as the physical resource ``name``.
 
@@ -72,13 +105,16 @@ class MujocoPlant:
         default: the actuators' ``ctrlrange`` where ``ctrllimited``, else none.
     :param qpos0: initial joint positions (default: the model's ``qpos0``).
     :param qvel0: initial joint velocities (default zero).
+    :param extension: a :class:`PlantExtension` (extra physics, sensors, faults).
     """
 
     def __init__(self, name: str, *, xml: str | None = None, path: str | None = None,
                  noise_std: Mapping[str, float] | None = None,
                  quantization: Mapping[str, float] | None = None,
-                 torque_limits: Any = None, qpos0: Any = None, qvel0: Any = None) -> None:
+                 torque_limits: Any = None, qpos0: Any = None, qvel0: Any = None,
+                 extension: PlantExtension | None = None) -> None:
         self.model = _load(xml, path)
+        self.extension: PlantExtension | None = None
         self.data = mujoco.MjData(self.model)
         self.name = name
         self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
@@ -86,6 +122,8 @@ class MujocoPlant:
             raise OrccadError(f"plant '{name}': timestep {self.model.opt.timestep} s is below 1 ns")
         self._readers = self._sensor_readers()
         self.resource = self._resource()
+        if extension is not None:
+            self.extend(extension)
         self._noise = self._per_port("noise_std", noise_std)
         self._quantum = self._per_port("quantization", quantization)
         self._low, self._high = self._limits(torque_limits)
@@ -125,6 +163,29 @@ class MujocoPlant:
         if self.model.nu:
             ports.append(PhysicalResource.actuator("tau", self.model.nu))
         return PhysicalResource(self.name, tuple(ports))
+
+    def extend(self, extension: PlantExtension) -> None:
+        """Attach ``extension`` (before the run): its sensors become ports of the plant."""
+        if self.extension is not None:
+            raise OrccadError(f"plant '{self.name}' already has an extension")
+        self.extension = extension
+        extension.bind(self.model, self.data)
+        for port in extension.sensors:
+            self._readers[port] = (lambda p=port: np.array(extension.read(p), dtype=float))
+        ports = [p for p in self.resource.ports if p.name not in extension.sensors]
+        ports += [PhysicalResource.sensor(port, int(dim))
+                  for port, dim in extension.sensors.items()]
+        self.resource = PhysicalResource(self.name, tuple(ports))
+
+    def inject(self, fault: str, value: Any) -> None:
+        """Apply the extension's fault ``fault`` now (``--inject ROBOT.FAULT=VALUE@T``)."""
+        faults = self.extension.faults if self.extension is not None else {}
+        if fault not in faults:
+            raise OrccadError(f"plant '{self.name}' has no fault '{fault}' "
+                              f"(faults: {', '.join(faults) or 'none'})")
+        if self._kernel is not None:
+            self.advance_to(self._kernel.now)
+        self.extension.inject(fault, value)
 
     def _per_port(self, label: str, values: Mapping[str, float] | None) -> dict[str, float]:
         values = dict(values or {})
@@ -179,8 +240,15 @@ class MujocoPlant:
         count = (time_ns - now) // dt
         if count > 0:
             model, data, step = self.model, self.data, mujoco.mj_step
-            for _ in range(count):
-                step(model, data)
+            extension = self.extension
+            if extension is None:
+                for _ in range(count):
+                    step(model, data)
+            else:
+                dt_s = model.opt.timestep
+                for _ in range(count):
+                    extension.step(dt_s)
+                    step(model, data)
             self.steps += count
             self._time_ns = now = now + count * dt
         if time_ns > now:
@@ -192,6 +260,8 @@ class MujocoPlant:
         option = self.model.opt
         full = option.timestep
         option.timestep = duration_ns / 1e9
+        if self.extension is not None:
+            self.extension.step(option.timestep)
         try:
             mujoco.mj_step(self.model, self.data)
         finally:

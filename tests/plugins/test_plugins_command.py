@@ -23,7 +23,7 @@ def test_the_listing_names_each_item_and_its_plugin(capsys):
 def test_json_describes_ports_params_and_timing(capsys):
     assert main(["plugins", "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
-    [arm] = document["robot_types"]
+    arm = next(r for r in document["robot_types"] if r["name"] == "arm3dof")
     assert arm["plugin"] == "orccad_arm3dof" and arm["dof"] == 3
     assert [(p["name"], p["direction"], p["dim"]) for p in arm["ports"]] == [
         ("q", "out", 3), ("qdot", "out", 3), ("tau", "in", 3)]
