@@ -12,8 +12,9 @@ instant).
 
 Each property becomes ``ltl NAME { first U (!first && ((fairness && assumptions) ->
 property)) }``: ``first`` holds only in SPIN's initial state, which precedes the first
-instant, so the property is evaluated from the first instant on; fairness is ``[]<> f`` for
-each fairness flag. Not exported (the checker handles them): ``next`` (Debian's SPIN is
+instant, so the property is evaluated from the first instant on; fairness is ``[]<> fpulse``
+where a counter over the fairness flags pulses each time it has seen them all
+(degeneralization: SPIN's claims stay small). Not exported (the checker handles them): ``next`` (Debian's SPIN is
 built without ``X``) and past operators over future ones (SPIN has no past).
 """
 
@@ -126,6 +127,16 @@ class _Writer:
         lines += [f"bool {name};" for name in self.outputs.values()]
         lines += [f"bool {_ident('a_', task)};" for task in self.tasks]
         lines += [f"bool {flag} = 1;" for flag in self.fair]
+        lines += ["byte fcount = 0;", "bool fpulse = 1;"]
+        return lines
+
+    def fairness_counter(self) -> list[str]:
+        """Degeneralization: ``fpulse`` holds when every flag was seen since the last pulse,
+        so ``[]<> fpulse`` is the conjunction of ``[]<> flag`` (a small claim for SPIN)."""
+        lines = [f"if :: fcount == {k} && {flag} -> fcount = {k + 1} :: else -> skip fi;"
+                 for k, flag in enumerate(self.fair)]
+        lines.append(f"if :: fcount == {len(self.fair)} -> fpulse = 1; fcount = 0 "
+                     ":: else -> fpulse = 0 fi;")
         return lines
 
     def instant(self, monitors: list[str]) -> list[str]:
@@ -146,7 +157,7 @@ class _Writer:
                 l[0] == "rt" and l[1] == task for l in ls)]
             test = " || ".join(f"state == {q}" for q in states) or "0"
             body.append(f"      {_ident('a_', task)} = ({test});")
-        body += [f"      {line}" for line in monitors]
+        body += [f"      {line}" for line in self.fairness_counter() + monitors]
         body += ["      first = 0", "   }"]
         return body
 
@@ -227,7 +238,7 @@ def to_promela(automaton: Automaton, *, tracked: tuple[ir.VarDecl, ...] | None =
     claims = []
     for prop in properties:
         body = formulas.text(from_ast(prop.formula))
-        premises = [f"([]<> {flag})" for flag in writer.fair]
+        premises = ["([]<> fpulse)"] if writer.fair else []
         premises += [f"({formulas.text(a)})" for a in assumed]
         text = f"({' && '.join(premises)}) -> ({body})" if premises else body
         claims.append(f"ltl {claim_name(prop.name)} {{ first U (!first && ({text})) }}")

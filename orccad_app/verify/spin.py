@@ -29,7 +29,7 @@ def run_spin(promela: str, claims: list[str], *, timeout: float = 120.0) -> dict
         folder = Path(tmp)
         (folder / "model.pml").write_text(promela, encoding="utf-8")
         _run(["spin", "-a", "model.pml"], folder, timeout)
-        _run(["gcc", "-O1", "-w", "-DNOREDUCE", "-DVECTORSZ=4096", "-o", "pan", "pan.c"],
+        _run(["gcc", "-O0", "-w", "-DNOREDUCE", "-DVECTORSZ=4096", "-o", "pan", "pan.c"],
              folder, timeout)
         verdicts = {}
         for claim in claims:
