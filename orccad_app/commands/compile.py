@@ -10,10 +10,12 @@ from orccad_app.pipeline import compile_mission, load, select_mission
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
 from orccad_app.reactive.export import to_dot, to_json, to_summary
 from orccad_app.reactive.scxml import to_scxml
+from orccad_app.verify.promela import to_promela
 
 __all__ = ["register", "FORMATS", "emit_text", "positive_int"]
 
-FORMATS = {"summary": to_summary, "json": to_json, "dot": to_dot, "scxml": to_scxml}
+FORMATS = {"summary": to_summary, "json": to_json, "dot": to_dot, "scxml": to_scxml,
+           "promela": to_promela}
 
 
 def positive_int(text: str) -> int:
