@@ -7,7 +7,8 @@ executive's thread. At each reaction of the automaton it
   possible) by sleeping;
 - raises the inputs queued by the user (:meth:`LiveObserver.raise_input`) with
   :meth:`~orccad_app.executive.mission_run.MissionRun.inject`, so they reach the automaton on
-  its own thread, in the current instant;
+  its own thread, in the current instant; applies the plant faults queued
+  (:meth:`LiveObserver.inject_fault`, e.g. ``auv.leak``) to the robot's plant;
 - hands a :class:`LiveUpdate` to ``post`` at most every ``flush_s`` wall seconds: the
   automaton's state, the phase of every running Robot-Task, new log entries, new plot samples
   (the task error ``e`` of the control laws, the robots' sensors as their modules read them),
@@ -87,8 +88,8 @@ class Pace:
 
 @dataclass(frozen=True)
 class LogEntry:
-    """One line of the run's log. ``kind``: ``task``, ``input``, ``output``, ``exception``,
-    ``miss``, ``param`` or ``status``."""
+    """One line of the run's log. ``kind``: ``task``, ``input``, ``fault``, ``output``,
+    ``exception``, ``miss``, ``param`` or ``status``."""
 
     time_ns: int
     kind: str
@@ -145,7 +146,7 @@ class LiveObserver(Observer):
         self._sensors = sensor_ports(run.plan)
         self._site_task = {site.site: site.task for site in run.plan.sites}
         self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
-        self._queue: deque[tuple[str, Any]] = deque()
+        self._queue: deque[tuple[str, Any, bool]] = deque()
         self._abort: str | None = None
         self._present: set[str] = set()
         self._next_sample: dict[str, int] = {}
@@ -161,7 +162,12 @@ class LiveObserver(Observer):
 
     def raise_input(self, name: str, value: Any = None) -> None:
         """Queue input ``name`` (raised at the next reaction, on the executive's thread)."""
-        self._queue.append((name, value))
+        self._queue.append((name, value, False))
+
+    def inject_fault(self, name: str, value: Any) -> None:
+        """Queue the plant fault ``ROBOT.FAULT`` (applied at the next reaction, as
+        ``orccad run --inject ROBOT.FAULT=VALUE@T`` does)."""
+        self._queue.append((name, value, True))
 
     def abort(self, reason: str = "stopped by the user") -> None:
         """End the run at the next reaction (status ``aborted``)."""
@@ -180,13 +186,20 @@ class LiveObserver(Observer):
             self._log.append(LogEntry(t_ns, "output", name))
         self._present = present
         while self._queue:
-            name, value = self._queue.popleft()
-            self.run.inject(name, value)
-            shown = name if value is None else f"{name}({value})"
-            self._log.append(LogEntry(t_ns, "input", f"{shown} raised by the user"))
+            self._raise(t_ns, *self._queue.popleft())
         self.pace.wait(t_ns)
         if time.perf_counter() - self._flushed_at >= self.flush_s:
             self.flush(t_ns)
+
+    def _raise(self, t_ns: int, name: str, value: Any, fault: bool) -> None:
+        if fault:
+            robot, fault_name = name.split(".", 1)
+            self.run.sim.plants[robot].inject(fault_name, value)
+            self._log.append(LogEntry(t_ns, "fault", f"{name}={value} injected by the user"))
+            return
+        self.run.inject(name, value)
+        shown = name if value is None else f"{name}({value})"
+        self._log.append(LogEntry(t_ns, "input", f"{shown} raised by the user"))
 
     def flush(self, t_ns: int) -> None:
         """Post what changed since the last update."""

@@ -15,6 +15,8 @@ __all__ = ["RunUpdated", "RunFinished", "RunFailed", "InputRequested", "FileChos
 class RunUpdated(Message):
     """What the live run did since the previous update."""
 
+    bubble = False  # addressed to the screen that runs the work
+
     def __init__(self, update: LiveUpdate) -> None:
         super().__init__()
         self.update = update
@@ -22,6 +24,8 @@ class RunUpdated(Message):
 
 class RunFinished(Message):
     """The run ended: its ``RunResult`` and ``orccad run``'s text report."""
+
+    bubble = False  # addressed to the screen that runs the work
 
     def __init__(self, result: Any, report: str) -> None:
         super().__init__()
@@ -32,18 +36,22 @@ class RunFinished(Message):
 class RunFailed(Message):
     """The run could not be built or raised: the message shown to the user."""
 
+    bubble = False  # addressed to the screen that runs the work
+
     def __init__(self, message: str) -> None:
         super().__init__()
         self.message = message
 
 
 class InputRequested(Message):
-    """The user asked to raise the mission input ``name`` (with ``value`` when valued)."""
+    """The user asked to raise the automaton input ``name`` (with ``value`` when valued), or
+    to inject the plant fault ``name`` (``ROBOT.FAULT``) with ``value`` when ``fault``."""
 
-    def __init__(self, name: str, value: Any = None) -> None:
+    def __init__(self, name: str, value: Any = None, fault: bool = False) -> None:
         super().__init__()
         self.name = name
         self.value = value
+        self.fault = fault
 
 
 class FileChosen(Message):
@@ -56,6 +64,8 @@ class FileChosen(Message):
 
 class CheckDone(Message):
     """``orccad check`` finished on a mission: the text of its verdicts."""
+
+    bubble = False  # addressed to the screen that runs the work
 
     def __init__(self, mission: str, text: str, holds: bool) -> None:
         super().__init__()

@@ -134,6 +134,14 @@ def check_text(report: Any) -> str:
     return "\n".join(lines)
 
 
+def _faults(run: Any) -> dict[str, str]:
+    found = {}
+    for robot, plant in run.sim.plants.items():
+        faults = getattr(getattr(plant, "extension", None), "faults", None) or {}
+        found.update({f"{robot}.{fault}": text for fault, text in faults.items()})
+    return found
+
+
 class _Rows:
     """A trace writer that keeps the rows in memory (exported on demand)."""
 
@@ -159,12 +167,21 @@ class LiveSession:
         from orccad_app.pipeline import load, select_mission
         from orccad_app.trace import TraceRecorder
 
+        from orccad_app.executive import mission_run
+
         source = load(path)
         self.path, self.seed = path, seed
         self.mission = select_mission(source, mission).name
         plan = plan_mission(source, source.program.mission(self.mission))
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
+        """The mission's declared inputs (``SignalDecl``)."""
+        self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
+        """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
+        horizon = getattr(mission_run, "run_horizon_s", None)  # robots with long missions
+        until_s = horizon(plan, until_s) if horizon is not None else until_s
         self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)))
+        self.faults = _faults(self.run)
+        """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace)
         self._trace = _Rows()

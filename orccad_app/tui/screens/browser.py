@@ -8,7 +8,7 @@ from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.screen import Screen
 from textual.widgets import (Button, Footer, Header, Label, ListItem, ListView, Select, Static,
-                             TabbedContent, TabPane)
+                             TabbedContent, TabPane, TextArea)
 
 from orccad_app.tui.messages import CheckDone
 from orccad_app.tui.session import FileView, check_file, check_text, inspect_file
@@ -47,8 +47,7 @@ class BrowserScreen(Screen):
                         yield SourceView(id="source-view")
                 with TabPane("Summary", id="summary"):
                     yield Select([], id="mission", prompt="mission", allow_blank=True)
-                    with VerticalScroll():
-                        yield Static(id="summary-text")
+                    yield TextArea(id="summary-text", read_only=True, soft_wrap=False)
                 with TabPane("Check", id="check"):
                     with Horizontal(id="check-bar"):
                         yield Button("Check properties (orccad check)", id="check-button")
@@ -94,7 +93,7 @@ class BrowserScreen(Screen):
         elif view is not None and self.mission in view.summaries:
             inputs = ", ".join(view.inputs[self.mission]) or "none"
             text = f"{view.summaries[self.mission]}\n\ndeclared inputs: {inputs}"
-        self.query_one("#summary-text", Static).update(text)
+        self.query_one("#summary-text", TextArea).load_text(text)
 
     @on(ListView.Selected, "#files")
     def _file_selected(self, event: ListView.Selected) -> None:

@@ -33,6 +33,7 @@ class RunScreen(Screen):
         Binding("r", "speed('realtime')", "1×"),
         Binding("x", "speed('fast')", "10×"),
         Binding("m", "speed('max')", "Max"),
+        Binding("i", "inject", "Inject"),
         Binding("a", "abort", "Abort"),
         Binding("v", "report", "Report", show=False),
         Binding("escape", "back", "Back"),
@@ -55,7 +56,8 @@ class RunScreen(Screen):
                 yield LoadTable(id="load")
             yield Plots(id="plots")
             yield EventLog(id="log")
-        yield InputBar(self.session.inputs, id="inputs")
+        yield InputBar(self.session.inputs, self.session.events, self.session.faults,
+                       id="inputs")
         yield Footer()
 
     def on_mount(self) -> None:
@@ -116,14 +118,22 @@ class RunScreen(Screen):
 
     @on(InputRequested)
     def _input(self, message: InputRequested) -> None:
+        message.stop()
         if self.finished:
             self.notify("the run is over", severity="warning")
             return
-        self.session.observer.raise_input(message.name, message.value)
-        self.notify(f"{message.name} raised")
+        if message.fault:
+            self.session.observer.inject_fault(message.name, message.value)
+            self.notify(f"fault {message.name}={message.value} injected")
+        else:
+            self.session.observer.raise_input(message.name, message.value)
+            self.notify(f"{message.name} raised")
 
     def action_raise_input(self, number: int) -> None:
         self.query_one(InputBar).request(number)
+
+    def action_inject(self) -> None:
+        self.query_one(InputBar).inject()
 
     def action_speed(self, name: str) -> None:
         self.session.pace.set(SPEEDS[name])

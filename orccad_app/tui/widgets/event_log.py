@@ -12,8 +12,9 @@ from orccad_app.tui.live import LogEntry
 
 __all__ = ["EventLog"]
 
-_STYLES = {"exception": "bold red", "miss": "red", "input": "bold cyan", "output": "green",
-           "task": "", "param": "yellow", "status": "bold"}
+_STYLES = {"exception": "bold red", "miss": "red", "input": "bold cyan",
+           "fault": "bold magenta", "output": "green", "task": "", "param": "yellow",
+           "status": "bold"}
 
 
 class EventLog(Vertical):

@@ -1,0 +1,205 @@
+"""Pilots: the whole app driven as a person would, asserting on screens and messages."""
+
+from __future__ import annotations
+
+import asyncio
+import io
+import functools
+import time
+from pathlib import Path
+
+import pytest
+from rich.console import Console
+
+from orccad_app.tui.app import OrccadApp
+from orccad_app.tui.messages import InputRequested, RunFinished
+from orccad_app.tui.screens.browser import BrowserScreen
+from orccad_app.tui.screens.report import ReportScreen
+from orccad_app.tui.screens.run import RunScreen
+
+SIZE = (160, 48)
+AUV = Path("missions/auv_survey.orc")
+
+
+def pilot_test(scenario):
+    """Run an ``async`` pilot scenario as a plain test (no asyncio plugin needed)."""
+    @functools.wraps(scenario)
+    def test(*args, **kwargs):
+        asyncio.run(scenario(*args, **kwargs))
+    return test
+
+
+def _text(screen, selector: str) -> str:
+    """The plain text of a ``Static``'s content (a string or a Rich renderable)."""
+    widget = screen.query_one(selector)
+    if hasattr(widget, "text"):  # a TextArea
+        return widget.text
+    content = widget.content
+    if isinstance(content, str):
+        return content
+    console = Console(width=200, record=True, file=io.StringIO())
+    console.print(content)
+    return console.export_text()
+
+
+async def _until(pilot, condition, timeout: float = 30.0) -> None:
+    start = time.monotonic()
+    while not condition():
+        assert time.monotonic() - start < timeout, "timed out waiting for the UI"
+        await pilot.pause(0.05)
+
+
+def _log(screen) -> list[str]:
+    return [entry.format() for entry in screen.query_one("#log").entries]
+
+
+@pilot_test
+async def test_the_browser_shows_source_diagnostics_summary_and_check():
+    app = OrccadApp(["missions/arm_recovery.orc"], selected="missions/arm_recovery.orc")
+    async with app.run_test(size=SIZE) as pilot:
+        screen = app.screen
+        assert isinstance(screen, BrowserScreen)
+        assert "missions/arm_pid.orc" in screen.files  # missions/ is always listed
+        assert "no diagnostics" in _text(screen, "#source-view")
+        await pilot.press("m")
+        summary = _text(screen, "#summary-text")
+        assert "mission ArmRecovery" in summary and "Robot-Tasks: Home, TrackPID" in summary
+        assert "declared inputs: Stop, Hold, Gripper" in summary
+        await pilot.press("c")
+        await _until(pilot, lambda: "all properties hold" in _text(screen, "#check-text"))
+        assert "built-in no-deadlock" in _text(screen, "#check-text")
+
+
+@pilot_test
+async def test_a_file_with_an_error_is_shown_with_it_and_cannot_run(tmp_path):
+    bad = tmp_path / "bad.orc"
+    bad.write_text("robot arm : arm3dof;\nmission M {\n  emit ;\n}\n", encoding="utf-8")
+    app = OrccadApp([str(bad)], selected=str(bad))
+    async with app.run_test(size=SIZE) as pilot:
+        assert "3:" in _text(app.screen, "#source-view")
+        assert "error" in _text(app.screen, "#source-view")
+        await pilot.press("r")
+        assert isinstance(app.screen, BrowserScreen)
+
+
+@pilot_test
+async def test_an_arm_run_goes_live_to_its_report_and_exports_its_trace(tmp_path):
+    app = OrccadApp(["missions/arm_pid.orc"], selected="missions/arm_pid.orc", speed=None)
+    finished = []
+    async with app.run_test(size=SIZE, message_hook=lambda m: isinstance(
+            m, RunFinished) and finished.append(m)) as pilot:
+        await pilot.press("r")
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        report = app.screen
+        assert "mission ArmPID: done" in _text(report, "#report-text")
+        assert "TrackPID         0.000 → 4.000 s  good_end" in _text(report, "#report-text")
+        assert {m.result.status for m in finished} == {"done"}
+        assert len({id(m) for m in finished}) == 1
+        report.query_one("#export-path").value = str(tmp_path / "arm.mcap")
+        await pilot.press("e")
+        assert (tmp_path / "arm.mcap").stat().st_size > 1000
+        await pilot.press("escape")
+        run = app.screen
+        assert isinstance(run, RunScreen) and run.finished
+        assert "mission ArmPID done" in _text(run, "#run-status")
+        assert {"tracking error", "arm.q[0]", "arm.q[1]", "arm.q[2]"} <= set(
+            run.query_one("#plots").series)
+        assert "deadline misses" in str(run.query_one("#load").get_row_at(1))
+        assert _log(run)[-1].endswith("status    mission done")
+        await pilot.press("escape")
+        assert isinstance(app.screen, BrowserScreen)
+
+
+@pilot_test
+async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_recovers():
+    app = OrccadApp([], selected="missions/arm_recovery.orc", speed=2.0, run_now=True)
+    requested = []
+    async with app.run_test(size=SIZE, message_hook=lambda m: isinstance(
+            m, InputRequested) and requested.append(m)) as pilot:
+        run = app.screen
+        assert isinstance(run, RunScreen)
+        await _until(pilot, lambda: any("TrackPID (site 2) starts" in line
+                                        for line in _log(run)))
+        await pilot.press("1")  # Stop: abort the tracking, park the arm
+        await pilot.press("m")  # then as fast as possible
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        assert [m.name for m in {id(m): m for m in requested}.values()] == ["Stop"]
+        report = _text(app.screen, "#report-text")
+        assert "mission ArmRecovery: done" in report and "killed" in report
+        log = _log(run)
+        assert any("input     Stop raised by the user" in line for line in log)
+        assert any("TrackPID (site 2) ends: killed" in line for line in log)
+        assert any("Home (site 1) starts" in line for line in log)
+
+
+@pilot_test
+async def test_the_log_filter_keeps_matching_lines():
+    app = OrccadApp([], selected="missions/arm_pid.orc", speed=None, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await pilot.press("escape")
+        run = app.screen
+        run.query_one("#log-filter").value = "output"
+        await pilot.pause()
+        assert [e.text for e in run.query_one("#log").shown()] == ["Tracked"]
+
+
+@pilot_test
+async def test_pause_and_speed_keys_drive_the_pacing(tmp_path):
+    # a 60 s tracking: a key press in a pilot may wait up to 2 s while the run works
+    long = tmp_path / "long.orc"
+    long.write_text(Path("missions/arm_pid.orc").read_text(encoding="utf-8")
+                    .replace("duration 4 s", "duration 60 s"), encoding="utf-8")
+    app = OrccadApp([], selected=str(long), speed=1.0, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        run = app.screen
+        await pilot.press("x")
+        assert run.session.pace.label == "10×"
+        await pilot.press("space")
+        assert run.session.pace.label == "paused"
+        now = run.session.run.kernel.now
+        await pilot.pause(0.2)
+        assert run.session.run.kernel.now - now <= 1_000_000  # at most the pending reaction
+        await pilot.press("space")
+        assert run.session.pace.label == "10×"
+        await pilot.press("r")
+        assert run.session.pace.label == "1×"
+        await pilot.press("a")
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        assert "mission ArmPID: aborted" in _text(app.screen, "#report-text")
+
+
+def _auv_ready() -> str | None:
+    """Why the AUV pilot cannot run yet, or None."""
+    if not AUV.exists():
+        return "missions/auv_survey.orc is not written yet (the AUV plugin comes separately)"
+    try:
+        from orccad_app.tui.session import LiveSession
+        session = LiveSession(str(AUV), None, lambda update: None)
+    except Exception as error:  # the AUV plugin is not installed or not finished
+        return f"missions/auv_survey.orc does not plan yet: {error}"
+    if "auv.leak" not in session.faults:
+        return "the AUV plant has no 'leak' fault yet"
+    return None
+
+
+@pilot_test
+async def test_an_auv_run_with_an_injected_fault():
+    reason = _auv_ready()
+    if reason is not None:
+        pytest.skip(reason)
+    app = OrccadApp([], selected=str(AUV), speed=0, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        run = app.screen
+        assert isinstance(run, RunScreen)
+        run.query_one("#injection").value = "auv.leak"
+        run.query_one("#input-value").value = "1"
+        await pilot.press("i")  # queued while paused: applied at the first reaction
+        await pilot.press("m")
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen), timeout=60)
+        log = _log(run)
+        assert any("fault     auv.leak=1.0 injected by the user" in line for line in log)
+        assert any("exception Leak (type 3)" in line for line in log)
+        report = _text(app.screen, "#report-text")
+        assert "mission AuvSurvey: aborted (Leak)" in report
+        assert {"auv.depth", "auv.attitude[2]"} <= set(run.query_one("#plots").series)

@@ -1,0 +1,117 @@
+"""The live observer: pacing, inputs raised on the executive's thread, updates (no Textual)."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import pytest
+
+from orccad_app.tui.live import Pace, sensor_ports
+from orccad_app.tui.session import LiveSession, check_file, check_text, inspect_file
+
+
+class _At:
+    """Calls ``action()`` once, at the first reaction at or after ``t_ns``."""
+
+    def __init__(self, t_ns, action):
+        self.t_ns, self.action, self.done = t_ns, action, False
+
+    def on_reaction(self, t_ns, inputs, outputs, status):
+        if not self.done and t_ns >= self.t_ns:
+            self.done = True
+            self.action()
+
+
+def _log(updates):
+    return [entry.format().split(None, 2)[2] for update in updates for entry in update.log]
+
+
+def test_a_run_reports_tasks_phases_samples_load_and_its_log():
+    updates = []
+    session = LiveSession("missions/arm_pid.orc", None, updates.append, speed=None)
+    phases = []
+    session.run.add_observer(_At(1_000_000_000, lambda: phases.append(session.run.phases)))
+    result = session.execute()
+    assert result.status == "done"
+    assert phases == [{0: 3}]
+    samples = {name for update in updates for name in update.samples}
+    assert {"tracking error", "arm.q[0]", "arm.q[1]", "arm.q[2]"} <= samples
+    assert updates[-1].misses == {} and 0.3 < updates[-1].loads["cpu0"] < 0.6
+    assert _log(updates) == ["task      TrackPID (site 0) starts", "output    Tracked",
+                             "task      TrackPID (site 0) ends: good_end"]
+    assert "mission ArmPID: done" in session.report()
+
+
+def test_an_input_raised_by_the_user_reaches_the_automaton_at_the_next_reaction():
+    updates = []
+    session = LiveSession("missions/arm_recovery.orc", None, updates.append, speed=None)
+    session.run.add_observer(_At(2_000_000_000, lambda: session.observer.raise_input("Stop")))
+    result = session.execute()
+    log = _log(updates)
+    assert "input     Stop raised by the user" in log
+    assert "task      TrackPID (site 2) ends: killed" in log
+    assert [r.outcome for r in result.robot_tasks if r.name == "TrackPID"] == ["killed"]
+    assert log.count("output    Beat") == 1  # a sustained output is logged once
+
+
+def test_abort_ends_the_run_aborted():
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=None)
+    session.run.add_observer(_At(100_000_000, session.observer.abort))
+    result = session.execute()
+    assert (result.status, result.reason) == ("aborted", "stopped by the user")
+
+
+def test_a_paused_run_waits_until_resumed():
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=0)
+    worker = threading.Thread(target=session.execute)
+    worker.start()
+    time.sleep(0.3)
+    assert session.run.kernel.now == 0 and worker.is_alive()
+    session.pace.set(None)
+    worker.join(timeout=30)
+    assert session.result.status == "done"
+
+
+def test_pacing_follows_the_wall_clock():
+    pace = Pace(10.0)
+    start = time.perf_counter()
+    for t_ms in range(0, 2001, 100):
+        pace.wait(t_ms * 1_000_000)
+    assert 0.18 < time.perf_counter() - start < 0.5
+    with pytest.raises(ValueError):
+        pace.set(-1)
+
+
+def test_sensor_ports_name_the_robot_sensors_their_modules_read():
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None)
+    ports = sensor_ports(session.run.plan)
+    assert ports[("TrackPID.ctrl", "q")] == "arm.q"
+    assert ports[("TrackPID.ctrl", "qdot")] == "arm.qdot"
+
+
+def test_the_trace_is_exported_after_the_run(tmp_path):
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=None)
+    session.execute()
+    path = session.export(str(tmp_path / "run.csv"))
+    lines = open(path, encoding="utf-8").read().splitlines()
+    assert lines[0] == "time_ns,event,module,port,job,value" and len(lines) > 10_000
+
+
+def test_a_file_with_an_error_shows_it_at_its_line(tmp_path):
+    bad = tmp_path / "bad.orc"
+    bad.write_text("robot arm : arm3dof;\nmission M {\n  emit ;\n}\n", encoding="utf-8")
+    view = inspect_file(str(bad))
+    assert not view.ok
+    [diagnostic] = view.diagnostics
+    assert (diagnostic.severity, diagnostic.line) == ("error", 3)
+
+
+def test_the_compile_summary_and_check_come_from_the_cli_functions():
+    view = inspect_file("missions/arm_recovery.orc")
+    assert view.ok and view.missions == ["ArmRecovery"]
+    assert view.inputs["ArmRecovery"] == ["Stop", "Hold", "Gripper"]
+    summary = view.summaries["ArmRecovery"]
+    assert "Robot-Tasks: Home, TrackPID" in summary and "states" in summary
+    text = check_text(check_file(view, "ArmRecovery"))
+    assert "ok    built-in no-deadlock" in text and text.endswith("all properties hold")
