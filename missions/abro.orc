@@ -9,3 +9,6 @@ mission ABRO {
         halt;
     } each R;
 }
+property ABRO.o_needs_a: always (O -> once A);
+property ABRO.o_needs_b: always (O -> once B);
+property ABRO.r_silences_o: never (R and O);

@@ -28,3 +28,5 @@ mission ArmComputedTorque {
     run TrackCT();
     emit Tracked;
 }
+property ArmComputedTorque.tracked_at_good_end: always (Tracked <-> ended(TrackCT));
+property ArmComputedTorque.terminates: eventually (done or failed or aborted);

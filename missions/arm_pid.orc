@@ -29,3 +29,6 @@ mission ArmPID {
     run TrackPID();
     emit Tracked;
 }
+property ArmPID.tracked_at_good_end: always (Tracked <-> ended(TrackPID));
+property ArmPID.terminates: eventually (done or failed or aborted);
+property ArmPID.fatal_aborts: always (raised(JointLimit) -> aborted);

@@ -92,3 +92,8 @@ mission ArmRecovery {
         emit Fatal;
     }
 }
+property ArmRecovery.home_before_tracking: always (started(TrackPID) -> once ended(Home));
+property ArmRecovery.one_task_at_a_time: never (active(TrackPID) and active(Home));
+property ArmRecovery.retry_after_a_loss: always (Retry -> once (raised(TrackingLost) or raised(Timeout)));
+property ArmRecovery.fatal_reported: always (aborted -> Fatal);
+property ArmRecovery.finished_once: always (Finished -> previously historically not Finished);
