@@ -1,0 +1,63 @@
+"""Snapshots of the main screens (pytest-textual-snapshot; update with --snapshot-update).
+
+The app runs in a scratch folder holding one fixed mission, so the snapshots do not change
+when ``missions/`` does.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from orccad_app.tui.app import OrccadApp
+
+pytest.importorskip("pytest_textual_snapshot")
+
+SIZE = (140, 40)
+MISSION = """\
+// A PID tracking of the cosine trajectory on the 3-DOF arm (snapshot fixture).
+robot arm : arm3dof;
+
+robottask TrackPID(kp: float = 400.0) on arm {
+    duration 4 s;
+    task_function joint_tracking(trajectory = cosine(q0 = [0.5, 0.5, 0.5], omega = pi));
+    law pid(kp = kp, kv = 40.0, ki = 10.0);
+    module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
+    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    connect traj.qd     -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect arm.q       -> ctrl.q;
+    connect arm.qdot    -> ctrl.qdot;
+    connect ctrl.tau    -> arm.tau;
+    exception TrackingLost from tracking_error(max = 0.2) : abort;
+}
+
+mission Snap {
+    input Stop;
+    output Tracked;
+    abort {
+        run TrackPID();
+        emit Tracked;
+    } when Stop;
+}
+"""
+
+
+@pytest.fixture
+def scratch(tmp_path, monkeypatch):
+    (tmp_path / "snap.orc").write_text(MISSION, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    return "snap.orc"
+
+
+def test_browser_source(snap_compare, scratch):
+    assert snap_compare(OrccadApp([scratch], selected=scratch), terminal_size=SIZE)
+
+
+def test_browser_summary(snap_compare, scratch):
+    assert snap_compare(OrccadApp([scratch], selected=scratch), press=["m"],
+                        terminal_size=SIZE)
+
+
+def test_run_screen_paused_at_start(snap_compare, scratch):
+    app = OrccadApp([scratch], selected=scratch, speed=0, run_now=True)
+    assert snap_compare(app, terminal_size=SIZE)
