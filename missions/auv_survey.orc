@@ -2,7 +2,8 @@
 //
 // Launch (a GPS fix, station keeping at the surface), dive, transit, lawnmower survey, surface,
 // recover (a GPS fix, station keeping at the surface). Recovery paths:
-// - too close to the seabed (AltitudeLow): climb to a safer depth and resume the survey there;
+// - too close to the seabed (AltitudeLow): climb to a safer depth and resume the survey there
+//   (a second time: end the survey and surface);
 // - low battery (BatteryLow): end the survey and surface; Recover then raises BatteryLow again
 //   at the surface, so the mission ends 'failed' with that reason, the vehicle safe;
 // - a leak or the depth limit (type 3): the mission is aborted and 'on fatal' surfaces at once.
@@ -87,22 +88,22 @@ robottask Surface() on auv {
     connect auv.attitude  -> pilot.attitude;
     connect auv.velocity  -> pilot.velocity;
     connect pilot.tau     -> auv.tau;
-    postcondition measure at_waypoint(tol = 0.5);
+    postcondition measure at_waypoint(tol = 0.3);
 }
 
 mission AuvSurvey {
     run StationKeep();                                // launch
     try {
         run Dive(depth = 15.0);
-        run GoTo(x = 10.0, y = 0.0, depth = 15.0);
         try {
+            run GoTo(x = 10.0, y = 0.0, depth = 15.0);
             run Survey(depth = 15.0);
         } catch AltitudeLow {
             run Dive(depth = 8.0);                    // climb away from the seabed
             run Survey(depth = 8.0);                  // resume from the nearest lane point
         }
         emit SurveyEnded;
-    } catch BatteryLow {
+    } catch BatteryLow, AltitudeLow {
         nothing;                                      // end the survey: surface below
     }
     run Surface();
@@ -117,6 +118,9 @@ property AuvSurvey.depth_limit_surfaces: always (raised(DepthLimit) -> eventuall
 property AuvSurvey.no_dive_after_depth_limit:
     always (raised(DepthLimit) -> always not (started(Dive) or started(GoTo) or started(Survey)));
 property AuvSurvey.battery_low_surfaces:
-    always (raised(BatteryLow) -> (once ended(Surface) or eventually ended(Surface)));
+    always ((raised(BatteryLow) and once started(Dive))
+            -> (once ended(Surface) or eventually ended(Surface)));
+property AuvSurvey.failed_only_at_surface:
+    always (failed -> (not once started(Dive) or once ended(Surface)));
 property AuvSurvey.surface_alone:
     always not (active(Surface) and (active(Dive) or active(GoTo) or active(Survey)));

@@ -7,6 +7,8 @@ MuJoCo integrates the rigid body, gravity, the thrusters and the ellipsoid fluid
   centre of gravity, in the body frame), ``f`` the submerged fraction (linear over the hull's
   diameter around the surface); its moment about the centre of gravity is the restoring moment
   ``B · cb_height_m · sin(roll)`` that rights the vehicle;
+- **surface damping**: while the hull pierces the surface, a heave damping
+  ``surface_damping`` [N·s/m] stands for the energy radiated by the waves it makes;
 - **leak**: after the ``leak`` fault, water comes in at ``leak_rate_kg_s``: an extra weight.
 
 It integrates the **battery** energy: hotel load ``hotel_w`` plus ``thrust_coeff · |F|^1.5``
@@ -84,6 +86,8 @@ class AuvPhysics(PlantExtension):
         self.bias: dict[str, float] = {}
         self.stuck: dict[str, np.ndarray] = {}
         self.charge0_j = 3600.0 * float(self.params["battery_wh"])
+        self.max_depth_m = 0.0
+        """The deepest the centre of gravity has been [m]."""
 
     def bind(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         self.model, self.data = model, data
@@ -108,8 +112,11 @@ class AuvPhysics(PlantExtension):
 
     def step(self, dt_s: float) -> None:
         data, body = self.data, self.body
+        self.max_depth_m = max(self.max_depth_m, -float(data.xpos[body][2]))
         rot = data.xmat[body].reshape(3, 3)
         up = self.buoyancy_n() - G_MPS2 * self.water_kg
+        if 0.0 < self.submerged_fraction() < 1.0:  # wave-making (radiation) damping
+            up -= self.params["surface_damping"] * float(data.qvel[2])
         arm = rot @ np.array([0.0, 0.0, float(self.params["cb_height_m"])])
         force = np.array([0.0, 0.0, up])
         data.xfrc_applied[body, :3] = force

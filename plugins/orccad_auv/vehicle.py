@@ -43,15 +43,19 @@ AUV_PARAMS = (
     ParamSpec("cb_height_m", "float", 0.05, "centre of buoyancy above the CG [m]", 0.0),
     ParamSpec("hull_radius_m", "float", 0.15, "hull radius [m]", 0.0, True),
     ParamSpec("hotel_w", "float", 20.0, "hotel load (electronics) [W]", 0.0),
-    ParamSpec("thrust_coeff", "float", 1.0, "thruster power per N^1.5 [W/N^1.5]", 0.0),
+    ParamSpec("thrust_coeff", "float", 0.5,
+              "thruster power per N^1.5 [W/N^1.5] (ideal T^1.5/sqrt(2 rho A) of a 10 cm "
+              "propeller is 0.25, at 50 % efficiency 0.5)", 0.0),
     ParamSpec("leak_rate_kg_s", "float", 0.01, "water intake of a leak [kg/s]", 0.0),
+    ParamSpec("surface_damping", "float", 300.0,
+              "heave damping while piercing the surface [N·s/m]", 0.0),
     ParamSpec("gps_depth_m", "float", 0.4, "GPS antenna out of the water above [m]", 0.0,
               True),
 )
 
 _UNITS = {"depth": "[m]", "attitude": "[rad]", "velocity": "[m/s, rad/s]", "position": "[m]",
           "altitude": "[m]", "battery": "[%]", "leak": "[0/1]", "gps": "[0/1]"}
-_NOISE = {"depth": 0.02, "attitude": 0.002, "velocity": 0.01, "position": 0.1,
+_NOISE = {"depth": 0.02, "attitude": 0.002, "velocity": 0.01, "position": 0.05,
           "altitude": 0.05}
 _DOCS = {"depth": "depth of the CG (pressure) [m]",
          "attitude": "roll, pitch, yaw [rad]",
