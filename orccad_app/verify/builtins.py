@@ -27,6 +27,8 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Callable
 
+import networkx as nx
+
 from orccad_app.lang import ast
 from orccad_app.verify.composition import contains
 from orccad_app.verify.model import ENDED, Model, Step
@@ -152,14 +154,28 @@ def _no_deadlock(model: Model) -> Violation | None:
                 queue.append(source)
     if len(good) == len(model.states):
         return None
-    if 0 not in good:
-        stuck, run = 0, ()
-    else:
-        run = shortest_run(model, lambda step: step.target not in good)  # type: ignore[assignment]
-        stuck = run[-1].target
-    where = ", ".join(str(loc) for loc in automaton.waiting[model.control(stuck)]) or "its start"
+    stuck = _stuck_states(model, good)
+    run = () if 0 in stuck else shortest_run(model, lambda step: step.target in stuck)
+    state = run[-1].target if run else 0
+    where = ", ".join(str(loc) for loc in automaton.waiting[model.control(state)]) \
+        or "its start"
     return Violation(f"the mission can get stuck waiting at {where}: no end is reachable "
                      "from there and no loop or halt is meant to run forever", tuple(run))
+
+
+def _stuck_states(model: Model, good: set[int]) -> set[int]:
+    """States of the bottom strongly connected components that hold no good state (where
+    the mission stays forever once there)."""
+    graph = nx.DiGraph()
+    graph.add_nodes_from(range(len(model.states)))
+    graph.add_edges_from((s.source, s.target) for steps in model.steps for s in steps)
+    condensed = nx.condensation(graph)
+    stuck: set[int] = set()
+    for component in condensed.nodes:
+        members = condensed.nodes[component]["members"]
+        if condensed.out_degree(component) == 0 and not members & good:
+            stuck |= members
+    return stuck
 
 
 def _tasks_end_first(model: Model) -> Violation | None:
