@@ -38,7 +38,8 @@ class EventLog(Vertical):
     def compose(self) -> ComposeResult:
         yield Input(placeholder="filter the log (e.g. exception, Stop, TrackPID)",
                     id="log-filter")
-        yield RichLog(id="log-lines", wrap=False, markup=False, max_lines=self.MAX_LINES)
+        yield RichLog(id="log-lines", wrap=True, markup=False, min_width=20,
+                      max_lines=self.MAX_LINES)
 
     def add(self, entries: list[LogEntry]) -> None:
         self.entries.extend(entries)

@@ -46,7 +46,7 @@ class InputBar(Horizontal):
         yield Label("inputs:" if self.inputs else "no declared input")
         for number, signal in enumerate(self.inputs, 1):
             yield Button(f"{number} {signal.name}", id=f"input-{signal.name}", compact=True)
-        yield Input("1", id="input-value", placeholder="value")
+        yield Input("1", id="input-value", placeholder="value", compact=True)
         options = [(f"fault {name}", name) for name in self.faults]
         options += [(f"event {name}", name) for name in self.events]
         if options:

@@ -8,7 +8,18 @@ from textual.app import ComposeResult
 from textual.containers import VerticalScroll
 from textual.widgets import Label, Sparkline
 
-__all__ = ["Plots"]
+__all__ = ["Plots", "FIRST"]
+
+FIRST = ("tracking error", ".q[", ".depth", ".heading", ".attitude[2]")
+"""Series shown first when present (the task error, the arm's joints, the AUV's depth and
+heading); every other series follows in name order."""
+
+
+def _order(name: str) -> tuple[int, str]:
+    for rank, key in enumerate(FIRST):
+        if name == key or key in name:
+            return rank, name
+    return len(FIRST), name
 
 
 class Plots(VerticalScroll):
@@ -31,7 +42,7 @@ class Plots(VerticalScroll):
 
     def add_samples(self, samples: dict[str, list[float]]) -> None:
         """Append new samples (series name -> values)."""
-        for name in sorted(samples, key=lambda n: (n != "tracking error", n)):
+        for name in sorted(samples, key=_order):
             data = self._data.get(name)
             if data is None:
                 data = self._data[name] = deque(maxlen=self.window)
@@ -55,10 +66,13 @@ class Plots(VerticalScroll):
         for empty in self.query("#plots-empty"):
             empty.remove()
         key = self._key(name)
-        self.mount(Label(name, id=f"label-{key}"), Sparkline([], id=f"plot-{key}"))
+        later = [other for other in self._data if other != name and _order(other) > _order(name)]
+        before = self.query_one(f"#label-{self._key(min(later, key=_order))}") if later else None
+        self.mount(Label(name, id=f"label-{key}"), Sparkline([], id=f"plot-{key}"),
+                   before=before)
 
     def _refresh(self, name: str) -> None:
         data, key = self._data[name], self._key(name)
         self.query_one(f"#label-{key}", Label).update(
-            f"{name}  {data[-1]: .4g}   [min {min(data):.4g}, max {max(data):.4g}]")
+            f"{name}  {data[-1]: .4g}   ({min(data):.3g} … {max(data):.3g})")
         self.query_one(f"#plot-{key}", Sparkline).data = list(data)

@@ -1,0 +1,84 @@
+"""Regenerate the terminal UI's screenshots in docs/ (SVG exported by the app itself).
+
+Run from the repository root: ``python docs/make_screenshots.py``. Writes
+``docs/tui-browser.svg`` (the mission browser), ``docs/tui-check.svg`` (``orccad check``
+results), ``docs/tui-run.svg`` (a live run of missions/arm_recovery.orc, paused while the
+tracking runs), ``docs/tui-report.svg`` (its report after ``Stop`` was raised) and, when the
+AUV mission plans, ``docs/tui-auv.svg`` (the AUV survey after a leak).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from pathlib import Path
+
+from orccad_app.tui.app import OrccadApp
+from orccad_app.tui.screens.report import ReportScreen
+
+DOCS = Path(__file__).resolve().parent
+SIZE = (150, 44)
+
+
+async def _until(pilot, condition, timeout: float = 60.0) -> None:
+    start = time.monotonic()
+    while not condition():
+        if time.monotonic() - start > timeout:
+            raise TimeoutError("the UI did not get there in time")
+        await pilot.pause(0.05)
+
+
+def _logged(screen, text: str) -> bool:
+    return any(text in entry.format() for entry in screen.query_one("#log").entries)
+
+
+async def browser() -> None:
+    app = OrccadApp(["missions/arm_recovery.orc"], selected="missions/arm_recovery.orc")
+    async with app.run_test(size=SIZE) as pilot:
+        app.save_screenshot("tui-browser.svg", str(DOCS))
+        await pilot.press("c")
+        await _until(pilot, lambda: "hold" in str(app.screen.query_one("#check-text").content))
+        await pilot.pause(0.5)
+        app.save_screenshot("tui-check.svg", str(DOCS))
+
+
+async def arm_run() -> None:
+    app = OrccadApp([], selected="missions/arm_recovery.orc", speed=1.0, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        run = app.screen
+        await _until(pilot, lambda: _logged(run, "TrackPID (site 2) starts"))
+        await pilot.pause(1.0)
+        await pilot.press("space")
+        await pilot.pause(0.3)
+        app.save_screenshot("tui-run.svg", str(DOCS))
+        await pilot.press("1", "m")  # Stop, then as fast as possible
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await pilot.pause(0.5)
+        app.save_screenshot("tui-report.svg", str(DOCS))
+
+
+async def auv_run() -> None:
+    app = OrccadApp([], selected="missions/auv_survey.orc", speed=None, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        run = app.screen
+        if isinstance(run, ReportScreen) or not hasattr(run, "session"):
+            return
+        await _until(pilot, lambda: _logged(run, "Dive (site 1) starts"))
+        run.query_one("#injection").value = "auv.leak"
+        await pilot.press("i")
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await pilot.press("escape")
+        await pilot.pause(0.5)
+        app.save_screenshot("tui-auv.svg", str(DOCS))
+
+
+def main() -> None:
+    asyncio.run(browser())
+    asyncio.run(arm_run())
+    if Path("missions/auv_survey.orc").exists():
+        asyncio.run(auv_run())
+    print("\n".join(str(p) for p in sorted(DOCS.glob("tui-*.svg"))))
+
+
+if __name__ == "__main__":
+    main()
