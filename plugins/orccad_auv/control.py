@@ -219,8 +219,8 @@ _GAINS = (
     ("max_heave", 70.0, "bound of the heave force [N]"),
     ("kp_pitch", 100.0, "pitch stiffness [N·m/rad]"),
     ("kd_pitch", 60.0, "pitch damping [N·m·s/rad]"),
-    ("kp_heading", 40.0, "heading stiffness [N·m/rad]"),
-    ("kd_heading", 40.0, "heading damping [N·m·s/rad]"),
+    ("kp_heading", 80.0, "heading stiffness [N·m/rad]"),
+    ("kd_heading", 120.0, "heading damping [N·m·s/rad]"),
     ("k_speed", 60.0, "speed gain [N·s/m]"),
     ("drag_coeff", 14.9, "surge drag feed-forward [N·s²/m²]"),
 )
