@@ -133,6 +133,22 @@ async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_reco
 
 
 @pilot_test
+async def test_keys_after_the_declared_inputs_raise_observer_events():
+    # missions/arm_pid.orc declares no input: keys 1-3 raise TrackPID's observer events
+    app = OrccadApp([], selected="missions/arm_pid.orc", speed=1.0, run_now=True)
+    async with app.run_test(size=SIZE) as pilot:
+        run = app.screen
+        assert run.query_one("#inputs").keyed == [
+            "TrackPID.JointLimit", "TrackPID.TrackingLost", "TrackPID.Saturated"]
+        await _until(pilot, lambda: run.session.run.kernel.now > 200_000_000)
+        await pilot.press("2")
+        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        assert "mission ArmPID: failed (TrackingLost)" in _text(app.screen, "#report-text")
+        assert any("input     TrackPID.TrackingLost raised by the user" in line
+                   for line in _log(run))
+
+
+@pilot_test
 async def test_the_log_filter_keeps_matching_lines():
     app = OrccadApp([], selected="missions/arm_pid.orc", speed=None, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
