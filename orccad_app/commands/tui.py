@@ -44,11 +44,12 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.tui.app import OrccadApp
 
     paths = [args.file] if args.file else []
     if args.file and not Path(args.file).exists():
         raise OrccadError(f"{args.file}: no such file or folder")
+    from orccad_app.tui.app import OrccadApp  # Textual only now: the core never imports it
+
     selected = args.file if args.file and Path(args.file).is_file() else None
     app = OrccadApp(paths, selected=selected, mission=args.mission, speed=args.speed,
                     seed=args.seed, run_now=args.run and selected is not None)

@@ -26,3 +26,15 @@ def test_the_core_and_the_cli_parser_import_without_textual():
 def test_the_tui_package_is_where_textual_comes_in():
     code = "import sys, orccad_app.tui.app; print('textual' in sys.modules)"
     assert _loaded(code) == "True"
+
+
+def test_orccad_tui_on_a_missing_file_is_bad_input():
+    result = subprocess.run([sys.executable, "-m", "orccad_app.cli", "tui", "nope.orc"],
+                            capture_output=True, text=True)
+    assert result.returncode == 2 and "nope.orc: no such file" in result.stderr
+
+
+def test_orccad_tui_speed_must_be_a_factor_or_max():
+    result = subprocess.run([sys.executable, "-m", "orccad_app.cli", "tui", "--speed", "0"],
+                            capture_output=True, text=True)
+    assert result.returncode == 2 and "expected a factor > 0" in result.stderr
