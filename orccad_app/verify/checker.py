@@ -69,8 +69,9 @@ def _safety_body(f: F) -> F | None:
 
 
 def check_formula(model: Model, formula: F, assumptions: list[F] = (),
-                  fair: bool = True) -> Lasso | None:
-    """A fair run satisfying the assumptions and violating ``formula``, or None."""
+                  fair: bool = True) -> tuple[Lasso | None, Alphabet]:
+    """A fair run satisfying the assumptions and violating ``formula`` (or None), and the
+    alphabet its letters are written in."""
     goal = neg(formula)
     for assumption in assumptions:
         goal = conj(assumption, goal)

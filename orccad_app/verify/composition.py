@@ -38,8 +38,6 @@ class Composition:
     program: ast.Program
     automaton: Automaton
     sites: tuple[Site, ...]
-    fatal: frozenset[str]      # exception names of type 3
-    abortive: frozenset[str]   # exception names of type 2 (and Timeout, watchdogs)
 
     @property
     def name(self) -> str:
@@ -64,10 +62,4 @@ def compose(program: ast.Program, mission: ast.Mission, *,
         Site(s.number, s.task.name, s.task.robot, s.stmt.loc,
              fatal_block is not None and contains(fatal_block, s.stmt.loc))
         for s in lowerer.sites)
-    fatal: set[str] = set()
-    abortive: set[str] = {"Timeout"}
-    for task in program.robottasks:
-        fatal.update(e.name for e in task.exceptions if e.type is ast.ExceptionType.FATAL)
-        abortive.update(task.raisable())
-    return Composition(mission, program, automaton, sites, frozenset(fatal),
-                       frozenset(abortive))
+    return Composition(mission, program, automaton, sites)
