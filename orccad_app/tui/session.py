@@ -5,11 +5,15 @@
   mission;
 - :func:`check_file`: ``orccad check``'s :func:`~orccad_app.verify.checker.check_mission`;
 - :class:`LiveSession`: ``orccad run``'s plan and :class:`MissionRun`, observed by a
-  :class:`~orccad_app.tui.live.LiveObserver`, with the trace kept in memory for export.
+  :class:`~orccad_app.tui.live.LiveObserver`, with the trace spooled to a temporary CSV file
+  for export.
 """
 
 from __future__ import annotations
 
+import csv
+import shutil
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -142,15 +146,33 @@ def _faults(run: Any) -> dict[str, str]:
     return found
 
 
-class _Rows:
-    """A trace writer that keeps the rows in memory (exported on demand)."""
+class _Spool:
+    """The run's trace, written as CSV to a temporary file as the run goes (a long run does
+    not fill the memory); :meth:`export` copies it, or converts it to MCAP."""
 
     def __init__(self) -> None:
-        self.rows: list[Any] = []
-        self.write = self.rows.append
+        from orccad_app.trace import CsvTraceWriter
 
-    def close(self) -> None:
-        """Nothing to close."""
+        self._folder = tempfile.TemporaryDirectory(prefix="orccad-tui-")
+        self.path = Path(self._folder.name) / "trace.csv"
+        self.writer = CsvTraceWriter(self.path)
+
+    def export(self, path: str, metadata: dict[str, str]) -> None:
+        from orccad_app.trace import TraceRow, open_trace
+
+        self.writer.close()
+        if Path(path).suffix.lower() == ".csv":
+            shutil.copyfile(self.path, path)
+            return
+        writer = open_trace(path, metadata)
+        try:
+            with self.path.open(newline="", encoding="utf-8") as rows:
+                reader = csv.reader(rows)
+                next(reader)  # the header
+                for time_ns, event, module, port, job, value in reader:
+                    writer.write(TraceRow(int(time_ns), event, module, port, int(job), value))
+        finally:
+            writer.close()
 
 
 class LiveSession:
@@ -184,14 +206,17 @@ class LiveSession:
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace)
-        self._trace = _Rows()
+        self._trace = _Spool()
         self.run.add_observer(self.observer)
-        self.run.add_observer(TraceRecorder(self._trace))
+        self.run.add_observer(TraceRecorder(self._trace.writer))
         self.result: Any = None
 
     def execute(self) -> Any:
         """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
-        self.result = self.run.run()
+        try:
+            self.result = self.run.run()
+        finally:
+            self._trace.writer.close()
         self.observer.flush(self.run.kernel.now)
         return self.result
 
@@ -203,13 +228,6 @@ class LiveSession:
 
     def export(self, path: str) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""
-        from orccad_app.trace import open_trace
-
-        writer = open_trace(path, {"mission": self.mission, "file": self.path,
-                                   "seed": str(self.seed)})
-        try:
-            for row in self._trace.rows:
-                writer.write(row)
-        finally:
-            writer.close()
+        self._trace.export(path, {"mission": self.mission, "file": self.path,
+                                  "seed": str(self.seed)})
         return path

@@ -115,3 +115,19 @@ def test_the_compile_summary_and_check_come_from_the_cli_functions():
     assert "Robot-Tasks: Home, TrackPID" in summary and "states" in summary
     text = check_text(check_file(view, "ArmRecovery"))
     assert "ok    built-in no-deadlock" in text and text.endswith("all properties hold")
+
+
+def test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused(tmp_path):
+    from mcap.reader import make_reader
+
+    from orccad_app.diagnostics import OrccadError
+
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=None)
+    session.execute()
+    csv_rows = len(open(session.export(str(tmp_path / "run.csv")), encoding="utf-8")
+                   .read().splitlines()) - 1
+    with open(session.export(str(tmp_path / "run.mcap")), "rb") as stream:
+        messages = sum(1 for _ in make_reader(stream).iter_messages())
+    assert messages == csv_rows
+    with pytest.raises(OrccadError):
+        session.export(str(tmp_path / "run.txt"))
