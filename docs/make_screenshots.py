@@ -28,6 +28,10 @@ async def _until(pilot, condition, timeout: float = 60.0) -> None:
         await pilot.pause(0.05)
 
 
+def _report_shown(app) -> bool:
+    return isinstance(app.screen, ReportScreen) and bool(app.screen.query("#report-text"))
+
+
 def _logged(screen, text: str) -> bool:
     return any(text in entry.format() for entry in screen.query_one("#log").entries)
 
@@ -52,7 +56,7 @@ async def arm_run() -> None:
         await pilot.pause(0.3)
         app.save_screenshot("tui-run.svg", str(DOCS))
         await pilot.press("1", "m")  # Stop, then as fast as possible
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         await pilot.pause(0.5)
         app.save_screenshot("tui-report.svg", str(DOCS))
 
@@ -66,7 +70,7 @@ async def auv_run() -> None:
         await _until(pilot, lambda: _logged(run, "Dive (site 1) starts"))
         run.query_one("#injection").value = "auv.leak"
         await pilot.press("i")
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         await pilot.press("escape")
         await pilot.pause(0.5)
         app.save_screenshot("tui-auv.svg", str(DOCS))

@@ -239,7 +239,7 @@ class LiveObserver(Observer):
             self._sample(t_ns, sensor, _components(value))
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
-        if port == "e":
+        if port == "e" and t_ns >= self._next_sample.get("tracking error", 0):
             values = _components(value, limit=1 << 16)
             if values is not None:
                 self._sample(t_ns, "tracking error", [math.sqrt(sum(v * v for v in values))])

@@ -49,6 +49,11 @@ async def _until(pilot, condition, timeout: float = 30.0) -> None:
         await pilot.pause(0.05)
 
 
+def _report_shown(app) -> bool:
+    """The report screen is up and composed."""
+    return isinstance(app.screen, ReportScreen) and bool(app.screen.query("#report-text"))
+
+
 def _log(screen) -> list[str]:
     return [entry.format() for entry in screen.query_one("#log").entries]
 
@@ -89,7 +94,7 @@ async def test_an_arm_run_goes_live_to_its_report_and_exports_its_trace(tmp_path
     async with app.run_test(size=SIZE, message_hook=lambda m: isinstance(
             m, RunFinished) and finished.append(m)) as pilot:
         await pilot.press("r")
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         report = app.screen
         assert "mission ArmPID: done" in _text(report, "#report-text")
         assert "TrackPID         0.000 → 4.000 s  good_end" in _text(report, "#report-text")
@@ -116,13 +121,14 @@ async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_reco
     requested = []
     async with app.run_test(size=SIZE, message_hook=lambda m: isinstance(
             m, InputRequested) and requested.append(m)) as pilot:
+        await pilot.pause()
         run = app.screen
         assert isinstance(run, RunScreen)
         await _until(pilot, lambda: any("TrackPID (site 2) starts" in line
                                         for line in _log(run)))
         await pilot.press("1")  # Stop: abort the tracking, park the arm
         await pilot.press("m")  # then as fast as possible
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         assert [m.name for m in {id(m): m for m in requested}.values()] == ["Stop"]
         report = _text(app.screen, "#report-text")
         assert "mission ArmRecovery: done" in report and "killed" in report
@@ -137,12 +143,13 @@ async def test_keys_after_the_declared_inputs_raise_observer_events():
     # missions/arm_pid.orc declares no input: keys 1-3 raise TrackPID's observer events
     app = OrccadApp([], selected="missions/arm_pid.orc", speed=1.0, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
         run = app.screen
         assert run.query_one("#inputs").keyed == [
             "TrackPID.JointLimit", "TrackPID.TrackingLost", "TrackPID.Saturated"]
         await _until(pilot, lambda: run.session.run.kernel.now > 200_000_000)
         await pilot.press("2")
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         assert "mission ArmPID: failed (TrackingLost)" in _text(app.screen, "#report-text")
         assert any("input     TrackPID.TrackingLost raised by the user" in line
                    for line in _log(run))
@@ -152,7 +159,7 @@ async def test_keys_after_the_declared_inputs_raise_observer_events():
 async def test_the_log_filter_keeps_matching_lines():
     app = OrccadApp([], selected="missions/arm_pid.orc", speed=None, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         await pilot.press("escape")
         run = app.screen
         run.query_one("#log-filter").value = "output"
@@ -168,6 +175,7 @@ async def test_pause_and_speed_keys_drive_the_pacing(tmp_path):
                     .replace("duration 4 s", "duration 60 s"), encoding="utf-8")
     app = OrccadApp([], selected=str(long), speed=1.0, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
         run = app.screen
         await pilot.press("x")
         assert run.session.pace.label == "10×"
@@ -181,7 +189,7 @@ async def test_pause_and_speed_keys_drive_the_pacing(tmp_path):
         await pilot.press("r")
         assert run.session.pace.label == "1×"
         await pilot.press("a")
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen))
+        await _until(pilot, lambda: _report_shown(app))
         assert "mission ArmPID: aborted" in _text(app.screen, "#report-text")
 
 
@@ -206,13 +214,14 @@ async def test_an_auv_run_with_an_injected_fault():
         pytest.skip(reason)
     app = OrccadApp([], selected=str(AUV), speed=0, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
         run = app.screen
         assert isinstance(run, RunScreen)
         run.query_one("#injection").value = "auv.leak"
         run.query_one("#input-value").value = "1"
         await pilot.press("i")  # queued while paused: applied at the first reaction
         await pilot.press("m")
-        await _until(pilot, lambda: isinstance(app.screen, ReportScreen), timeout=60)
+        await _until(pilot, lambda: _report_shown(app), timeout=60)
         log = _log(run)
         assert any("fault     auv.leak=1.0 injected by the user" in line for line in log)
         assert any("exception Leak (type 3)" in line for line in log)
