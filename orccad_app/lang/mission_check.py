@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.walk import runs
 from orccad_app.lang.declarations import check_type
 from orccad_app.lang.scope import (Binding, ConditionKind, NameKind, Problems, Scope,
                                    classify_condition, signal_leaves)
@@ -283,7 +284,7 @@ class MissionChecker:
         if self.tasks is None:
             return None
         names: set[str] = set()
-        for run in _runs(body):
+        for run in runs(body):
             task = self.tasks.get(run.task)
             if task is None:
                 return None
@@ -319,15 +320,3 @@ class MissionChecker:
             self.error(f"undeclared variable '{stmt.name}'", stmt.loc)
         elif binding.kind is NameKind.SIGNAL:
             self.error(f"cannot assign to signal '{stmt.name}'; use emit", stmt.loc)
-
-
-def _runs(node):
-    """Every :class:`~.ast.Run` inside a statement tree."""
-    if isinstance(node, ast.Run):
-        yield node
-        return
-    for name in getattr(node, "__dataclass_fields__", ()):
-        value = getattr(node, name)
-        for item in value if isinstance(value, tuple) else (value,):
-            if hasattr(item, "__dataclass_fields__"):
-                yield from _runs(item)

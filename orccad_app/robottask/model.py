@@ -21,6 +21,7 @@ from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind,
 from orccad_app.control.spec import module_context, resolve
 from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.walk import runs
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 
@@ -219,16 +220,6 @@ def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
     return inst
 
 
-def _runs(node):
-    if isinstance(node, ast.Run):
-        yield node
-    for name in getattr(node, "__dataclass_fields__", ()):
-        value = getattr(node, name)
-        for item in value if isinstance(value, tuple) else (value,):
-            if hasattr(item, "__dataclass_fields__") and not isinstance(item, SourceLocation):
-                yield from _runs(item)
-
-
 def check_tasks(program: ast.Program, host) -> dict[tuple, TaskInstance]:
     """Instantiate every Robot-Task: once with its defaults (when it has them all) and once
     per ``run`` with that run's arguments. Returns the instances keyed by
@@ -240,7 +231,7 @@ def check_tasks(program: ast.Program, host) -> dict[tuple, TaskInstance]:
         if all(p.default is not None for p in task.params):
             found[(task.name, None)] = instantiate(task, robots, host)
     for mission in program.missions:
-        for run in _runs(mission):
+        for run in runs(mission):
             task = tasks.get(run.task)
             if task is None:
                 continue
