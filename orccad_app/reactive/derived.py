@@ -34,6 +34,7 @@ from orccad_app.reactive import ir
 __all__ = [
     "seq", "halt", "sustain", "await_signal", "await_count", "await_duration", "abort",
     "suspend", "loop_each", "every_signal", "every_duration", "repeat", "trap_handle", "race",
+    "deadline",
 ]
 
 
@@ -89,11 +90,18 @@ def _deadline_reached(deadline: ir.VarDecl, loc: SourceLocation) -> ir.Test:
     return ir.DataTest(ir.Binary(">=", ir.Clock(loc), ir.VarRef(deadline, loc), loc), loc)
 
 
+def deadline(duration_ns: ir.Expr, loc: SourceLocation = NOWHERE,
+             name: str = "_deadline") -> tuple[ir.VarDecl, ir.Stmt, ir.Test]:
+    """A timer: (its hidden variable, ``t := clock + duration`` to start it, ``clock >= t``)."""
+    var = ir.VarDecl(name, loc, hidden=True)
+    start = ir.Assign(var, ir.Binary("+", ir.Clock(loc), duration_ns, loc), loc)
+    return var, start, _deadline_reached(var, loc)
+
+
 def await_duration(duration_ns: ir.Expr, loc: SourceLocation = NOWHERE) -> ir.Stmt:
     """Terminates at the first later instant whose clock has reached start + duration."""
-    deadline = ir.VarDecl("_deadline", loc, hidden=True)
-    start = ir.Assign(deadline, ir.Binary("+", ir.Clock(loc), duration_ns, loc), loc)
-    return seq(start, await_signal(_deadline_reached(deadline, loc), loc=loc))
+    _, start, reached = deadline(duration_ns, loc)
+    return seq(start, await_signal(reached, loc=loc))
 
 
 def abort(body: ir.Stmt, test: ir.Test, *, weak: bool = False, immediate: bool = False,
@@ -128,11 +136,9 @@ def every_signal(test: ir.Test, body: ir.Stmt, *, immediate: bool = False,
 
 def every_duration(period_ns: ir.Expr, body: ir.Stmt, loc: SourceLocation = NOWHERE) -> ir.Stmt:
     """Starts ``body`` every ``period_ns`` from the start, killing the previous run."""
-    deadline = ir.VarDecl("_deadline", loc, hidden=True)
-    advance = ir.Assign(deadline, ir.Binary("+", ir.VarRef(deadline, loc), period_ns, loc), loc)
-    reached = _deadline_reached(deadline, loc)
+    timer, start, reached = deadline(period_ns, loc)
+    advance = ir.Assign(timer, ir.Binary("+", ir.VarRef(timer, loc), period_ns, loc), loc)
     run_once = seq(advance, abort(seq(body, halt(loc)), reached, loc=loc))
-    start = ir.Assign(deadline, ir.Binary("+", ir.Clock(loc), period_ns, loc), loc)
     return seq(start, await_signal(reached, loc=loc), ir.Loop(run_once, loc, "every"))
 
 

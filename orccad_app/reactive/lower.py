@@ -253,11 +253,9 @@ class Lowerer:
         if trigger.duration_ns is None:
             self._no_count(trigger, what)
             return (), self.condition(trigger.condition, scope), ()
-        deadline = ir.VarDecl("_deadline", trigger.loc, hidden=True)
         period = ir.Const(trigger.duration_ns, trigger.loc)
-        start = ir.Assign(deadline, ir.Binary("+", ir.Clock(trigger.loc), period), trigger.loc)
-        rearm = ir.Assign(deadline, ir.Binary("+", ir.VarRef(deadline), period), trigger.loc)
-        test = ir.DataTest(ir.Binary(">=", ir.Clock(trigger.loc), ir.VarRef(deadline)), trigger.loc)
+        timer, start, test = d.deadline(period, trigger.loc)
+        rearm = ir.Assign(timer, ir.Binary("+", ir.VarRef(timer), period), trigger.loc)
         return (start,), test, (rearm,)
 
     # ------------------------------------------------------------------ conditions

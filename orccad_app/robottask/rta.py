@@ -127,10 +127,7 @@ def _phase2(sig: TaskSignals, raise_: Raise) -> ir.Stmt:
             continue
         wait = _await(sig.events[pre.observer.func], pre.loc)
         if pre.within_ns is not None:
-            deadline = ir.VarDecl("_watchdog", pre.loc, hidden=True)
-            start = ir.Assign(deadline, ir.Binary("+", ir.Clock(pre.loc),
-                                                  ir.Const(pre.within_ns, pre.loc)), pre.loc)
-            expired = ir.DataTest(ir.Binary(">=", ir.Clock(pre.loc), ir.VarRef(deadline)), pre.loc)
+            _, start, expired = d.deadline(ir.Const(pre.within_ns, pre.loc), pre.loc, "_watchdog")
             timeout = raise_(f"{pre.observer.func}_timeout", pre.loc)
             wait = d.seq(start, d.abort(wait, expired, handler=timeout, loc=pre.loc))
         waits.append(wait)
