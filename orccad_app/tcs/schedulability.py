@@ -1,0 +1,326 @@
+"""Schedulability of a whole TCS as the executive runs it: processors (fixed priority or EDF,
+context switches), protocol blocking and the bus, solved together.
+
+The pieces (each module documents its own bounds):
+
+- :mod:`~orccad_app.tcs.protocol_blocking`: how long a read or a write can wait, and the rate
+  mismatches that make a Module-Task overrun *by construction*;
+- :mod:`~orccad_app.tcs.processor_demand`: fixed-priority response times and EDF's
+  processor-demand test with release jitter (read waits are jitter);
+- :mod:`~orccad_app.tcs.bus_delay`: the FIFO bus's worst delay per message class.
+
+They depend on each other (a consumer's wait depends on its producer's response, which depends
+on the bus, whose load jitter depends on the responses), so the analysis iterates from the
+independent-task figures to the least fixed point; every term only grows, and it stops as soon
+as one Module-Task's bound passes its deadline or its period (a job still running at its next
+release makes the executive skip that release, which no bound here allows).
+
+**Safety.** A Module-Task is called schedulable only when its response bound ``R`` satisfies
+``R <= D``, ``R <= T``, and ``R < T`` when a write may wait (such a wait can end at the next
+release instant). The whole TCS is schedulable when every Module-Task is; the figures of the
+others are only valid if that holds. The property test ``tests/tcs/test_analysis_safety.py``
+checks the claim against executive runs; docs/executive.md reports the pessimism.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping
+
+from orccad_app.tcs.bus_delay import BusModel, MessageClass, bus_delays, message_classes
+from orccad_app.tcs.graph import TCS
+from orccad_app.tcs.module_task import ModuleTask
+from orccad_app.tcs.phasing import Phase
+from orccad_app.tcs.processor_demand import (BudgetExceeded, Load, busy_period_ns,
+                                             edf_demand_ok, fp_completion_ns, utilization)
+from orccad_app.tcs.protocol_blocking import rate_mismatch, read_done_ns, write_done_ns
+
+__all__ = ["TaskTiming", "Schedulability", "analyse_timing", "ROUND_BUDGET"]
+
+ROUND_BUDGET = 1_000
+"""Rounds of the global fixed point before the analysis gives up (conservatively)."""
+
+
+@dataclass(frozen=True, slots=True)
+class TaskTiming:
+    """The analysis of one Module-Task; times after its release [ns].
+
+    :param module: its name.
+    :param processor: its processor.
+    :param period_ns: period (minimum inter-arrival time when sporadic).
+    :param deadline_ns: relative deadline.
+    :param read_wait_ns: latest end of its reads (blocking on inputs; release jitter).
+    :param compute_end_ns: latest end of its compute phase.
+    :param response_ns: latest end of its writes (the response time); ``None`` when no bound.
+    :param problem: why it is not schedulable, ``None`` when it is.
+    """
+
+    module: str
+    processor: str
+    period_ns: int
+    deadline_ns: int
+    read_wait_ns: int
+    compute_end_ns: int
+    response_ns: int | None
+    problem: str | None = None
+
+    @property
+    def write_wait_ns(self) -> int:
+        """Latest time its writes wait after the compute phase [ns]."""
+        if self.response_ns is None:
+            return 0
+        return self.response_ns - self.compute_end_ns
+
+    @property
+    def schedulable(self) -> bool:
+        return self.problem is None
+
+
+@dataclass(frozen=True, slots=True)
+class Schedulability:
+    """The analysis of a TCS.
+
+    :param scheduler: ``fp`` or ``edf``.
+    :param tasks: per Module-Task, in TCS order.
+    :param messages: the bus's message classes with their worst delays.
+    :param bus_busy_ns: the bus's longest busy period [ns] (``None`` when overloaded).
+    :param notes: what the analysis assumed or gave up on.
+    """
+
+    scheduler: str
+    tasks: dict[str, TaskTiming]
+    messages: list[MessageClass] = field(default_factory=list)
+    bus_busy_ns: int | None = 0
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        """Every Module-Task meets its deadlines (and no bound was given up on)."""
+        return all(t.schedulable for t in self.tasks.values())
+
+
+class _State:
+    """The bounds of one round, per Module-Task name [ns]."""
+
+    def __init__(self, tasks: list[ModuleTask], costs: dict[str, int]) -> None:
+        self.read = {t.name: 0 for t in tasks}
+        self.compute = {t.name: costs[t.name] for t in tasks}
+        self.response = dict(self.compute)
+        self.attempt: dict[str, int] = {}
+        self.read_at: dict[str, int] = {}
+
+    def key(self) -> tuple:
+        return (tuple(self.read.values()), tuple(self.compute.values()),
+                tuple(self.response.values()), tuple(sorted(self.attempt.items())),
+                tuple(sorted(self.read_at.items())))
+
+
+class _Analysis:
+    def __init__(self, tcs: TCS, scheduler: str, switch: Mapping[str, int], bus: BusModel,
+                 groups: Mapping[str, int | None] | None) -> None:
+        self.tcs = tcs
+        self.scheduler = scheduler
+        self.tasks = tcs.module_tasks
+        self.by_name = {t.name: t for t in self.tasks}
+        self.costs = {t.name: t.wcet_ns + 2 * switch.get(t.processor, 0) for t in self.tasks}
+        self.phases = {t.name: Phase(t.min_interarrival_ns, t.offset_ns, t.activation,
+                                     0 if groups is None else groups.get(t.name, 0))
+                       for t in self.tasks}
+        self.bus = bus
+        self.problems: dict[str, str] = {}
+        self.notes: list[str] = []
+        self.reads = {t.name: self._links(t, consumer=True) for t in self.tasks}
+        self.writes = {t.name: self._links(t, consumer=False) for t in self.tasks}
+        self.classes = message_classes(tcs, bus)
+
+    def _links(self, task: ModuleTask, consumer: bool) -> list:
+        links = []
+        if consumer:
+            for port in task.inputs:
+                c = self.tcs.feeding(f"{task.name}.{port.name}")
+                if c is not None and c.producer_module in self.by_name:
+                    links.append(c)
+        else:
+            for port in task.outputs:
+                links += [c for c in self.tcs.connections_from(task.name)
+                          if c.producer_port == port.name and c.consumer_module in self.by_name]
+        return links
+
+    def cap(self, task: ModuleTask) -> int:
+        return min(task.deadline_ns, task.min_interarrival_ns)
+
+    def remote(self, c) -> bool:
+        return (self.by_name[c.producer_module].processor
+                != self.by_name[c.consumer_module].processor)
+
+    def fail(self, name: str, why: str) -> None:
+        self.problems.setdefault(name, why)
+
+    # -- one round -------------------------------------------------------------------------
+
+    def round(self, state: _State) -> _State | None:
+        delays = bus_delays(self.classes, state.response, self.bus_limit())
+        if delays is None:
+            for c in self.classes:
+                self.fail(c.sender, f"the bus is overloaded: no bound on its delays "
+                                    f"(utilization {c.bus_utilization:.3f})")
+            return None
+        self.delays = delays
+        new = _State(self.tasks, self.costs)
+        for task in self.tasks:
+            if not self._reads(task, state, new, delays):
+                return None
+        if not self._processors(new):
+            return None
+        for task in self.tasks:
+            if not self._writes(task, state, new, delays):
+                return None
+        return new
+
+    def bus_limit(self) -> int:
+        return max(t.min_interarrival_ns for t in self.tasks) * 4
+
+    def _delay(self, delays, c, kind: str) -> int:
+        return delays.get((c.label, kind), 0) if self.remote(c) else 0
+
+    def _reads(self, task: ModuleTask, state: _State, new: _State, delays) -> bool:
+        tau = 0
+        for c in self.reads[task.name]:
+            producer = self.by_name[c.producer_module]
+            new.read_at[c.label] = tau
+            attempt = state.attempt.get(c.label, state.compute[producer.name])
+            done = read_done_ns(tau, c, producer, task, self.phases, attempt,
+                                self._delay(delays, c, "data") + self._delay(delays, c, "reply"),
+                                self._delay(delays, c, "request"), self.remote(c))
+            if done is None or done > self.cap(task):
+                self.fail(task.name, f"its read of {c.label} can wait beyond its deadline"
+                          if done is not None else f"no bound on its read of {c.label}")
+                return False
+            tau = done
+        new.read[task.name] = tau
+        return True
+
+    def _processors(self, new: _State) -> bool:
+        by_processor: dict[str, list[ModuleTask]] = {}
+        for task in self.tasks:
+            by_processor.setdefault(task.processor, []).append(task)
+        for processor, tasks in by_processor.items():
+            loads = [Load(t.name, self.costs[t.name], t.min_interarrival_ns,
+                          min(t.deadline_ns, t.min_interarrival_ns), new.read[t.name],
+                          t.priority) for t in tasks]
+            try:
+                if self.scheduler == "edf":
+                    ok = self._edf(processor, tasks, loads, new)
+                else:
+                    ok = self._fp(tasks, loads, new)
+            except BudgetExceeded:
+                for t in tasks:
+                    self.fail(t.name, f"not established: the analysis of {processor} needs more "
+                                      f"steps than its budget (conservatively unschedulable)")
+                return False
+            if not ok:
+                return False
+        return True
+
+    def _fp(self, tasks: list[ModuleTask], loads: list[Load], new: _State) -> bool:
+        for task, load in zip(tasks, loads):
+            others = [x for x in loads if x is not load]
+            limit = self.cap(task) - load.jitter_ns
+            w = fp_completion_ns(load, others, limit)
+            if w is None:
+                self.fail(task.name, "its compute phase ends after its deadline "
+                                     "(processor interference)")
+                return False
+            new.compute[task.name] = load.jitter_ns + w
+        return True
+
+    def _edf(self, processor: str, tasks: list[ModuleTask], loads: list[Load],
+             new: _State) -> bool:
+        limit = max(self.cap(t) for t in tasks) * 64 + sum(x.jitter_ns for x in loads)
+        if utilization(loads) > 1:
+            for t in tasks:
+                self.fail(t.name, f"{processor} is overloaded under EDF (utilization "
+                                  f"{float(utilization(loads)):.3f} > 1)")
+            return False
+        busy = busy_period_ns(loads, limit)
+        if busy is None or not edf_demand_ok(loads, busy):
+            for t in tasks:
+                self.fail(t.name, f"EDF's processor-demand test fails on {processor}")
+            return False
+        for task, load in zip(tasks, loads):
+            new.compute[task.name] = min(load.deadline_ns, load.jitter_ns + busy)
+        return True
+
+    def _writes(self, task: ModuleTask, state: _State, new: _State, delays) -> bool:
+        at = new.compute[task.name]
+        waits = False
+        for c in self.writes[task.name]:
+            consumer = self.by_name[c.consumer_module]
+            new.attempt[c.label] = at
+            bound = write_done_ns(at, c, task, consumer, self.phases, state.response[task.name],
+                                  new.read_at.get(c.label, 0), self._delay(delays, c, "data"))
+            if bound is None:
+                self.fail(task.name, f"no bound on its write of {c.label}")
+                return False
+            at, waits = bound.done_ns, waits or bound.may_wait
+        new.response[task.name] = at
+        if at > self.cap(task) or (waits and at >= task.min_interarrival_ns):
+            self.fail(task.name, "its writes can wait until its next release" if waits
+                      else "its response exceeds its deadline")
+            return False
+        return True
+
+
+def analyse_timing(tcs: TCS, scheduler: str = "fp",
+                   context_switch_ns: Mapping[str, int] | int = 0,
+                   bus: BusModel | None = None,
+                   groups: Mapping[str, int | None] | None = None) -> Schedulability:
+    """The schedulability of ``tcs`` under ``scheduler`` (``fp`` or ``edf``, every processor).
+
+    :param context_switch_ns: overhead per context switch [ns], one figure or per processor.
+    :param bus: transfer times of the bus between processors.
+    :param groups: Module-Task name -> activation stage (see
+        :class:`~orccad_app.tcs.phasing.Phase`); default: all activated together.
+    """
+    if scheduler not in ("fp", "edf"):
+        raise ValueError(f"unknown scheduler {scheduler!r}")
+    switch = context_switch_ns if isinstance(context_switch_ns, Mapping) else {
+        t.processor: context_switch_ns for t in tcs.module_tasks}
+    analysis = _Analysis(tcs, scheduler, switch, bus or BusModel(), groups)
+    for c in tcs.connections:
+        if c.producer_module in analysis.by_name and c.consumer_module in analysis.by_name:
+            producer, consumer = analysis.by_name[c.producer_module], analysis.by_name[
+                c.consumer_module]
+            mismatch = rate_mismatch(c, producer, consumer, analysis.phases)
+            if mismatch is not None:
+                analysis.fail(mismatch.module, "unschedulable by construction: "
+                              + mismatch.reason)
+    state = _State(analysis.tasks, analysis.costs)
+    analysis.delays = {}
+    if not analysis.problems:
+        for _ in range(ROUND_BUDGET):
+            new = analysis.round(state)
+            if new is None:
+                break
+            if new.key() == state.key():
+                break
+            state = new
+        else:
+            analysis.notes.append("the fixed point did not converge within its budget: "
+                                  "conservatively unschedulable")
+            for t in analysis.tasks:
+                analysis.fail(t.name, "not established (budget)")
+    return _result(analysis, state)
+
+
+def _result(analysis: _Analysis, state: _State) -> Schedulability:
+    tasks = {}
+    for t in analysis.tasks:
+        problem = analysis.problems.get(t.name)
+        tasks[t.name] = TaskTiming(t.name, t.processor, t.min_interarrival_ns, t.deadline_ns,
+                                   state.read[t.name], state.compute[t.name],
+                                   None if problem else state.response[t.name], problem)
+    messages = [m.with_delay(analysis.delays.get((m.connection, m.kind)))
+                for m in analysis.classes]
+    busy = max((m.delay_ns for m in messages if m.delay_ns is not None), default=0)
+    return Schedulability(analysis.scheduler, tasks, messages, busy, analysis.notes)

@@ -1,0 +1,99 @@
+"""Seeded random TCSs for the analysis-against-executive property tests.
+
+A set has 2–5 Module-Tasks on 1–3 processors, periods drawn from harmonic and non-harmonic
+values (1–20 ms, some of them coprime), execution times giving per-processor utilizations up
+to about 1, random priorities, optional best-case execution times, and connections along a
+random DAG (no wait cycle, so no deadlock), most of them under the protocol under test and the
+rest ``asyn/asyn``. Each set also draws a context-switch overhead and a bus transfer time.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+
+from orccad_app.executive import Bus, Processor, Simulation
+from orccad_app.tcs import TCS, ModuleTask, Port, us
+from orccad_app.tcs.bus_delay import BusModel
+from orccad_app.tcs.schedulability import Schedulability, analyse_timing
+
+PERIODS_US = (1000, 1000, 2000, 2000, 3000, 4000, 5000, 5000, 6000, 10000, 2500, 7000)
+"""Candidate periods [µs]; duplicates make equal periods (the synchronous protocols' usual
+case) frequent."""
+
+
+class Writer:
+    """Writes a counter on every output port, every job (a write that is skipped cannot
+    block, so every port is written)."""
+
+    def __init__(self, outputs: tuple[str, ...]) -> None:
+        self.outputs = outputs
+        self.count = 0
+
+    def compute(self, t_s: float, inputs: dict) -> dict:
+        self.count += 1
+        return {name: self.count for name in self.outputs}
+
+
+@dataclass
+class RandomSet:
+    """One generated set: its TCS and the platform figures."""
+
+    tcs: TCS
+    protocol: str
+    context_switch_ns: int
+    transfer_ns: int
+    horizon_ns: int
+
+    def analyse(self, scheduler: str) -> Schedulability:
+        return analyse_timing(self.tcs, scheduler, self.context_switch_ns,
+                              BusModel(self.transfer_ns))
+
+    def run(self, scheduler: str) -> dict[str, tuple[int, int]]:
+        """Module-Task -> (deadline misses, overruns) of an executive run."""
+        for task in self.tcs.module_tasks:
+            task.compute = Writer(tuple(p.name for p in task.outputs))
+        processors = sorted({t.processor for t in self.tcs.module_tasks})
+        sim = Simulation(self.tcs, seed=0, bus=Bus(transfer_ns=self.transfer_ns),
+                         processors=[Processor(p, scheduler, self.context_switch_ns)
+                                     for p in processors])
+        sim.activate()
+        stats = sim.run(self.horizon_ns)
+        return {name: (s.deadline_misses, s.overruns) for name, s in stats.tasks.items()}
+
+
+def generate(seed: int, protocol: str) -> RandomSet:
+    """The set number ``seed`` whose connections use ``protocol``."""
+    rng = random.Random(seed)
+    count = rng.randint(2, 5)
+    cpus = [f"cpu{i}" for i in range(rng.randint(1, min(3, count)))]
+    periods = [rng.choice(PERIODS_US) for _ in range(count)]
+    placement = [rng.choice(cpus) for _ in range(count)]
+    target = {cpu: rng.uniform(0.2, 1.05) for cpu in cpus}
+    share = {cpu: [rng.random() + 0.1 for _ in range(count)] for cpu in cpus}
+    edges = [(i, j) for i in range(count) for j in range(i + 1, count) if rng.random() < 0.5]
+    if not edges:
+        edges = [(0, 1)]
+    tasks = []
+    for i in range(count):
+        cpu = placement[i]
+        weights = [share[cpu][k] for k in range(count) if placement[k] == cpu]
+        u = target[cpu] * share[cpu][i] / sum(weights)
+        wcet = max(1, int(periods[i] * u)) if rng.random() > 0.05 else 0
+        bcet = rng.randint(0, wcet) if wcet and rng.random() < 0.3 else None
+        ports = tuple(Port(f"o{j}", "out") for (k, j) in edges if k == i) + tuple(
+            Port(f"i{k}", "in") for (k, j) in edges if j == i)
+        tasks.append(ModuleTask(f"m{i}", us(periods[i]), us(wcet), ports=ports,
+                                processor=cpu, priority=rng.randint(1, count),
+                                bcet_ns=None if bcet is None else us(bcet)))
+    tcs = TCS(f"set{seed}")
+    for task in tasks:
+        tcs.add(task)
+    for (i, j) in edges:
+        chosen = protocol if rng.random() < 0.8 else "asyn/asyn"
+        tcs.connect(f"m{i}.o{j}", f"m{j}.i{i}", chosen)
+    lcm = math.lcm(*periods)
+    horizon_us = min(max(3 * lcm, 20 * max(periods)), 60_000)
+    return RandomSet(tcs, protocol, us(rng.choice((0, 0, 5, 20))),
+                     us(rng.choice((0, 10, 50, 200))), us(horizon_us))
