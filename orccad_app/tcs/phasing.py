@@ -12,6 +12,7 @@ the distances are exactly the values congruent to ``o_B - o_A - x`` modulo ``G``
 
     T_B - G + ((o_B - o_A - x) \\bmod G).
 
+("after" instead of "at or after": :math:`T_B - G + ((o_B - o_A - x - 1) \\bmod G) + 1`.)
 This is exact for any periods, however absurd their hyperperiod (periods of 1 ms and
 1000001 ns have ``G`` = 1 ns: the phase drifts through every value, and the bound is
 ``T_B - 1`` ns, not the 0 a "nearly equal periods" reasoning would give).
@@ -72,14 +73,18 @@ class Phase:
         return self.group is not None and other.group is not None and self.group > other.group
 
 
-def next_release_gap_ns(a: Phase, b: Phase, delay_ns: int = 0) -> int | None:
+def next_release_gap_ns(a: Phase, b: Phase, delay_ns: int = 0,
+                        strict: bool = False) -> int | None:
     """The longest time from ``delay_ns`` after a release of ``a`` to the next release of
-    ``b`` at or after that instant [ns]; ``None`` when unbounded (``b`` sporadic)."""
+    ``b`` at or after that instant (``strict``: after it) [ns]; ``None`` when unbounded
+    (``b`` sporadic)."""
     if b.activation is Activation.SPORADIC:
         return None
     if not a.locked_with(b):
         return b.period_ns
     g = gcd(a.period_ns, b.period_ns)
+    if strict:
+        return b.period_ns - g + (b.offset_ns - a.offset_ns - delay_ns - 1) % g + 1
     return b.period_ns - g + (b.offset_ns - a.offset_ns - delay_ns) % g
 
 

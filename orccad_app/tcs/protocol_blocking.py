@@ -29,12 +29,14 @@ gcd of the periods when both start together, else the period of Y).
 **Producer side** (the write's wait ends by):
 
 - ``syn/asyn``: no wait when C's latest release at or before ``r`` comes after P's previous
-  write and C reads there at once (``ρ_C = 0``, ``prev(P→C) <= T_P - R_P``); else as
+  write and C reads there at once (``ρ_C = 0``, ``prev(P→C) < T_P - R_P``); else as
   ``synF/asyn``;
-- ``synF/asyn``: the next read: ``A + gap(P→C, A) + ρ_C``;
+- ``synF/asyn``: the next read: ``A + gap(P→C, A) + ρ_C``, the gap to a release strictly
+  after the write (a write at the instant of a release may come after that release's reads:
+  a job with no execution time writes after the instant's releases);
 - ``syn/syn``: when the latest release of C at or before ``r`` follows P's previous job
   (``prev(P→C) < T_P - R_P``), that job of C is P's partner: ``max(A, ρ_C) + Δ``; else
-  ``A + gap(P→C, A) + ρ_C + Δ``.
+  ``A + gap(P→C, A) + ρ_C + Δ`` (strict gap).
 
 **By construction.** A consumer that waits for every value (``syn``, ``synF``, ``synDF``,
 ``syn/syn``) reading faster than its producer writes (``T_C < T_P``), or a producer that waits
@@ -182,11 +184,11 @@ def write_done_ns(attempt_ns: int, connection: Connection, producer: ModuleTask,
     previous = previous_release_gap_ns(p, c)
     slack = producer.min_interarrival_ns - response_ns
     if protocol is Protocol.SYN_ASYN and read_at_ns == 0 and previous is not None \
-            and previous <= slack:
+            and previous < slack:
         return WriteBound(attempt_ns, False)
     if protocol is Protocol.SYN_SYN and previous is not None and previous < slack:
         return WriteBound(max(attempt_ns, read_at_ns) + data_ns, True)
-    gap = next_release_gap_ns(p, c, attempt_ns)
+    gap = next_release_gap_ns(p, c, attempt_ns, strict=True)
     if gap is None:
         return None
     extra = data_ns if protocol is Protocol.SYN_SYN else 0

@@ -17,7 +17,8 @@ release makes the executive skip that release, which no bound here allows).
 
 **Safety.** A Module-Task is called schedulable only when its response bound ``R`` satisfies
 ``R <= D``, ``R <= T``, and ``R < T`` when a write may wait (such a wait can end at the next
-release instant). The whole TCS is schedulable when every Module-Task is; the figures of the
+release instant, after that release) or the job costs no processor time (it may be dispatched,
+and end, after the releases of the instant it is dispatched at). The whole TCS is schedulable when every Module-Task is; the figures of the
 others are only valid if that holds. The property test ``tests/tcs/test_analysis_safety.py``
 checks the claim against executive runs; docs/executive.md reports the pessimism.
 """
@@ -157,24 +158,23 @@ class _Analysis:
         self.problems.setdefault(name, why)
 
     # -- one round -------------------------------------------------------------------------
+    # A Module-Task found failing is recorded and its bounds are clamped at min(D, T), so
+    # that the others' figures are still computed (assuming it ends by then).
 
-    def round(self, state: _State) -> _State | None:
+    def round(self, state: _State) -> _State:
         delays = bus_delays(self.classes, state.response, self.bus_limit())
         if delays is None:
             for c in self.classes:
                 self.fail(c.sender, f"the bus is overloaded: no bound on its delays "
                                     f"(utilization {c.bus_utilization:.3f})")
-            return None
+            delays = {(c.connection, c.kind): self.bus_limit() for c in self.classes}
         self.delays = delays
         new = _State(self.tasks, self.costs)
         for task in self.tasks:
-            if not self._reads(task, state, new, delays):
-                return None
-        if not self._processors(new):
-            return None
+            self._reads(task, state, new, delays)
+        self._processors(new)
         for task in self.tasks:
-            if not self._writes(task, state, new, delays):
-                return None
+            self._writes(task, state, new, delays)
         return new
 
     def bus_limit(self) -> int:
@@ -183,8 +183,9 @@ class _Analysis:
     def _delay(self, delays, c, kind: str) -> int:
         return delays.get((c.label, kind), 0) if self.remote(c) else 0
 
-    def _reads(self, task: ModuleTask, state: _State, new: _State, delays) -> bool:
+    def _reads(self, task: ModuleTask, state: _State, new: _State, delays) -> None:
         tau = 0
+        cap = self.cap(task)
         for c in self.reads[task.name]:
             producer = self.by_name[c.producer_module]
             new.read_at[c.label] = tau
@@ -192,68 +193,66 @@ class _Analysis:
             done = read_done_ns(tau, c, producer, task, self.phases, attempt,
                                 self._delay(delays, c, "data") + self._delay(delays, c, "reply"),
                                 self._delay(delays, c, "request"), self.remote(c))
-            if done is None or done > self.cap(task):
-                self.fail(task.name, f"its read of {c.label} can wait beyond its deadline"
-                          if done is not None else f"no bound on its read of {c.label}")
-                return False
-            tau = done
+            if done is None:
+                self.fail(task.name, f"no bound on its read of {c.label}")
+            elif done > cap:
+                self.fail(task.name, f"its read of {c.label} can wait beyond its deadline "
+                                     f"or its next release")
+            tau = cap if done is None else min(done, cap)
         new.read[task.name] = tau
-        return True
 
-    def _processors(self, new: _State) -> bool:
+    def _processors(self, new: _State) -> None:
         by_processor: dict[str, list[ModuleTask]] = {}
         for task in self.tasks:
             by_processor.setdefault(task.processor, []).append(task)
         for processor, tasks in by_processor.items():
-            loads = [Load(t.name, self.costs[t.name], t.min_interarrival_ns,
-                          min(t.deadline_ns, t.min_interarrival_ns), new.read[t.name],
-                          t.priority) for t in tasks]
+            loads = [Load(t.name, self.costs[t.name], t.min_interarrival_ns, self.cap(t),
+                          new.read[t.name], t.priority) for t in tasks]
             try:
                 if self.scheduler == "edf":
-                    ok = self._edf(processor, tasks, loads, new)
+                    self._edf(processor, tasks, loads, new)
                 else:
-                    ok = self._fp(tasks, loads, new)
+                    self._fp(tasks, loads, new)
             except BudgetExceeded:
                 for t in tasks:
-                    self.fail(t.name, f"not established: the analysis of {processor} needs more "
-                                      f"steps than its budget (conservatively unschedulable)")
-                return False
-            if not ok:
-                return False
-        return True
+                    self.fail(t.name, f"not established: the analysis of {processor} needs "
+                                      f"more steps than its budget (conservatively "
+                                      f"unschedulable)")
+                    new.compute[t.name] = self.cap(t)
 
-    def _fp(self, tasks: list[ModuleTask], loads: list[Load], new: _State) -> bool:
+    def _fp(self, tasks: list[ModuleTask], loads: list[Load], new: _State) -> None:
         for task, load in zip(tasks, loads):
             others = [x for x in loads if x is not load]
-            limit = self.cap(task) - load.jitter_ns
-            w = fp_completion_ns(load, others, limit)
+            w = fp_completion_ns(load, others, self.cap(task) - load.jitter_ns)
             if w is None:
-                self.fail(task.name, "its compute phase ends after its deadline "
+                self.fail(task.name, "its compute phase can end after its deadline "
                                      "(processor interference)")
-                return False
-            new.compute[task.name] = load.jitter_ns + w
-        return True
+                new.compute[task.name] = self.cap(task)
+            else:
+                new.compute[task.name] = load.jitter_ns + w
 
     def _edf(self, processor: str, tasks: list[ModuleTask], loads: list[Load],
-             new: _State) -> bool:
+             new: _State) -> None:
         limit = max(self.cap(t) for t in tasks) * 64 + sum(x.jitter_ns for x in loads)
-        if utilization(loads) > 1:
-            for t in tasks:
-                self.fail(t.name, f"{processor} is overloaded under EDF (utilization "
-                                  f"{float(utilization(loads)):.3f} > 1)")
-            return False
-        busy = busy_period_ns(loads, limit)
-        if busy is None or not edf_demand_ok(loads, busy):
-            for t in tasks:
-                self.fail(t.name, f"EDF's processor-demand test fails on {processor}")
-            return False
-        for task, load in zip(tasks, loads):
-            new.compute[task.name] = min(load.deadline_ns, load.jitter_ns + busy)
-        return True
+        load = utilization(loads)
+        busy = busy_period_ns(loads, limit) if load <= 1 else None
+        if load > 1:
+            why = f"{processor} is overloaded (utilization {float(load):.3f} > 1)"
+        elif busy is None or not edf_demand_ok(loads, busy):
+            why = f"EDF's processor-demand test fails on {processor}"
+        else:
+            why = None
+        for task, x in zip(tasks, loads):
+            if why is not None:
+                self.fail(task.name, why)
+                new.compute[task.name] = self.cap(task)
+            else:
+                new.compute[task.name] = min(x.deadline_ns, x.jitter_ns + busy)
 
-    def _writes(self, task: ModuleTask, state: _State, new: _State, delays) -> bool:
+    def _writes(self, task: ModuleTask, state: _State, new: _State, delays) -> None:
         at = new.compute[task.name]
-        waits = False
+        cap = self.cap(task)
+        waits = self.costs[task.name] == 0  # dispatched, it may end after a release instant
         for c in self.writes[task.name]:
             consumer = self.by_name[c.consumer_module]
             new.attempt[c.label] = at
@@ -261,14 +260,17 @@ class _Analysis:
                                   new.read_at.get(c.label, 0), self._delay(delays, c, "data"))
             if bound is None:
                 self.fail(task.name, f"no bound on its write of {c.label}")
-                return False
-            at, waits = bound.done_ns, waits or bound.may_wait
-        new.response[task.name] = at
-        if at > self.cap(task) or (waits and at >= task.min_interarrival_ns):
-            self.fail(task.name, "its writes can wait until its next release" if waits
-                      else "its response exceeds its deadline")
-            return False
-        return True
+                at = cap
+                continue
+            at, waits = min(bound.done_ns, cap + 1), waits or bound.may_wait
+        if at > cap:
+            self.fail(task.name, "its writes can wait beyond its deadline or its next release"
+                      if at > new.compute[task.name] else "its response exceeds its deadline")
+        elif waits and at >= task.min_interarrival_ns:
+            self.fail(task.name, "its job can end at the instant of its next release, after "
+                                 "that release (a write waiting for a read, or no execution "
+                                 "time): the release would be skipped")
+        new.response[task.name] = min(at, cap)
 
 
 def analyse_timing(tcs: TCS, scheduler: str = "fp",
@@ -297,11 +299,9 @@ def analyse_timing(tcs: TCS, scheduler: str = "fp",
                               + mismatch.reason)
     state = _State(analysis.tasks, analysis.costs)
     analysis.delays = {}
-    if not analysis.problems:
+    if analysis.tasks:
         for _ in range(ROUND_BUDGET):
             new = analysis.round(state)
-            if new is None:
-                break
             if new.key() == state.key():
                 break
             state = new
@@ -320,6 +320,9 @@ def _result(analysis: _Analysis, state: _State) -> Schedulability:
         tasks[t.name] = TaskTiming(t.name, t.processor, t.min_interarrival_ns, t.deadline_ns,
                                    state.read[t.name], state.compute[t.name],
                                    None if problem else state.response[t.name], problem)
+    if analysis.problems and len(analysis.problems) < len(analysis.tasks):
+        analysis.notes.append("the other Module-Tasks' figures assume that the failing ones "
+                              "end by their deadlines; they do not hold otherwise")
     messages = [m.with_delay(analysis.delays.get((m.connection, m.kind)))
                 for m in analysis.classes]
     busy = max((m.delay_ns for m in messages if m.delay_ns is not None), default=0)

@@ -4,7 +4,8 @@ A set has 2–5 Module-Tasks on 1–3 processors, periods drawn from harmonic an
 values (1–20 ms, some of them coprime), execution times giving per-processor utilizations up
 to about 1, random priorities, optional best-case execution times, and connections along a
 random DAG (no wait cycle, so no deadlock), most of them under the protocol under test and the
-rest ``asyn/asyn``. Each set also draws a context-switch overhead and a bus transfer time.
+rest ``asyn/asyn``; a few Module-Tasks get an offset or a deadline shorter than their period.
+Each set also draws a context-switch overhead and a bus transfer time.
 """
 
 from __future__ import annotations
@@ -84,9 +85,14 @@ def generate(seed: int, protocol: str) -> RandomSet:
         bcet = rng.randint(0, wcet) if wcet and rng.random() < 0.3 else None
         ports = tuple(Port(f"o{j}", "out") for (k, j) in edges if k == i) + tuple(
             Port(f"i{k}", "in") for (k, j) in edges if j == i)
+        offset = rng.choice((100, 250, 1000)) if rng.random() < 0.1 else 0
+        deadline = rng.randint(min(wcet + 1, periods[i]), periods[i]) \
+            if rng.random() < 0.15 else None
         tasks.append(ModuleTask(f"m{i}", us(periods[i]), us(wcet), ports=ports,
                                 processor=cpu, priority=rng.randint(1, count),
-                                bcet_ns=None if bcet is None else us(bcet)))
+                                bcet_ns=None if bcet is None else us(bcet),
+                                deadline_ns=None if deadline is None else us(deadline),
+                                offset_ns=us(offset)))
     tcs = TCS(f"set{seed}")
     for task in tasks:
         tcs.add(task)
