@@ -14,7 +14,9 @@ ways; the ``max(1, ·)`` counts the jobs released with it when ``C'_i = 0``).
 **EDF** (Spuri; Zhang & Burns' QPA): a job's absolute deadline is its release + ``D_i``; every
 deadline is met iff :math:`h(t) = \\sum_j \\max(0, \\lfloor (t + J_j - D_j)/T_j \\rfloor + 1)\\,
 C'_j \\le t` for every ``t`` up to the longest busy period ``L``. QPA walks the deadlines down
-from ``L`` and stops after few steps. The completion of a job is then bounded by
+from ``L`` and stops after few steps; before it, the density test
+:math:`\\sum C'_j / \\min(T_j, D_j - J_j) \\le 1` settles most sets at once (and exactly the
+implicit-deadline ones without jitter: ``U <= 1``, whatever the hyperperiod). The completion of a job is then bounded by
 ``min(D_i, J_i + L)`` (a job completes within the busy period it is released in).
 
 Both iterations have a **budget** (:data:`ITERATION_BUDGET` steps): a period set that would
@@ -28,7 +30,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 __all__ = ["Load", "ITERATION_BUDGET", "BudgetExceeded", "fp_completion_ns", "busy_period_ns",
-           "edf_demand_ok", "utilization"]
+           "edf_demand_ok", "density_ok", "utilization"]
 
 ITERATION_BUDGET = 100_000
 """Steps an iteration may take before the analysis gives up (conservatively)."""
@@ -96,6 +98,20 @@ def busy_period_ns(loads: list[Load], limit_ns: int) -> int | None:
             return length
         length = following
     raise BudgetExceeded("busy period")
+
+
+def density_ok(loads: list[Load]) -> bool:
+    """EDF's sufficient density test :math:`\\sum C'_j / (D_j - J_j) \\le 1` (deadlines
+    taken at most the periods); exact when every ``D_j - J_j`` is the period."""
+    total = Fraction(0)
+    for x in loads:
+        window = min(x.deadline_ns - x.jitter_ns, x.period_ns)
+        if window <= 0:
+            if x.cost_ns > 0 or window < 0:
+                return False
+            continue
+        total += Fraction(x.cost_ns, window)
+    return total <= 1
 
 
 def _demand(loads: list[Load], t: int) -> int:

@@ -33,7 +33,8 @@ from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask
 from orccad_app.tcs.phasing import Phase
 from orccad_app.tcs.processor_demand import (BudgetExceeded, Load, busy_period_ns,
-                                             edf_demand_ok, fp_completion_ns, utilization)
+                                             density_ok, edf_demand_ok, fp_completion_ns,
+                                             utilization)
 from orccad_app.tcs.protocol_blocking import rate_mismatch, read_done_ns, write_done_ns
 
 __all__ = ["TaskTiming", "Schedulability", "analyse_timing", "ROUND_BUDGET"]
@@ -233,21 +234,29 @@ class _Analysis:
 
     def _edf(self, processor: str, tasks: list[ModuleTask], loads: list[Load],
              new: _State) -> None:
-        limit = max(self.cap(t) for t in tasks) * 64 + sum(x.jitter_ns for x in loads)
         load = utilization(loads)
-        busy = busy_period_ns(loads, limit) if load <= 1 else None
+        why, busy = None, None
         if load > 1:
             why = f"{processor} is overloaded (utilization {float(load):.3f} > 1)"
-        elif busy is None or not edf_demand_ok(loads, busy):
-            why = f"EDF's processor-demand test fails on {processor}"
         else:
-            why = None
+            limit = max(self.cap(t) for t in tasks) * 1024 + sum(x.jitter_ns for x in loads)
+            try:
+                busy = busy_period_ns(loads, limit)
+            except BudgetExceeded:
+                busy = None
+        if why is None and not density_ok(loads):
+            if busy is None:
+                why = (f"not established: the busy period of {processor} exceeds the "
+                       f"analysis budget (conservatively unschedulable)")
+            elif not edf_demand_ok(loads, busy):
+                why = f"EDF's processor-demand test fails on {processor}"
         for task, x in zip(tasks, loads):
             if why is not None:
                 self.fail(task.name, why)
                 new.compute[task.name] = self.cap(task)
             else:
-                new.compute[task.name] = min(x.deadline_ns, x.jitter_ns + busy)
+                end = x.deadline_ns if busy is None else min(x.deadline_ns, x.jitter_ns + busy)
+                new.compute[task.name] = end
 
     def _writes(self, task: ModuleTask, state: _State, new: _State, delays) -> None:
         at = new.compute[task.name]
