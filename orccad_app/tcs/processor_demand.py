@@ -16,8 +16,9 @@ deadline is met iff :math:`h(t) = \\sum_j \\max(0, \\lfloor (t + J_j - D_j)/T_j 
 C'_j \\le t` for every ``t`` up to the longest busy period ``L``. QPA walks the deadlines down
 from ``L`` and stops after few steps; before it, the density test
 :math:`\\sum C'_j / \\min(T_j, D_j - J_j) \\le 1` settles most sets at once (and exactly the
-implicit-deadline ones without jitter: ``U <= 1``, whatever the hyperperiod). The completion of a job is then bounded by
-``min(D_i, J_i + L)`` (a job completes within the busy period it is released in).
+implicit-deadline ones without jitter: ``U <= 1``, whatever the hyperperiod). The completion
+of a job is then bounded by ``min(D_i, J_i + L)`` (a job completes within the busy period it
+is released in).
 
 Both iterations have a **budget** (:data:`ITERATION_BUDGET` steps): a period set that would
 need more (a 1 ns period next to a 1 s one at full load) gets the conservative answer

@@ -10,7 +10,8 @@ placement — as one :class:`TcsReport`, printed as text, Graphviz DOT or JSON.
   switches, the protocols' blocking (or a named "unschedulable by construction") and the bus's
   delay per message class; with no blocking and all tasks released together the fixed-priority
   figures are exactly the worst responses the executive measures;
-- **deadlock**: cycles of blocking protocol ends (:func:`~orccad_app.tcs.deadlock.find_deadlock_cycles`);
+- **deadlock**: cycles of blocking protocol ends
+  (:func:`~orccad_app.tcs.deadlock.find_deadlock_cycles`);
 - **placement**: a placement on ``N`` processors minimizing bus traffic under a utilization
   bound (:func:`~orccad_app.tcs.placement.suggest_placement`).
 """

@@ -27,7 +27,8 @@ def _edit(tmp_path: Path, replacements: dict[str, str]) -> str:
 SYN_MISMATCH = {
     "module traj : trajectory          period 1 ms wcet 0.1 ms on cpu0":
         "module traj : trajectory          period 2 ms wcet 0.1 ms on cpu1",
-    "connect traj.qd     -> ctrl.qd     : asyn/asyn;": "connect traj.qd     -> ctrl.qd     : syn/syn;",
+    "connect traj.qd     -> ctrl.qd     : asyn/asyn;":
+        "connect traj.qd     -> ctrl.qd     : syn/syn;",
 }
 # cpu0: traj 1.38/3 + ctrl 1/2 + the two observers 2 x 0.1/5 = 1.0
 FULL_LOAD = {
