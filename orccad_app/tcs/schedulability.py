@@ -19,8 +19,9 @@ release makes the executive skip that release, which no bound here allows).
 ``R <= D``, ``R <= T``, and ``R < T`` when a write may wait (such a wait can end at the next
 release instant, after that release) or the job costs no processor time (it may be dispatched,
 and end, after the releases of the instant it is dispatched at). The whole TCS is schedulable
-when every Module-Task is; the figures of the others are only valid if that holds. The
-property test ``tests/tcs/test_analysis_safety.py`` checks the claim against executive runs; docs/executive.md reports the pessimism.
+when every Module-Task is; the figures of the others are only valid if that holds. The property
+test ``tests/tcs/test_analysis_safety.py`` checks the claim against executive runs;
+docs/executive.md reports the pessimism.
 """
 
 from __future__ import annotations

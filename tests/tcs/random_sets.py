@@ -3,9 +3,10 @@
 A set has 2–5 Module-Tasks on 1–3 processors, periods all equal (40 % of the sets), harmonic
 (20 %) or drawn from harmonic and non-harmonic values (1–10 ms, some of them coprime),
 execution times giving per-processor utilizations up to about 1, random priorities, optional
-best-case execution times, and connections along a random DAG (no wait cycle, so no deadlock), most of them under the protocol under test and the
-rest ``asyn/asyn``; a few Module-Tasks get an offset or a deadline shorter than their period.
-Each set also draws a context-switch overhead and a bus transfer time.
+best-case execution times, and connections along a random DAG (no wait cycle, so no deadlock),
+most of them under the protocol under test and the rest ``asyn/asyn``; a few Module-Tasks get
+an offset or a deadline shorter than their period. Each set also draws a context-switch
+overhead and a bus transfer time.
 """
 
 from __future__ import annotations
