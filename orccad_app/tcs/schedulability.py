@@ -11,9 +11,11 @@ The pieces (each module documents its own bounds):
 
 They depend on each other (a consumer's wait depends on its producer's response, which depends
 on the bus, whose load jitter depends on the responses), so the analysis iterates from the
-independent-task figures to the least fixed point; every term only grows, and it stops as soon
-as one Module-Task's bound passes its deadline or its period (a job still running at its next
-release makes the executive skip that release, which no bound here allows).
+independent-task figures to the least fixed point; every term only grows. A Module-Task whose
+bound passes its deadline or its period (a job still running at its next release makes the
+executive skip that release, which no bound here allows) is marked unschedulable and its bounds
+are held at ``min(D, T)``, so that the others are still analysed. The rounds have a budget
+(:data:`ROUND_BUDGET`); past it, every Module-Task is "not established".
 
 **Safety.** A Module-Task is called schedulable only when its response bound ``R`` satisfies
 ``R <= D``, ``R <= T``, and ``R < T`` when a write may wait (such a wait can end at the next
