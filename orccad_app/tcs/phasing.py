@@ -30,7 +30,12 @@ from dataclasses import dataclass
 from enum import Enum
 from math import gcd
 
-__all__ = ["Activation", "Phase", "next_release_gap_ns", "previous_release_gap_ns"]
+__all__ = ["Activation", "Phase", "next_release_gap_ns", "previous_release_gap_ns",
+           "releases_in_window", "PHASE_ENUMERATION_BUDGET"]
+
+PHASE_ENUMERATION_BUDGET = 4096
+"""Largest number of relative phases :func:`releases_in_window` enumerates; beyond, it uses
+the phase-free count."""
 
 
 class Activation(str, Enum):
@@ -97,3 +102,22 @@ def previous_release_gap_ns(a: Phase, b: Phase) -> int | None:
         return b.period_ns
     g = gcd(a.period_ns, b.period_ns)
     return b.period_ns - g + (a.offset_ns - b.offset_ns) % g
+
+
+def releases_in_window(a: Phase, b: Phase, before_ns: int, after_ns: int) -> int:
+    """The most releases of ``b`` in ``(r - before_ns, r + after_ns]`` for a release ``r`` of
+    ``a`` (``before_ns <= T_B``): over the relative phases the gcd allows when both start
+    together, else over any phase."""
+    period = b.period_ns
+    free = (before_ns + after_ns) // period + 1
+    if not a.locked_with(b):
+        return free
+    g = gcd(a.period_ns, period)
+    if period // g > PHASE_ENUMERATION_BUDGET:
+        return free
+    best = 0
+    for delta in range((b.offset_ns - a.offset_ns) % g, period, g):
+        ahead = (after_ns - delta) // period + 1 if after_ns >= delta else 0
+        behind = 1 if delta - period > -before_ns else 0
+        best = max(best, ahead + behind)
+    return best

@@ -29,8 +29,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Callable
 
-__all__ = ["Load", "ITERATION_BUDGET", "BudgetExceeded", "fp_completion_ns", "busy_period_ns",
+__all__ = ["Load", "ITERATION_BUDGET", "BudgetExceeded", "fp_completion_ns",
+           "fp_release_bound_ns", "busy_period_ns",
            "edf_demand_ok", "density_ok", "utilization"]
 
 ITERATION_BUDGET = 100_000
@@ -81,6 +83,27 @@ def fp_completion_ns(task: Load, others: list[Load], limit_ns: int) -> int | Non
         if following == w:
             return w
         w = following
+    raise BudgetExceeded(task.name)
+
+
+def fp_release_bound_ns(task: Load, others: list[Load], count: Callable[[Load, int], int],
+                        limit_ns: int) -> int | None:
+    """A second bound on the compute end of ``task`` under fixed priority, from its release
+    [ns]: :math:`E = J_i + C'_i + \\sum_{j \\in hp(i)} N_j(E)\\,C'_j`, where ``count(j, E)``
+    bounds the jobs of ``j`` that can still run in ``[r, r + E]`` (released after
+    ``r - R_j``); with known phases it is much smaller than the jitter bound's for a job
+    that waited on a higher-priority producer of its processor (that producer's job is then
+    done). ``None`` when it exceeds ``limit_ns``. Raises :class:`BudgetExceeded`."""
+    higher = [x for x in others if x.priority <= task.priority]
+    end = task.jitter_ns + task.cost_ns
+    for _ in range(ITERATION_BUDGET):
+        if end > limit_ns:
+            return None
+        following = task.jitter_ns + task.cost_ns + sum(count(x, end) * x.cost_ns
+                                                          for x in higher)
+        if following == end:
+            return end
+        end = following
     raise BudgetExceeded(task.name)
 
 

@@ -28,17 +28,19 @@ docs/executive.md reports the pessimism.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Mapping
 
 from orccad_app.tcs.bus_delay import BusModel, MessageClass, bus_delays, message_classes
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask
-from orccad_app.tcs.phasing import Phase
+from orccad_app.tcs.phasing import Phase, releases_in_window
 from orccad_app.tcs.processor_demand import (BudgetExceeded, Load, busy_period_ns,
                                              density_ok, edf_demand_ok, fp_completion_ns,
-                                             utilization)
-from orccad_app.tcs.protocol_blocking import rate_mismatch, read_done_ns, write_done_ns
+                                             fp_release_bound_ns, utilization)
+from orccad_app.tcs.protocol import Protocol
+from orccad_app.tcs.protocol_blocking import (CONSUMER_WAITS_EACH_VALUE, rate_mismatch,
+                                              read_done_ns, write_done_ns)
 
 __all__ = ["TaskTiming", "Schedulability", "analyse_timing", "ROUND_BUDGET"]
 
@@ -176,7 +178,7 @@ class _Analysis:
         new = _State(self.tasks, self.costs)
         for task in self.tasks:
             self._reads(task, state, new, delays)
-        self._processors(new)
+        self._processors(state, new)
         for task in self.tasks:
             self._writes(task, state, new, delays)
         return new
@@ -187,25 +189,64 @@ class _Analysis:
     def _delay(self, delays, c, kind: str) -> int:
         return delays.get((c.label, kind), 0) if self.remote(c) else 0
 
-    def _reads(self, task: ModuleTask, state: _State, new: _State, delays) -> None:
+    def _reads(self, task: ModuleTask, state: _State, new: _State, delays,
+               skip: str | None = None) -> int:
+        """The read-wait bound of ``task`` (recorded in ``new`` unless ``skip``: then the
+        reads from the Module-Task ``skip`` are taken as not waiting)."""
         tau = 0
         cap = self.cap(task)
         for c in self.reads[task.name]:
             producer = self.by_name[c.producer_module]
-            new.read_at[c.label] = tau
+            if skip is not None:
+                if producer.name == skip:
+                    continue
+            else:
+                new.read_at[c.label] = tau
             attempt = state.attempt.get(c.label, state.compute[producer.name])
             done = read_done_ns(tau, c, producer, task, self.phases, attempt,
                                 self._delay(delays, c, "data") + self._delay(delays, c, "reply"),
                                 self._delay(delays, c, "request"), self.remote(c))
-            if done is None:
+            if skip is None and done is None:
                 self.fail(task.name, f"no bound on its read of {c.label}")
-            elif done > cap:
+            elif skip is None and done > cap:
                 self.fail(task.name, f"its read of {c.label} can wait beyond its deadline "
                                      f"or its next release")
             tau = cap if done is None else min(done, cap)
-        new.read[task.name] = tau
+        if skip is None:
+            new.read[task.name] = tau
+        return tau
 
-    def _processors(self, new: _State) -> None:
+    def _successors(self, task: ModuleTask) -> set[str]:
+        """Module-Tasks of the same processor, period and phase that wait for every write of
+        ``task`` they read (``syn/syn``, ``asyn/synF``, local ``asyn/synDF``): their job
+        released with ``task``'s is not ready before ``task``'s compute phase ends."""
+        waiting: dict[str, bool] = {}
+        for c in self.writes[task.name]:
+            consumer = self.by_name[c.consumer_module]
+            must_wait = (c.protocol in CONSUMER_WAITS_EACH_VALUE
+                         and c.protocol is not Protocol.ASYN_SYN
+                         and consumer.processor == task.processor
+                         and consumer.min_interarrival_ns == task.min_interarrival_ns
+                         and self.phases[task.name].locked_with(self.phases[consumer.name]))
+            waiting[consumer.name] = waiting.get(consumer.name, False) or must_wait
+        return {name for name, must_wait in waiting.items() if must_wait}
+
+    def _predecessor(self, task: ModuleTask) -> tuple[str, bool] | None:
+        """The one higher-priority Module-Task of the same processor, period and phase whose
+        write ``task`` may wait for, if there is exactly one, and whether ``task`` may also
+        go without waiting for it (every such read is ``asyn/syn``: a fresh value)."""
+        found: dict[str, bool] = {}
+        for c in self.reads[task.name]:
+            producer = self.by_name[c.producer_module]
+            if (c.protocol in CONSUMER_WAITS_EACH_VALUE and producer.processor == task.processor
+                    and producer.priority <= task.priority
+                    and producer.min_interarrival_ns == task.min_interarrival_ns
+                    and self.phases[task.name].locked_with(self.phases[producer.name])):
+                fresh = c.protocol is Protocol.ASYN_SYN
+                found[producer.name] = found.get(producer.name, True) and fresh
+        return next(iter(found.items())) if len(found) == 1 else None
+
+    def _processors(self, state: _State, new: _State) -> None:
         by_processor: dict[str, list[ModuleTask]] = {}
         for task in self.tasks:
             by_processor.setdefault(task.processor, []).append(task)
@@ -216,7 +257,7 @@ class _Analysis:
                 if self.scheduler == "edf":
                     self._edf(processor, tasks, loads, new)
                 else:
-                    self._fp(tasks, loads, new)
+                    self._fp(tasks, loads, state, new)
             except BudgetExceeded:
                 for t in tasks:
                     self.fail(t.name, f"not established: the analysis of {processor} needs "
@@ -224,16 +265,51 @@ class _Analysis:
                                       f"unschedulable)")
                     new.compute[t.name] = self.cap(t)
 
-    def _fp(self, tasks: list[ModuleTask], loads: list[Load], new: _State) -> None:
+    def _fp(self, tasks: list[ModuleTask], loads: list[Load], state: _State,
+            new: _State) -> None:
         for task, load in zip(tasks, loads):
             others = [x for x in loads if x is not load]
-            w = fp_completion_ns(load, others, self.cap(task) - load.jitter_ns)
-            if w is None:
+            cap = self.cap(task)
+            w = fp_completion_ns(load, others, cap - load.jitter_ns)
+            ends = [] if w is None else [load.jitter_ns + w]
+            bound = self._release_bound(task, load, others, state, new)
+            if bound is not None:
+                ends.append(bound)
+            if not ends:
                 self.fail(task.name, "its compute phase can end after its deadline "
                                      "(processor interference)")
-                new.compute[task.name] = self.cap(task)
+                new.compute[task.name] = cap
             else:
-                new.compute[task.name] = load.jitter_ns + w
+                new.compute[task.name] = min(ends)
+
+    def _release_bound(self, task: ModuleTask, load: Load, others: list[Load], state: _State,
+                       new: _State) -> int | None:
+        """:func:`fp_release_bound_ns` with phases; when ``task`` waits for the job of its
+        predecessor released with it, that job is done before ``task`` is ready: it cannot
+        interfere (else ``task`` read a fresh value without waiting for it)."""
+        phase = self.phases[task.name]
+        cap = self.cap(task)
+
+        successors = self._successors(task)
+
+        def counter(excluded: str | None):
+            def count(other: Load, end: int) -> int:
+                n = releases_in_window(phase, self.phases[other.name],
+                                       state.response[other.name], end)
+                return n - 1 if other.name == excluded or other.name in successors else n
+            return count
+
+        predecessor = self._predecessor(task)
+        if predecessor is None:
+            return fp_release_bound_ns(load, others, counter(None), cap)
+        name, may_skip = predecessor
+        waited = fp_release_bound_ns(load, others, counter(name), cap)
+        if waited is None or not may_skip:
+            return waited
+        jitter = self._reads(task, state, new, self.delays, skip=name)
+        alone = replace(load, jitter_ns=jitter)
+        skipped = fp_release_bound_ns(alone, others, counter(None), cap)
+        return None if skipped is None else max(waited, skipped)
 
     def _edf(self, processor: str, tasks: list[ModuleTask], loads: list[Load],
              new: _State) -> None:
