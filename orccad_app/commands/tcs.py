@@ -15,6 +15,7 @@ incoherent, unschedulable or may deadlock.
 from __future__ import annotations
 
 import argparse
+
 from orccad_app.commands.compile import emit_text, positive_int
 from orccad_app.diagnostics import OrccadError
 
