@@ -36,7 +36,8 @@ from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask
 from orccad_app.tcs.phasing import Phase, releases_in_window
 from orccad_app.tcs.processor_demand import (BudgetExceeded, Load, busy_period_ns,
-                                             density_ok, edf_demand_ok, fp_completion_ns,
+                                             density_ok, edf_demand_ok, edf_response_ns,
+                                             fp_completion_ns,
                                              fp_release_bound_ns, utilization)
 from orccad_app.tcs.protocol import Protocol
 from orccad_app.tcs.protocol_blocking import (CONSUMER_WAITS_EACH_VALUE, rate_mismatch,
@@ -333,9 +334,14 @@ class _Analysis:
             if why is not None:
                 self.fail(task.name, why)
                 new.compute[task.name] = self.cap(task)
-            else:
-                end = x.deadline_ns if busy is None else min(x.deadline_ns, x.jitter_ns + busy)
-                new.compute[task.name] = end
+                continue
+            ends = [x.deadline_ns]
+            if busy is not None:
+                ends.append(x.jitter_ns + busy)
+                response = edf_response_ns(x, [y for y in loads if y is not x], busy)
+                if response is not None:
+                    ends.append(response)
+            new.compute[task.name] = min(ends)
 
     def _writes(self, task: ModuleTask, state: _State, new: _State, delays) -> None:
         at = new.compute[task.name]
