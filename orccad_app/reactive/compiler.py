@@ -199,7 +199,7 @@ def _targets(tree):
 def _waiting(prep: Prepared, key) -> tuple:
     if key is BOOT or key == TERMINAL:
         return ()
-    return tuple(prep.pauses[pid].src.loc for pid in key)
+    return tuple(prep.pauses[pid].src.loc for pid in key if pid < prep.pre_base)
 
 
 def _labels_by_pause(prep: Prepared) -> list[frozenset]:
@@ -215,7 +215,7 @@ def _labels(by_pause: list[frozenset], key) -> frozenset:
     """Labels of the marked regions holding an active pause of control state ``key``."""
     if key is BOOT or key == TERMINAL:
         return frozenset()
-    return frozenset().union(*(by_pause[p] for p in key))
+    return frozenset().union(*(by_pause[p] for p in key if p < len(by_pause)))
 
 
 def _variables(prep: Prepared) -> tuple[ir.VarDecl, ...]:

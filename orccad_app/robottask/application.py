@@ -67,8 +67,9 @@ class ApplicationLowerer(Lowerer):
         self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
         self.handlers: list[dict[str, ir.TrapDecl]] = []
         loc = mission.loc
-        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc)
-        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc)
+        # two exceptions in one instant: the status reports the last one (hidden signals)
+        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc, combine="last")
+        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc, combine="last")
         self.failed_trap = ir.TrapDecl("_failed", loc)
         self.fatal_trap = ir.TrapDecl("_fatal", loc)
 
