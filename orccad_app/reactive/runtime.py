@@ -18,7 +18,11 @@ from orccad_app.reactive.automaton import (ABORTED, FAILED, RUNNING, Action, Aut
                                           DataBranch, InputTest, Leaf)
 from orccad_app.reactive.expr import Store, Unset, compile_expr, format_expr
 
-__all__ = ["Reaction", "Reactor"]
+__all__ = ["Reaction", "Reactor", "RelationViolation"]
+
+
+class RelationViolation(OrccadError):
+    """The inputs of an instant violate a declared ``relation`` (located at the relation)."""
 
 _LEAF, _INPUT, _DATA, _ACTION = range(4)
 _SETS = (frozenset, set)
@@ -115,8 +119,8 @@ class Reactor:
             store.clock_ns = clock_ns
         for relation in self._relations:
             if not relation.holds(inputs):
-                raise OrccadError(f"these inputs violate 'relation {relation.text}' (declared at "
-                                  f"{relation.loc})", relation.loc)
+                raise RelationViolation(f"these inputs violate 'relation {relation.text}' "
+                                        f"(declared at {relation.loc})", relation.loc)
         if self._previous:
             values = store.values
             store.previous = {d: values.get(d, ir.NO_VALUE) for d in self._previous}
