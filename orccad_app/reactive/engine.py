@@ -233,8 +233,8 @@ class _Walk:
                 self.block(waiting, stmt.loc)
                 self.deferred_vars.add(stmt.var)
                 return 0, 1
-            self.record(node.index, ("assign", stmt.var, stmt.expr, None,
-                                     self.read_keys(stmt.expr, scope), stmt.loc))
+            self.record(node.index, ("assign", stmt.var, _fresh_pre(self.prep, stmt.expr, scope),
+                                     None, self.read_keys(stmt.expr, scope), stmt.loc))
             return 0, 1
         if kind == LOCAL:
             inner = dict(scope)
@@ -273,8 +273,8 @@ class _Walk:
             self.unready.add(key)
             self.block(waiting, stmt.loc)
             return True
-        self.record(node.index, ("emit", stmt.signal, stmt.value, key,
-                                 self.read_keys(stmt.value, scope), stmt.loc))
+        self.record(node.index, ("emit", stmt.signal, _fresh_pre(self.prep, stmt.value, scope),
+                                 key, self.read_keys(stmt.value, scope), stmt.loc))
         return True
 
     def _seq(self, node: KNode, depth: bool, sure: bool, scope: dict):
@@ -454,6 +454,46 @@ def _reads(expr: ir.Expr, out: list, variables: set = frozenset()) -> list:
         for item in expr.items:
             _reads(item, out, variables)
     return out
+
+
+def _fresh_pre(prep: Prepared, expr: ir.Expr, scope: dict) -> ir.Expr:
+    """``expr`` with ``pre(?S)`` of a local signal in its first instant (a fresh incarnation)
+    replaced by S's initial value: the fresh signal has no past (Esterel v5)."""
+    fresh = [d for d, key in scope.items() if type(key) is tuple and not key[1]]
+    if not fresh or not _has_pre(expr, fresh):
+        return expr
+    return _made(prep, ("fresh", id(expr), tuple(id(d) for d in fresh)),
+                 lambda: _substitute_pre(expr, fresh))
+
+
+def _has_pre(expr: ir.Expr, decls: list) -> bool:
+    kind = type(expr)
+    if kind is ir.PreValue:
+        return expr.signal in decls
+    if kind is ir.Unary:
+        return _has_pre(expr.operand, decls)
+    if kind is ir.Binary:
+        return _has_pre(expr.left, decls) or _has_pre(expr.right, decls)
+    if kind is ir.VectorExpr:
+        return any(_has_pre(i, decls) for i in expr.items)
+    return False
+
+
+def _substitute_pre(expr: ir.Expr, decls: list) -> ir.Expr:
+    kind = type(expr)
+    if kind is ir.PreValue and expr.signal in decls:
+        if expr.signal.init is None:
+            return ir.Fault(f"pre(?{expr.signal.name}) is read in the first instant of local "
+                            f"signal {expr.signal.name}, which has no initial value", expr.loc)
+        return ir.Const(expr.signal.init, expr.loc)
+    if kind is ir.Unary:
+        return ir.Unary(expr.op, _substitute_pre(expr.operand, decls), expr.loc)
+    if kind is ir.Binary:
+        return ir.Binary(expr.op, _substitute_pre(expr.left, decls),
+                         _substitute_pre(expr.right, decls), expr.loc)
+    if kind is ir.VectorExpr:
+        return ir.VectorExpr(tuple(_substitute_pre(i, decls) for i in expr.items), expr.loc)
+    return expr
 
 
 def _made(prep: Prepared, key: tuple, make):

@@ -447,6 +447,8 @@ class _Run:
         if kind is ir.PreValue:
             key = scope.get(expr.signal, expr.signal)
             if key not in self.memory.previous:
+                if type(key) is tuple and expr.signal.init is not None:
+                    return expr.signal.init  # a fresh incarnation: its initial value
                 raise ReferenceError_(f"pre(?{expr.signal.name}) read before any value")
             return self.memory.previous[key]
         if kind is ir.Clock:
