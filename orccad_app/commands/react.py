@@ -18,7 +18,8 @@ from orccad_app.commands.compile import positive_int
 from orccad_app.diagnostics import OrccadError
 from orccad_app.pipeline import ABSTRACT, COMPOSED, compile_mission, load, select_mission
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
-from orccad_app.reactive.runtime import Reactor
+from orccad_app.diagnostics import SourceLocation
+from orccad_app.reactive.runtime import Reactor, RelationViolation
 from orccad_app.reactive.script import parse_script
 
 __all__ = ["register"]
@@ -60,7 +61,10 @@ def run(args: argparse.Namespace) -> int:
     timed = any(i.time_ns is not None for i in instants)
     reactor = Reactor(automaton)
     for number, instant in enumerate(instants, start=1):
-        reaction = reactor.react(instant.inputs, instant.time_ns)
+        try:
+            reaction = reactor.react(instant.inputs, instant.time_ns)
+        except RelationViolation as error:
+            raise OrccadError(error.message, SourceLocation(name, instant.line, 1)) from None
         if args.jsonl:
             record = {"instant": number, "inputs": list(instant.inputs),
                       "outputs": list(reaction.outputs), "values": reaction.values,
