@@ -86,6 +86,8 @@ def _script_text(source, mission, outcome) -> str:
 def _print_report(source, report, several: bool) -> None:
     model, automaton = report.model, report.composition.automaton
     data = "counters exact" if model.exact else "data abstracted"
+    if model.abstracted_because:
+        data += f": {model.abstracted_because}"
     print(f"mission {report.composition.name}: automaton {automaton.state_count} states, "
           f"model {len(model.states)} states / {model.step_count} steps ({data})")
     for outcome in report.outcomes:

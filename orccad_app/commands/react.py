@@ -58,6 +58,8 @@ def run(args: argparse.Namespace) -> int:
     instants = parse_script(text, name, automaton.inputs)
     timed = any(i.time_ns is not None for i in instants)
     clock_width = max((len(_clock(i.time_ns or 0)) for i in instants), default=0)
+    input_width = max((len(_inputs(i.inputs)) for i in instants), default=0)
+    input_width = max(input_width, 20)
     reactor = Reactor(automaton)
     for number, instant in enumerate(instants, start=1):
         reaction = reactor.react(instant.inputs, instant.time_ns)
@@ -73,9 +75,9 @@ def run(args: argparse.Namespace) -> int:
         else:
             clock = f"{_clock(reactor.store.clock_ns):<{clock_width}} " if timed else ""
             outputs = " ".join(_with_value(o, reaction.values) for o in reaction.outputs)
-            inputs = " ".join(_with_value(i, instant.inputs) for i in instant.inputs) or "-"
             status = reaction.status + (f" {reaction.reason}" if reaction.reason else "")
-            print(f"{number:>4}  {clock}{inputs:<20} -> {outputs or '-':<20} [{status}]")
+            print(f"{number:>4}  {clock}{_inputs(instant.inputs):<{input_width}} -> "
+                  f"{outputs or '-':<20} [{status}]")
     return 1 if reactor.status in ("failed", "aborted") else 0
 
 
@@ -83,6 +85,20 @@ def _clock(clock_ns: int) -> str:
     return f"@{clock_ns / 1e9:g}"
 
 
+def _inputs(inputs: dict) -> str:
+    return " ".join(_with_value(name, inputs) for name in inputs) or "-"
+
+
 def _with_value(name: str, values: dict) -> str:
+    """``S``, or ``S(value)`` written as a script writes it (strings quoted)."""
     value = values.get(name) if isinstance(values, dict) else None
-    return name if value is None else f"{name}({value})"
+    if value is None:
+        return name
+    if isinstance(value, str):
+        import json
+        return f"{name}({json.dumps(value, ensure_ascii=False)})"
+    if isinstance(value, bool):
+        return f"{name}({'true' if value else 'false'})"
+    if isinstance(value, tuple):
+        return f"{name}([{', '.join(map(str, value))}])"
+    return f"{name}({value})"

@@ -73,6 +73,41 @@ def _injection(text: str):
     return parse_injection(text)
 
 
+def _check_values(injections, inputs) -> None:
+    """Each injected value fits its input: none for a pure input, one of the declared type
+    (finite, integers within 64 bits) for a valued one; fault values finite."""
+    import math
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.lang.limits import MAX_INT, MIN_INT
+
+    declared = {s.name: s for s in inputs}
+    for injection in injections:
+        value, name = injection.value, injection.name
+        if isinstance(value, float) and not math.isfinite(value):
+            raise OrccadError(f"--inject {name}: the value must be a finite number, got {value}")
+        if isinstance(value, int) and not isinstance(value, bool) and \
+                not MIN_INT <= value <= MAX_INT:
+            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
+        signal = declared.get(name)
+        if injection.fault or signal is None:
+            continue  # unknown names are reported by the run, with the known inputs
+        if signal.type is None and value is not None:
+            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
+                              f"(write {name}@T)")
+        if signal.type is not None and value is None:
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
+                              f"{name}(value)@T")
+        if signal.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
+            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
+        if signal.type in ("float", "duration") and (isinstance(value, bool)
+                                                     or not isinstance(value, (int, float))):
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}, got {value!r}")
+        if signal.type == "bool" and not isinstance(value, bool):
+            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
+                              f"got {value!r}")
+
+
 def _warn_first_instant(injections) -> None:
     for injection in injections:
         if injection.time_ns == 0 and not injection.fault:
@@ -103,6 +138,7 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     plan = plan_mission(source, mission)
+    _check_values(injections, plan.automaton.inputs)
     writer = None
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
                   MAX_SECONDS)
