@@ -7,7 +7,7 @@
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
-Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.executive.mission_run`).
+Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
 Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
 when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
@@ -60,7 +60,7 @@ def register(sub) -> None:
 def _injection(text: str):
     """``--inject`` text → :class:`Injection`, its time checked finite and within a year."""
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.executive.mission_run import parse_injection
+    from orccad_app.mission.injection import parse_injection
 
     when = text.rpartition("@")[2]
     try:
@@ -125,11 +125,12 @@ def _processors(plan, args: argparse.Namespace) -> list:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
-    from orccad_app.executive.mission_plan import plan_mission
-    from orccad_app.executive.mission_run import MissionRun, run_horizon_s
     from orccad_app.jsonout import dumps
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
+    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
+                                  report_dict)
 
     injections = [_injection(text) for text in args.inject]
     _warn_first_instant(injections)
@@ -161,10 +162,11 @@ def run(args: argparse.Namespace) -> int:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError(f"{args.trace}: cannot write the trace: "
                           f"{error.strerror or error}") from None
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     if args.json:
-        print(dumps(report_dict(result), indent=2))
+        print(dumps(report_dict(result, injected), indent=2))
     else:
-        print(format_report(result))
+        print(format_report(result, injected))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
