@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from orccad_app.commands.arguments import add_file, add_max_states, add_mission
 

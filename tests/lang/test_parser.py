@@ -11,7 +11,7 @@ from lark import Lark
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
-from orccad_app.lang.parser import _lark, grammar_lark, grammar_text, keywords, parse
+from orccad_app.lang.parser import grammar_lark, grammar_text, keywords, parse
 from tests.lang import examples
 
 
