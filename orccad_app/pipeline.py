@@ -6,8 +6,9 @@ chains them and picks the mission a command is about.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
@@ -18,7 +19,9 @@ from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
 from orccad_app.robottask.composition import Composition, compose
-from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
+
+if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a file has tasks
+    from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
 __all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
            "require_missions", "compile_mission", "compose_mission",
@@ -40,7 +43,15 @@ class Source:
     text: str
     program: ast.Program
     warnings: tuple = ()
-    instances: TaskInstances = field(default_factory=lambda: TaskInstances({}, {}))
+    tasks: TaskInstances | None = None
+
+    @property
+    def instances(self) -> TaskInstances:
+        """The checked Robot-Task instances (empty for a file without Robot-Tasks)."""
+        if self.tasks is None:
+            from orccad_app.robottask.model import TaskInstances
+            return TaskInstances({}, {})
+        return self.tasks
 
     def instance(self, run: ast.Run) -> RobotTaskInstance:
         """The checked Robot-Task instance of the ``run`` statement ``run``."""
@@ -59,7 +70,7 @@ def load(path: str | Path) -> Source:
     text = read_source(path)
     program = parse(text, path)
     result = check(program)
-    instances = TaskInstances({}, {})
+    instances = None
     if program.robottasks:
         from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
