@@ -92,7 +92,7 @@ def check_outcome(outcome: Outcome, *, json_lines: bool = False, json_doc: bool 
 
 def save_case(name: str, files: dict[str, str], argv: list[str]) -> Path:
     """Keep a found case in the corpus: its files and the command line (``{dir}`` stands for
-    the folder holding the files)."""
+    the folder holding the files, ``{root}`` for the repository)."""
     CORPUS.mkdir(exist_ok=True)
     path = CORPUS / f"{name}.json"
     path.write_text(json.dumps({"files": files, "argv": argv}, indent=1, ensure_ascii=False)
@@ -105,5 +105,6 @@ def replay(case: Path, folder: Path) -> Outcome:
     data = json.loads(case.read_text(encoding="utf-8"))
     for name, text in data["files"].items():
         (folder / name).write_text(text, encoding="utf-8")
-    argv = [arg.replace("{dir}", str(folder)) for arg in data["argv"]]
+    root = str(Path(__file__).resolve().parents[2])
+    argv = [arg.replace("{dir}", str(folder)).replace("{root}", root) for arg in data["argv"]]
     return run_orccad(argv)
