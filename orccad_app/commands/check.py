@@ -5,7 +5,8 @@ then proves the built-in properties and every ``property`` that applies to it (s
 ``docs/verification.md``). A failed property prints a counterexample as an input script for
 ``orccad react --composed``. ``--observe`` prints the automaton reduced to some signals
 (observational equivalence) instead. Exit status: 0 all hold, 1 a property fails, 2 bad
-input.
+input. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
+and campaigns judge them; they do not change the exit status.
 """
 
 from __future__ import annotations
@@ -98,6 +99,9 @@ def _print_report(source, report, several: bool) -> None:
         if not outcome.holds and outcome.script is not None:
             for line in _script_text(source, report.composition.mission, outcome).splitlines():
                 print(f"        | {line}")
+    for prop in report.signal_properties:
+        print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
+              "judged on runs and campaigns")
 
 
 def _write_promela(source, mission, report, path: str) -> None:
@@ -105,7 +109,8 @@ def _write_promela(source, mission, report, path: str) -> None:
     from orccad_app.verify.promela import to_promela
 
     text = to_promela(report.model.automaton, tracked=report.model.tracked,
-                      properties=applicable(source.program.properties, mission),
+                      properties=[p for p in applicable(source.program.properties, mission)
+                                  if p not in report.signal_properties],
                       assumptions=applicable(source.program.assumptions, mission))
     emit_text(text.rstrip("\n"), path)
 

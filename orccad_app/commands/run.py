@@ -8,7 +8,9 @@
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
 Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.executive.mission_run`).
-Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
+Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
+of every ``property`` of the mission on this run (key ``properties``, see
+:mod:`orccad_app.properties`). Exit status: 0
 when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
@@ -85,6 +87,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.mission_plan import plan_mission
     from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
     from orccad_app.pipeline import load, select_mission
+    from orccad_app.properties import PropertyMonitor, results_dict
+    from orccad_app.properties.report import format_properties
     from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
 
     injections = [parse_injection(text) for text in args.inject]
@@ -97,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
+    monitor = PropertyMonitor(source.program, mission, mission_run)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
                                          "seed": str(args.seed)})
@@ -106,10 +111,15 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if writer is not None:
             writer.close()
+    verdicts = monitor.results()
     if args.json:
-        print(json.dumps(report_dict(result), indent=2))
+        report = report_dict(result)
+        report["properties"] = results_dict(verdicts)
+        print(json.dumps(report, indent=2, allow_nan=False))
     else:
         print(format_report(result))
+        if verdicts:
+            print("\n".join(format_properties(verdicts)))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
