@@ -54,9 +54,10 @@ def run(args: argparse.Namespace) -> int:
                 else list(source.program.missions))
     if args.observe is not None:
         return _observe(source, missions, args)
-    failed, written = 0, False
+    failed, written, unproved = 0, False, 0
     for mission in missions:
         report = check_mission(source.program, mission, max_states=args.max_states)
+        unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
         _print_report(source, report, len(missions) > 1)
@@ -68,8 +69,10 @@ def run(args: argparse.Namespace) -> int:
                               args.counterexample)
                     written = True
     total = len(missions)
+    left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
+            if unproved else "")
     print(f"{'all properties hold' if not failed else f'{failed} failed'} "
-          f"({total} mission{'s' if total > 1 else ''})")
+          f"({total} mission{'s' if total > 1 else ''}{left})")
     return 1 if failed else 0
 
 

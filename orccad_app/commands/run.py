@@ -11,7 +11,8 @@ Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.exec
 Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
 of every ``property`` of the mission on this run (key ``properties``, see
 :mod:`orccad_app.properties`). Exit status: 0
-when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
+when the mission ends ``done`` and no property is false on the run; 1 when it ends
+``failed``, ``aborted`` or ``timeout``, or a property is false (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
 """
@@ -127,4 +128,8 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
-    return result.exit_status
+    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    if violated and not args.json:
+        print(f"orccad: propert{'ies' if len(violated) > 1 else 'y'} violated on this run: "
+              f"{', '.join(violated)}", file=sys.stderr)
+    return max(result.exit_status, 1 if violated else 0)
