@@ -31,6 +31,7 @@ is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
@@ -194,7 +195,9 @@ def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
 def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
     """The robustness at time 0 of ``stl`` on ``samples`` (rtamt variable -> one value per
     sample, every list of one length ≥ 1; events as ``±inf``)."""
-    import rtamt
+    with warnings.catch_warnings():  # antlr4 4.7 imports typing.io (deprecated)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        import rtamt
 
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
