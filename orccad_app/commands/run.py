@@ -7,12 +7,12 @@
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
-Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.executive.mission_run`).
+Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
 Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
 of every ``property`` of the mission on this run (key ``properties``, see
-:mod:`orccad_app.properties`). Exit status: 0
-when the mission ends ``done`` and no property is false on the run; 1 when it ends
-``failed``, ``aborted`` or ``timeout``, or a property is false (a
+:mod:`orccad_app.properties`). Exit status: 0 when the mission ends ``done`` and no property
+is false on the run; 1 when it ends ``failed``, ``aborted`` or ``timeout``, or a property is
+false (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
 """
@@ -85,12 +85,14 @@ def _processors(plan, args: argparse.Namespace) -> list:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
-    from orccad_app.executive.mission_plan import plan_mission
-    from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
+    from orccad_app.mission.injection import parse_injection
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
-    from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
+    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
+                                  report_dict)
 
     injections = [parse_injection(text) for text in args.inject]
     source = load(args.file)
@@ -112,13 +114,14 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if writer is not None:
             writer.close()
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     verdicts = monitor.results()
     if args.json:
-        report = report_dict(result)
+        report = report_dict(result, injected)
         report["properties"] = results_dict(verdicts)
         print(json.dumps(report, indent=2, allow_nan=False))
     else:
-        print(format_report(result))
+        print(format_report(result, injected))
         if verdicts:
             print("\n".join(format_properties(verdicts)))
         if args.trace:

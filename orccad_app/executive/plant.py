@@ -38,6 +38,7 @@ from typing import Any, Mapping
 import mujoco
 import numpy as np
 
+from orccad_app.control.plant_extension import PlantExtension
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import Kernel
 from orccad_app.tcs.module_task import PhysicalResource
@@ -64,32 +65,6 @@ def _load(xml: str | None, path: str | None) -> mujoco.MjModel:
         return mujoco.MjModel.from_xml_path(str(path))
     except ValueError as error:
         raise OrccadError(f"cannot load MJCF model {path or '<string>'}: {error}") from None
-
-
-class PlantExtension:
-    """Extra physics, sensor ports and faults of a plant (a robot type's plugin provides it).
-
-    Subclasses set :attr:`sensors` (port -> dim) and :attr:`faults` (fault -> description
-    with its unit) and override the methods; the defaults do nothing.
-    """
-
-    sensors: Mapping[str, int] = {}
-    faults: Mapping[str, str] = {}
-
-    def bind(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        """Called once by the plant before the first step (keep ``model`` and ``data``)."""
-
-    def step(self, dt_s: float) -> None:
-        """Called before each integration step of ``dt_s`` [s]: set ``data.xfrc_applied`` /
-        ``qfrc_applied``, integrate the extension's own states (battery energy...)."""
-
-    def read(self, port: str) -> np.ndarray:
-        """The value of the sensor ``port`` now (an array; 0-d for a ``float`` port)."""
-        raise KeyError(port)
-
-    def inject(self, fault: str, value: Any) -> None:
-        """Apply the fault ``fault`` with ``value`` (a name of :attr:`faults`)."""
-        raise KeyError(fault)
 
 
 class MujocoPlant:

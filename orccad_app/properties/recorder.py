@@ -21,12 +21,15 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from orccad_app.mission.observer import MissionObserver
+from orccad_app.robottask.labels import RtLabel
+
 __all__ = ["PropertyRecorder"]
 
 _STATUSES = ("done", "failed", "aborted")
 
 
-class PropertyRecorder:
+class PropertyRecorder(MissionObserver):
     """Records a run for its properties (see the module docstring).
 
     :param mission_run: the run (its reactor's state labels, its plants).
@@ -81,7 +84,8 @@ class PropertyRecorder:
             elif kind == "active":
                 if labels is None:
                     labels = self._run.reactor.labels
-                hit = any(label[0] == "rt" and label[1] == key[1] for label in labels)
+                hit = any(isinstance(label, RtLabel) and label.task == key[1]
+                          for label in labels)
             elif kind == "status":
                 hit = status == key[1] and self._status != key[1]
             else:  # ("true",)

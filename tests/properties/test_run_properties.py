@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from orccad_app.executive.mission_plan import plan_mission
-from orccad_app.executive.mission_run import MissionRun, parse_injection
+from orccad_app.mission.injection import parse_injection
+from orccad_app.mission.plan import plan_mission
+from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 from orccad_app.properties import PropertyKind, PropertyMonitor, Verdict
 
@@ -21,6 +22,7 @@ EXTRA = """
 property ArmPID.shoulder_tight: always (arm.q[0] < 0.9);
 property ArmPID.reaches_one: eventually[0, 2] (abs(arm.q[1] - 1.0) < 0.05);
 property ArmPID.one_end: never (done and failed);
+property ArmPID.calm_while_tracking: always (active(TrackPID) -> norm(arm.qdot) < 3.0);
 """
 
 
@@ -54,7 +56,7 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     by_name = {p["name"]: p for p in report["properties"]}
     assert list(by_name) == ["tracked_at_good_end", "terminates", "fatal_aborts",
                              "at_rest_at_end", "shoulder_in_range", "shoulder_tight",
-                             "reaches_one", "one_end"]
+                             "reaches_one", "one_end", "calm_while_tracking"]
     tight = by_name["shoulder_tight"]
     assert (tight["kind"], tight["verdict"], tight["unit"]) == ("signal", "false", "[rad]")
     # the shoulder follows q0 (1 + cos(pi t)) = 1.0 rad at t = 0: about 0.1 rad over 0.9
@@ -68,6 +70,9 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     for name in ("tracked_at_good_end", "terminates", "fatal_aborts", "one_end"):
         assert (by_name[name]["kind"], by_name[name]["verdict"]) == ("ltl", "true")
         assert by_name[name]["robustness"] is None
+    # active(TrackPID) holds during the run: the bound decides, finite robustness [rad/s]
+    calm = by_name["calm_while_tracking"]
+    assert calm["verdict"] == "true" and 0.0 < calm["robustness"] < 3.0
     assert by_name["at_rest_at_end"]["samples"] == 4001  # 1 ms samples over 4 s, both ends
 
 
