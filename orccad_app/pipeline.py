@@ -75,6 +75,10 @@ def load(path: str | Path) -> Source:
         from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
         instances = check_tasks(program, default_host())
+    if any(ast.is_signal_formula(p.formula) for p in program.properties):
+        from orccad_app.plugins.host import default_host
+        from orccad_app.verify.signal_types import check_signal_properties
+        check_signal_properties(program, default_host())
     return Source(path, text, program, result.warnings, instances)
 
 

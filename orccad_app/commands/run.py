@@ -8,8 +8,11 @@
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
 Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
-Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
-when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
+Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
+of every ``property`` of the mission on this run (key ``properties``, see
+:mod:`orccad_app.properties`). Exit status: 0 when the mission ends ``done`` and no property
+is false on the run; 1 when it ends ``failed``, ``aborted`` or ``timeout``, or a property is
+false (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
 """
@@ -129,6 +132,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.mission.plan import plan_mission
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
+    from orccad_app.properties import PropertyMonitor, results_dict
+    from orccad_app.properties.report import format_properties
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict)
 
@@ -146,6 +151,7 @@ def run(args: argparse.Namespace) -> int:
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
+    monitor = PropertyMonitor(source.program, mission, mission_run)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
                                          "seed": str(args.seed)})
@@ -163,10 +169,15 @@ def run(args: argparse.Namespace) -> int:
         raise OrccadError(f"{args.trace}: cannot write the trace: "
                           f"{error.strerror or error}") from None
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    verdicts = monitor.results()
     if args.json:
-        print(dumps(report_dict(result, injected), indent=2))
+        report = report_dict(result, injected)
+        report["properties"] = results_dict(verdicts)
+        print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
+        if verdicts:
+            print("\n".join(format_properties(verdicts)))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
@@ -174,4 +185,8 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
-    return result.exit_status
+    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    if violated and not args.json:
+        print(f"orccad: propert{'ies' if len(violated) > 1 else 'y'} violated on this run: "
+              f"{', '.join(violated)}", file=sys.stderr)
+    return max(result.exit_status, 1 if violated else 0)
