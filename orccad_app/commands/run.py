@@ -3,6 +3,7 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -59,6 +60,13 @@ def register(sub) -> None:
     parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120)")
+    parser.add_argument("--set", action="extend", nargs="+", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
+                             "or a sensor's noise (auv.depth.noise_std=0.05)")
+    parser.add_argument("--timing", action="extend", nargs="+", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms at every run of "
+                             "its Robot-Task (Survey.pilot.wcet_ms=2.5)")
     parser.add_argument("--realtime", type=_seconds, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR, default 1) and "
                              "report lateness")
@@ -84,14 +92,16 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.executive.mission_plan import plan_mission
     from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
+    from orccad_app.executive.plan_overrides import PlanOverrides
     from orccad_app.pipeline import load, select_mission
     from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
 
     injections = [parse_injection(text) for text in args.inject]
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_mission(source, mission, overrides=overrides)
     writer = None
     until_s = args.until if args.until is not None else run_horizon_s(plan, 60.0)
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),

@@ -25,6 +25,8 @@ from typing import Any
 import numpy as np
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.plan_overrides import (PlanOverrides, check_overrides,
+                                                 robot_declarations, timed_instance)
 from orccad_app.executive.plant import MujocoPlant
 from orccad_app.executive.task_tcs import add_instance, robot_resource
 from orccad_app.tcs.graph import TCS
@@ -145,33 +147,45 @@ def _plant_spec(robot_type: Any, qpos0: np.ndarray | None) -> dict[str, Any]:
             "qpos0": qpos0}
 
 
-def plan_mission(source: Any, mission: Any, host: Any = None) -> MissionPlan:
+def plan_mission(source: Any, mission: Any, host: Any = None, *,
+                 overrides: PlanOverrides | None = None,
+                 compiled: tuple[Any, list] | None = None) -> MissionPlan:
     """Compile ``mission`` of ``source`` (a :class:`~orccad_app.pipeline.Source`) and build
-    the TCS and plants of all its ``run`` sites."""
+    the TCS and plants of all its ``run`` sites, with ``overrides`` (``--set``,
+    ``--timing``: :mod:`~orccad_app.executive.plan_overrides`) applied. ``compiled``: the
+    ``(automaton, sites)`` of :func:`~orccad_app.pipeline.compile_mission_sites` when the
+    caller already has them (a campaign compiles once, plans each run)."""
     from orccad_app.pipeline import compile_mission_sites
     from orccad_app.robottask.model import instantiate
 
     if host is None:
         from orccad_app.plugins.host import default_host
         host = default_host()
-    automaton, sites = compile_mission_sites(source, mission)
-    robots = {r.name: r for r in source.program.robots}
+    overrides = overrides or PlanOverrides()
+    automaton, sites = compiled or compile_mission_sites(source, mission)
+    robots = robot_declarations({r.name: r for r in source.program.robots}, host, overrides)
     inputs = {s.name for s in automaton.inputs}
     tcs = TCS(mission.name, shared_actuators=True)
     plant_specs: dict[str, dict[str, Any]] = {}
+    types: dict[str, Any] = {}
     plans = []
     for site, prefix in zip(sites, _prefixes(sites)):
         instance = instantiate(site.task, robots, host, site.stmt.args, site.stmt.loc)
+        timed_instance(instance, site.task.name, overrides)
         robot = instance.robot_name
         if robot not in plant_specs:
             robot_type = instance.context.robot
             plant_specs[robot] = _plant_spec(robot_type, _initial_q(instance))
+            types[robot] = robot_type
             tcs.add(robot_resource(robot, robot_type))
         names = add_instance(tcs, instance, prefix)
         plans.append(_site_plan(site, instance, names, inputs))
     if not plans:
         raise OrccadError(f"mission '{mission.name}' runs no Robot-Task: nothing to execute "
                           f"(use 'orccad react' for the automaton alone)", mission.loc)
+    check_overrides(overrides, {site.task.name for site in sites}, types)
+    for noise in overrides.noise:
+        plant_specs[noise.robot]["noise_std"][noise.port] = noise.std
     tick = 0
     for task in tcs.module_tasks:
         tick = gcd(tick, task.period_ns)
