@@ -18,7 +18,8 @@ from orccad_app.diagnostics import OrccadError
 __all__ = ["main", "COMMANDS"]
 
 #: Sub-command modules under ``orccad_app.commands``, in the order ``--help`` lists them.
-COMMANDS: tuple[str, ...] = ("compile", "check", "react", "rta", "tcs", "run", "tui", "plugins")
+COMMANDS: tuple[str, ...] = ("compile", "check", "react", "rta", "tcs", "run", "campaign",
+                             "falsify", "tui", "plugins")
 
 
 class _ArgumentParser(argparse.ArgumentParser):

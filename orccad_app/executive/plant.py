@@ -302,6 +302,17 @@ class MujocoPlant:
             value = np.round(value / quantum) * quantum
         return value
 
+    def peek(self, port: str) -> np.ndarray:
+        """The sensor ``port`` at the plant's current time, without noise or quantization,
+        without advancing the plant or drawing random numbers: an observer's look that cannot
+        change the run."""
+        return self._readers[port]()
+
+    @property
+    def sensor_ports(self) -> tuple[str, ...]:
+        """The names of the sensor ports."""
+        return tuple(self._readers)
+
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
         self.advance_to(self._kernel.now)
