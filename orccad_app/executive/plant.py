@@ -91,6 +91,11 @@ class PlantExtension:
         """Apply the fault ``fault`` with ``value`` (a name of :attr:`faults`)."""
         raise KeyError(fault)
 
+    def true_value(self, port: str) -> np.ndarray:
+        """The physical quantity sensor ``port`` measures, without its faults (bias, stuck):
+        what campaigns' signal extrema record. Default: :meth:`read`."""
+        return self.read(port)
+
 
 class MujocoPlant:
     """A MuJoCo model as the physical resource ``name``.
@@ -303,9 +308,11 @@ class MujocoPlant:
         return value
 
     def peek(self, port: str) -> np.ndarray:
-        """The sensor ``port`` at the plant's current time, without noise or quantization,
-        without advancing the plant or drawing random numbers: an observer's look that cannot
-        change the run."""
+        """The physical value sensor ``port`` measures at the plant's current time: no noise,
+        quantization or sensor fault (an extension's ``true_value``); it neither advances the
+        plant nor draws random numbers, so an observer's look cannot change the run."""
+        if self.extension is not None and port in self.extension.sensors:
+            return np.array(self.extension.true_value(port), dtype=float)
         return self._readers[port]()
 
     @property
