@@ -74,7 +74,6 @@ def mission(n: int, parallel: bool) -> str:
     else:
         body = _runs(branches[0])
     same = branches[0]
-    last = branches[-1][-1]
     text += f"""
 mission M {{
     output Lost, Done;

@@ -17,7 +17,7 @@ import re
 from xml.sax.saxutils import quoteattr
 
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.automaton import Action, Automaton, InputTest, Leaf
 
 __all__ = ["to_scxml", "identifier"]
 

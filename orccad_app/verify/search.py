@@ -174,7 +174,8 @@ def _lasso(product: _Product, root: int, component: set[int]) -> Lasso:
     node, missing = entry, product.full
     while missing or not loop:
         wanted = missing
-        piece = _path(product, node, lambda src, edge: bool(edge[1] & wanted) or not wanted,
+        piece = _path(product, node,
+                      lambda src, edge, wanted=wanted: bool(edge[1] & wanted) or not wanted,
                       component)
         loop += piece
         for edge in piece:

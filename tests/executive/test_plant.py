@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from orccad_app.diagnostics import OrccadError
-from orccad_app.executive import EventLog, MujocoPlant, PlantDivergenceError, Simulation
+from orccad_app.executive import MujocoPlant, PlantDivergenceError, Simulation
 from orccad_app.tcs import TCS, ModuleTask, Port, ms, s
 
 PENDULUM = """

@@ -9,7 +9,7 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.pipeline import load
-from tests.robottask.conftest import ABSTRACT, COMPOSED, Trace, arm_task, mission_automaton
+from tests.robottask.conftest import COMPOSED, Trace, arm_task, mission_automaton
 
 TASKS = arm_task("Track", clauses="""
     module jl : joint_limits(margin = 0.05);

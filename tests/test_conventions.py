@@ -1,0 +1,73 @@
+"""The packaging conventions a Python user relies on.
+
+- ``python -m orccad_app`` is the ``orccad`` command, and ``--version`` reads the one version
+  source (``orccad_app.__version__``, which pyproject reads too);
+- the package is marked typed (``py.typed``);
+- every third-party package that the core or a built-in plugin imports is declared in
+  pyproject's dependencies (an undeclared import works here only by accident, because some
+  other dependency happens to pull it in).
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+import subprocess
+import sys
+import tomllib
+from importlib.metadata import packages_distributions
+from pathlib import Path
+
+import orccad_app
+
+ROOT = Path(__file__).resolve().parents[1]
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+#: Modules whose distribution installs them where importlib.metadata cannot map them back
+#: (cmeel wheels put ``pinocchio`` under ``cmeel.prefix``).
+DISTRIBUTION_OF = {"pinocchio": "pin"}
+FIRST_PARTY = {"orccad_app", "orccad_control", "orccad_arm3dof", "orccad_observers", "orccad_auv"}
+
+
+def _requirement_name(requirement: str) -> str:
+    return re.split(r"[\s\[<>=!~;]", requirement, maxsplit=1)[0].lower().replace("_", "-")
+
+
+def _imported_top_level(folder: Path) -> set[str]:
+    names: set[str] = set()
+    for path in folder.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                names.update(alias.name.split(".")[0] for alias in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names.add(node.module.split(".")[0])
+    return names
+
+
+def test_python_dash_m_runs_the_command_and_reports_the_single_version():
+    result = subprocess.run([sys.executable, "-m", "orccad_app", "--version"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == f"orccad {orccad_app.__version__}"
+    assert "version" in PYPROJECT["project"]["dynamic"]
+    assert "version" not in PYPROJECT["project"]
+    assert PYPROJECT["tool"]["hatch"]["version"]["path"] == "orccad_app/__init__.py"
+
+
+def test_the_package_is_marked_typed():
+    assert (Path(orccad_app.__file__).parent / "py.typed").is_file()
+
+
+def test_every_imported_third_party_package_is_declared():
+    declared = {_requirement_name(r) for r in PYPROJECT["project"]["dependencies"]}
+    folders = [ROOT / "orccad_app"] + [ROOT / "plugins" / name for name in FIRST_PARTY
+                                       if (ROOT / "plugins" / name).is_dir()]
+    imported = set().union(*(_imported_top_level(folder) for folder in folders))
+    third_party = imported - FIRST_PARTY - set(sys.stdlib_module_names)
+    distributions = packages_distributions()
+    undeclared = {}
+    for module in sorted(third_party):
+        found = distributions.get(module) or [DISTRIBUTION_OF.get(module, module)]
+        names = {d.lower().replace("_", "-") for d in found}
+        if not names & declared:
+            undeclared[module] = sorted(names)
+    assert not undeclared, f"imported but not in [project].dependencies: {undeclared}"
