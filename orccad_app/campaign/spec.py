@@ -171,8 +171,11 @@ def parse_spec(text: str, path: str = "<spec>") -> CampaignSpec:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         found = re.search(r"\(at line (\d+), column (\d+)\)", str(error))
-        message = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(error))
-        where = SourceLocation(path, int(found.group(1)), int(found.group(2))) if found else None
+        message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(error))
+        if found:
+            where = SourceLocation(path, int(found.group(1)), int(found.group(2)))
+        else:  # "(at end of document)"
+            where = SourceLocation(path, max(1, len(text.splitlines())), 1)
         raise OrccadError(f"bad TOML: {message}", where) from None
     spec = CampaignSpec(path, text, locator=SpecLocator(path, text))
     return _Reader(spec, data).read()

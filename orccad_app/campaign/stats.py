@@ -131,7 +131,7 @@ class Sprt:
 
     def __init__(self, hypothesis: Hypothesis, delta: float, alpha: float, beta: float) -> None:
         theta = hypothesis.theta
-        if not 0 < theta - delta and theta + delta < 1:
+        if not (0 < theta - delta and theta + delta < 1):
             raise OrccadError(f"--delta {delta:g}: the indifference region "
                               f"[{theta - delta:g}, {theta + delta:g}] must lie inside (0, 1)")
         self.hypothesis = hypothesis
