@@ -30,6 +30,7 @@ def _rows(db) -> list[tuple]:
         ).fetchall()
 
 
+@pytest.mark.slow
 def test_a_leak_with_probability_0_3_gives_p_aborted_near_0_3(leak_spec, tmp_path):
     """Known by construction: every leak during the dive aborts the mission, nothing else
     does, so P(aborted) is the leak's occurrence probability 0.3."""
@@ -80,6 +81,7 @@ def test_observing_signal_extrema_does_not_change_the_run(leak_spec):
     assert watched.metrics["max(auv.depth)"] > 1.0
 
 
+@pytest.mark.slow
 def test_an_interrupted_campaign_resumes_without_losing_a_run(leak_spec, tmp_path):
     reference = _campaign(leak_spec, tmp_path / "ref.db", 6).run(backend=PoolBackend(2))
     assert len(reference.records) == 6
@@ -99,6 +101,7 @@ def test_an_interrupted_campaign_resumes_without_losing_a_run(leak_spec, tmp_pat
     assert _rows(tmp_path / "cut.db") == _rows(tmp_path / "ref.db")
 
 
+@pytest.mark.slow
 def test_a_killed_worker_loses_no_run(leak_spec, tmp_path):
     backend = PoolBackend(2)
     killed = []
@@ -139,6 +142,7 @@ def test_a_crashing_run_is_retried_once_then_recorded(leak_spec, tmp_path, monke
     assert by_index[0].attempts == 1
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_the_same_rows_as_the_pool(leak_spec, tmp_path):
     distributed = pytest.importorskip("distributed")
     from orccad_app.campaign.executor import DaskBackend
@@ -153,6 +157,7 @@ def test_dask_local_cluster_gives_the_same_rows_as_the_pool(leak_spec, tmp_path)
     assert _rows(tmp_path / "d.db") == _rows(tmp_path / "p.db")
 
 
+@pytest.mark.slow
 def test_sequential_stopping_and_hypothesis_test_stop_early(leak_spec, tmp_path):
     result = orccad("campaign", AUV, "--spec", str(leak_spec), "--workers", "2",
                     "--hypothesis", "P(aborted) <= 0.9", "--delta", "0.05", "--runs", "40",
@@ -163,6 +168,7 @@ def test_sequential_stopping_and_hypothesis_test_stop_early(leak_spec, tmp_path)
     assert data["runs"] < 40
 
 
+@pytest.mark.slow
 def test_the_report_and_the_summary(leak_spec, tmp_path):
     html = tmp_path / "report.html"
     result = orccad("campaign", AUV, "--spec", str(leak_spec), "--runs", "4", "--workers", "1",
