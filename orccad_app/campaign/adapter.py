@@ -93,9 +93,19 @@ class CompiledMission:
         return run_horizon_s(self.plan(RunSetting(0, 0, 1.0)), 60.0)
 
     def property_names(self) -> tuple[str, ...]:
-        """The mission's declared properties (those the run evaluates)."""
-        props = getattr(self.source.program, "properties", ())
-        return tuple(p.name for p in props if getattr(p, "mission", self.name) == self.name)
+        """The mission's declared properties (those each run judges)."""
+        from orccad_app.verify.checker import applicable
+
+        return tuple(p.name for p in applicable(self.source.program.properties, self.mission))
+
+    def monitor(self, mission_run: Any) -> Any:
+        """The monitor judging every property of the mission on ``mission_run`` (attached to
+        it: build it before the run), as ``orccad run`` does."""
+        try:
+            from orccad_app.properties import PropertyMonitor
+        except ImportError:  # signal properties land with issue 13 item 1
+            return None
+        return PropertyMonitor(self.source.program, self.mission, mission_run)
 
     def mission_run(self, setting: RunSetting, observers: tuple = ()) -> Any:
         """A ready :class:`~orccad_app.executive.mission_run.MissionRun` of ``setting``."""
@@ -135,6 +145,7 @@ def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, 
     extrema = SignalExtrema(signals)
     mission_run = compiled.mission_run(setting, observers=(extrema, *observers))
     extrema.bind(mission_run.sim)
+    monitor = compiled.monitor(mission_run)
     start = time.perf_counter()
     result = mission_run.run()
     wall = time.perf_counter() - start
@@ -143,15 +154,24 @@ def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, 
     metrics = run_metrics(result, extrema)
     properties = {name: PropertyResult(holds, robustness)
                   for name, (holds, robustness) in check_results(checks, metrics).items()}
-    properties.update(evaluate_properties(compiled, result))
+    properties.update(_verdicts(monitor))
     return RunRecord(setting, result.status, result.reason,
                      outcome_label(result.status, result.reason), result.sim_time_ns / 1e9,
                      wall, {k: _finite(v) for k, v in metrics.items()}, properties)
 
 
-def evaluate_properties(compiled: CompiledMission, result: Any) -> dict[str, PropertyResult]:
-    """The mission's declared properties on the run (verdict, robustness): none yet."""
-    return {}
+def _verdicts(monitor: Any) -> dict[str, PropertyResult]:
+    """The mission's properties judged on the run (:mod:`orccad_app.properties`): ``holds``
+    from the verdict (``None`` when undecided), the robustness when finite."""
+    if monitor is None:
+        return {}
+    found = {}
+    for verdict in monitor.results():
+        holds = {"true": True, "false": False}.get(verdict.verdict.value)
+        value = verdict.robustness
+        finite = value is not None and math.isfinite(value)
+        found[verdict.name] = PropertyResult(holds, value if finite else None)
+    return found
 
 
 def _finite(value: float | None) -> float | None:
