@@ -6,7 +6,7 @@ chains them and picks the mission a command is about.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from orccad_app.diagnostics import OrccadError
@@ -16,21 +16,34 @@ from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
-from orccad_app.robottask.application import (ABSTRACT, COMPOSED, AbstractApplicationLowerer,
-                                              ApplicationLowerer)
+from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
+from orccad_app.robottask.composition import Composition, compose
+from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
-__all__ = ["Source", "load", "select_mission", "compile_mission", "compile_mission_sites",
+__all__ = ["Source", "load", "select_mission", "compile_mission", "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
 
 @dataclass(frozen=True)
 class Source:
-    """A parsed and checked ``.orc`` file."""
+    """A parsed and checked ``.orc`` file.
+
+    :param path: the file's path.
+    :param text: its text.
+    :param program: its checked AST.
+    :param warnings: the checker's warnings.
+    :param instances: the checked Robot-Task instances (one per ``run`` site).
+    """
 
     path: str
     text: str
     program: ast.Program
     warnings: tuple = ()
+    instances: TaskInstances = field(default_factory=lambda: TaskInstances({}, {}))
+
+    def instance(self, run: ast.Run) -> RobotTaskInstance:
+        """The checked Robot-Task instance of the ``run`` statement ``run``."""
+        return self.instances.by_run[run.loc]
 
     def print_warnings(self, stream=None) -> None:
         """Print the checker's warnings (``file:line:col: warning: …``) to ``stream``."""
@@ -50,11 +63,12 @@ def load(path: str | Path) -> Source:
         raise OrccadError(f"{path}: cannot read: {error}") from None
     program = parse(text, path)
     result = check(program)
+    instances = TaskInstances({}, {})
     if program.robottasks:
         from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
-        check_tasks(program, default_host())
-    return Source(path, text, program, result.warnings)
+        instances = check_tasks(program, default_host())
+    return Source(path, text, program, result.warnings, instances)
 
 
 def select_mission(source: Source, name: str | None) -> ast.Mission:
@@ -82,15 +96,14 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
     inlined: what is checked and run) or ``abstract`` (Robot-Tasks seen through their start
     and outcome signals: what ``orccad react`` drives). See :mod:`orccad_app.robottask.application`.
     """
-    lowerer = AbstractApplicationLowerer if view == ABSTRACT else ApplicationLowerer
-    return compile_program(lower_mission(source.program, mission, lowerer), max_states=max_states)
+    if view == ABSTRACT:
+        program = lower_mission(source.program, mission, AbstractApplicationLowerer)
+        return compile_program(program, max_states=max_states)
+    return compose_mission(source, mission, max_states=max_states).automaton
 
 
-def compile_mission_sites(source: Source, mission: ast.Mission, *,
-                          max_states: int = DEFAULT_MAX_STATES) -> tuple[Automaton, list]:
-    """The composed automaton of ``mission`` and its ``run`` sites
-    (:class:`~orccad_app.robottask.application.RunSite`, in source order: the ``site`` of the
-    labels ``("rt", X, site)``), for the executive, which instantiates each site's task."""
-    lowerer = ApplicationLowerer(source.program, mission)
-    automaton = compile_program(lowerer.lower(), max_states=max_states)
-    return automaton, list(lowerer.sites)
+def compose_mission(source: Source, mission: ast.Mission, *,
+                    max_states: int = DEFAULT_MAX_STATES) -> Composition:
+    """The composed automaton of ``mission`` with its ``run`` sites and signal roles (what the
+    checker and the mission layer start from)."""
+    return compose(source.program, mission, max_states=max_states)

@@ -68,27 +68,25 @@ class CompiledMission:
     """``FILE``'s mission ``name`` loaded and compiled once (see the module docstring)."""
 
     def __init__(self, file: str, mission: str | None = None) -> None:
-        from orccad_app.pipeline import compile_mission_sites, load, select_mission
+        from orccad_app.pipeline import compose_mission, load, select_mission
 
         self.file = file
         self.source = load(file)
         self.mission = select_mission(self.source, mission)
         self.name = self.mission.name
         self.digest = hashlib.sha256(self.source.text.encode()).hexdigest()
-        self.compiled = compile_mission_sites(self.source, self.mission)
+        self.composition = compose_mission(self.source, self.mission)
 
     def plan(self, setting: RunSetting) -> Any:
         """The mission's plan with ``setting``'s overrides."""
-        from orccad_app.executive.mission_plan import plan_mission
-        from orccad_app.executive.plan_overrides import PlanOverrides
+        from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
 
         overrides = PlanOverrides.from_arguments(list(setting.sets), list(setting.timings))
-        return plan_mission(self.source, self.mission, overrides=overrides,
-                            compiled=self.compiled)
+        return plan_with_overrides(self.source, self.mission, overrides, self.composition)
 
     def default_until_s(self) -> float:
         """``orccad run``'s default horizon for this mission [s]."""
-        from orccad_app.executive.mission_run import run_horizon_s
+        from orccad_app.mission.run import run_horizon_s
 
         return run_horizon_s(self.plan(RunSetting(0, 0, 1.0)), 60.0)
 
@@ -108,10 +106,11 @@ class CompiledMission:
         return PropertyMonitor(self.source.program, self.mission, mission_run)
 
     def mission_run(self, setting: RunSetting, observers: tuple = ()) -> Any:
-        """A ready :class:`~orccad_app.executive.mission_run.MissionRun` of ``setting``."""
+        """A ready :class:`~orccad_app.mission.run.MissionRun` of ``setting``."""
         from orccad_app.executive.bus import Bus
-        from orccad_app.executive.mission_run import MissionRun, parse_injection
         from orccad_app.executive.processor import Processor
+        from orccad_app.mission.injection import parse_injection
+        from orccad_app.mission.run import MissionRun
 
         plan = self.plan(setting)
         injections = [parse_injection(text) for text in setting.injections]

@@ -28,7 +28,6 @@ from orccad_app.campaign.stats import (Hypothesis, Sprt, chernoff_runs, estimate
                                        precise_enough, summarize)
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.campaign.validate import check_spec
-from orccad_app.diagnostics import OrccadError
 
 __all__ = ["CampaignOptions", "CampaignResult", "Campaign"]
 

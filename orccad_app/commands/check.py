@@ -111,7 +111,7 @@ def _write_promela(source, mission, report, path: str) -> None:
 
 
 def _observe(source, missions, args) -> int:
-    from orccad_app.verify.composition import compose
+    from orccad_app.robottask.composition import compose
     from orccad_app.verify.model import build_model
     from orccad_app.verify.quotient import format_quotient, observe
 

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from orccad_app.commands.campaign import _positive_int, add_common
 

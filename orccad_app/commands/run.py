@@ -8,7 +8,7 @@
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
-Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.executive.mission_run`).
+Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
 Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
 when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
@@ -90,18 +90,19 @@ def _processors(plan, args: argparse.Namespace) -> list:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
-    from orccad_app.executive.mission_plan import plan_mission
-    from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
-    from orccad_app.executive.plan_overrides import PlanOverrides
+    from orccad_app.mission.injection import parse_injection
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
+    from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
+    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
+                                  report_dict)
 
     injections = [parse_injection(text) for text in args.inject]
     overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission, overrides=overrides)
+    plan = plan_with_overrides(source, mission, overrides)
     writer = None
     until_s = args.until if args.until is not None else run_horizon_s(plan, 60.0)
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
@@ -116,10 +117,11 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if writer is not None:
             writer.close()
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     if args.json:
-        print(json.dumps(report_dict(result), indent=2))
+        print(json.dumps(report_dict(result, injected), indent=2))
     else:
-        print(format_report(result))
+        print(format_report(result, injected))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:

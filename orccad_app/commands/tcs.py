@@ -64,20 +64,20 @@ def _instance(source, args: argparse.Namespace):
                           f"(Robot-Tasks: {known})")
     robots = {r.name: r for r in program.robots}
     if args.mission is None:
-        return instantiate(task, robots, default_host())
-    from orccad_app.pipeline import compile_mission_sites, select_mission
+        found = source.instances.defaults.get(task.name)
+        return found if found is not None else instantiate(task, robots, default_host())
+    from orccad_app.pipeline import compose_mission, select_mission
 
-    _, sites = compile_mission_sites(source, select_mission(source, args.mission))
-    runs = [site for site in sites if site.task.name == task.name]
+    sites = compose_mission(source, select_mission(source, args.mission)).sites
+    runs = [site for site in sites if site.task == task.name]
     if not 0 <= args.site < len(runs):
         raise OrccadError(f"mission '{args.mission}' runs '{task.name}' {len(runs)} time(s): "
                           f"no --site {args.site}")
-    stmt = runs[args.site].stmt
-    return instantiate(task, robots, default_host(), stmt.args, stmt.loc)
+    return source.instance(runs[args.site].stmt)
 
 
 def run(args: argparse.Namespace) -> int:
-    from orccad_app.executive.task_tcs import task_tcs
+    from orccad_app.mission.tcs_bridge import task_tcs
     from orccad_app.pipeline import load
     from orccad_app.tcs.report import analyse, to_dict, to_dot, to_text
 

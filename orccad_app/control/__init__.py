@@ -12,7 +12,13 @@ The closed-loop check without the executive is :mod:`orccad_app.control.closed_l
 
 from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
-from orccad_app.control.kinds import ComponentKind, LawKind, TaskFunctionKind, TrajectoryKind
+from orccad_app.control.kinds import (
+    ComponentKind,
+    DefaultModule,
+    LawKind,
+    TaskFunctionKind,
+    TrajectoryKind,
+)
 from orccad_app.control.laws import (
     LAW_KINDS,
     PID,
@@ -60,6 +66,7 @@ __all__ = [
     "ControlError",
     "ControlLaw",
     "ControlLawModule",
+    "DefaultModule",
     "Cosine",
     "DimensionMismatch",
     "DynamicsModel",

@@ -38,6 +38,7 @@ from typing import Any, Mapping
 import mujoco
 import numpy as np
 
+from orccad_app.control.plant_extension import PlantExtension
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import Kernel
 from orccad_app.tcs.module_task import PhysicalResource
@@ -64,37 +65,6 @@ def _load(xml: str | None, path: str | None) -> mujoco.MjModel:
         return mujoco.MjModel.from_xml_path(str(path))
     except ValueError as error:
         raise OrccadError(f"cannot load MJCF model {path or '<string>'}: {error}") from None
-
-
-class PlantExtension:
-    """Extra physics, sensor ports and faults of a plant (a robot type's plugin provides it).
-
-    Subclasses set :attr:`sensors` (port -> dim) and :attr:`faults` (fault -> description
-    with its unit) and override the methods; the defaults do nothing.
-    """
-
-    sensors: Mapping[str, int] = {}
-    faults: Mapping[str, str] = {}
-
-    def bind(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        """Called once by the plant before the first step (keep ``model`` and ``data``)."""
-
-    def step(self, dt_s: float) -> None:
-        """Called before each integration step of ``dt_s`` [s]: set ``data.xfrc_applied`` /
-        ``qfrc_applied``, integrate the extension's own states (battery energy...)."""
-
-    def read(self, port: str) -> np.ndarray:
-        """The value of the sensor ``port`` now (an array; 0-d for a ``float`` port)."""
-        raise KeyError(port)
-
-    def inject(self, fault: str, value: Any) -> None:
-        """Apply the fault ``fault`` with ``value`` (a name of :attr:`faults`)."""
-        raise KeyError(fault)
-
-    def true_value(self, port: str) -> np.ndarray:
-        """The physical quantity sensor ``port`` measures, without its faults (bias, stuck):
-        what campaigns' signal extrema record. Default: :meth:`read`."""
-        return self.read(port)
 
 
 class MujocoPlant:
@@ -311,8 +281,10 @@ class MujocoPlant:
         """The physical value sensor ``port`` measures at the plant's current time: no noise,
         quantization or sensor fault (an extension's ``true_value``); it neither advances the
         plant nor draws random numbers, so an observer's look cannot change the run."""
-        if self.extension is not None and port in self.extension.sensors:
-            return np.array(self.extension.true_value(port), dtype=float)
+        extension = self.extension
+        if extension is not None and port in extension.sensors:
+            true_value = getattr(extension, "true_value", extension.read)
+            return np.array(true_value(port), dtype=float)
         return self._readers[port]()
 
     @property

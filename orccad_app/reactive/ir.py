@@ -28,7 +28,7 @@ it comes from, so compile errors point at the user's text.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import Any, Hashable, Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
@@ -265,7 +265,7 @@ class Mark:
     Robot-Task instance is active, and in which phase).
     """
 
-    label: tuple
+    label: Hashable
     body: "Stmt"
     loc: SourceLocation = NOWHERE
 

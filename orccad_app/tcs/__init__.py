@@ -11,7 +11,7 @@ from orccad_app.tcs.deadlock import DeadlockCycle, check_deadlock_free, find_dea
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
 from orccad_app.tcs.placement import Placement, suggest_placement, traffic_graph
-from orccad_app.tcs.port import EVENT, Direction, Port
+from orccad_app.tcs.port import EVENT, PortDirection, Port
 from orccad_app.tcs.protocol import Protocol, parse_protocol
 from orccad_app.tcs.timebase import NS_PER_S, ms, ns, s, to_seconds, us
 
@@ -20,7 +20,7 @@ __all__ = [
     "ModuleTask",
     "PhysicalResource",
     "Port",
-    "Direction",
+    "PortDirection",
     "EVENT",
     "Connection",
     "Protocol",

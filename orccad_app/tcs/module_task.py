@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
-from orccad_app.tcs.port import Direction, Port
+from orccad_app.tcs.port import PortDirection, Port
 
 __all__ = ["ModuleTask", "PhysicalResource"]
 
@@ -61,12 +61,12 @@ class _HasPorts:
     @property
     def inputs(self) -> tuple[Port, ...]:
         """Consumer ports, in declaration order (the order of reads)."""
-        return tuple(p for p in self.ports if p.direction is Direction.IN)
+        return tuple(p for p in self.ports if p.direction is PortDirection.IN)
 
     @property
     def outputs(self) -> tuple[Port, ...]:
         """Producer ports, in declaration order (the order of writes)."""
-        return tuple(p for p in self.ports if p.direction is Direction.OUT)
+        return tuple(p for p in self.ports if p.direction is PortDirection.OUT)
 
 
 @dataclass(eq=False)
@@ -162,9 +162,9 @@ class PhysicalResource(_HasPorts):
     @staticmethod
     def sensor(name: str, dim: int = 1, type: str = "float") -> Port:
         """A sensor port (producer, sampled when read)."""
-        return Port(name, Direction.OUT, type, dim)
+        return Port(name, PortDirection.OUT, type, dim)
 
     @staticmethod
     def actuator(name: str, dim: int = 1, type: str = "float") -> Port:
         """An actuator port (consumer, held until the next write)."""
-        return Port(name, Direction.IN, type, dim)
+        return Port(name, PortDirection.IN, type, dim)

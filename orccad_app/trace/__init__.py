@@ -2,12 +2,17 @@
 
 :class:`TraceRecorder` observes a run (an executive observer with the mission hooks) and
 writes each event at once to a CSV or MCAP file (:func:`open_trace`); :func:`report_dict` and
-:func:`format_report` turn a :class:`~orccad_app.executive.run_result.RunResult` into the JSON
+:func:`format_report` turn a :class:`~orccad_app.mission.result.RunResult` into the JSON
 report or the text of ``orccad run``.
 """
 
 from orccad_app.trace.recorder import EVENTS, TraceRecorder, TraceRow, to_json
-from orccad_app.trace.report import format_report, lateness_summary, report_dict
+from orccad_app.trace.report import (
+    InjectionRecord,
+    format_report,
+    lateness_summary,
+    report_dict,
+)
 from orccad_app.trace.writers import CsvTraceWriter, McapTraceWriter, open_trace
 
 __all__ = [
@@ -18,6 +23,7 @@ __all__ = [
     "CsvTraceWriter",
     "McapTraceWriter",
     "open_trace",
+    "InjectionRecord",
     "report_dict",
     "format_report",
     "lateness_summary",

@@ -29,7 +29,8 @@ from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, Action, DataBranch,
                                           InputTest, Leaf, Node)
 from orccad_app.verify import data
-from orccad_app.verify.composition import Composition
+from orccad_app.robottask.composition import Composition
+from orccad_app.robottask.labels import RtLabel
 
 __all__ = ["Path", "Step", "Model", "build_model", "MODEL_BUDGET", "ENDED"]
 
@@ -95,10 +96,10 @@ class Model:
 
     def sites(self, state: int) -> frozenset[int]:
         """Numbers of the ``run`` sites whose task instance is active in ``state``."""
-        return frozenset(label[2] for label in self.labels(state) if label[0] == "rt")
+        return frozenset(label.site for label in self.labels(state) if isinstance(label, RtLabel))
 
     def active_tasks(self, state: int) -> frozenset[str]:
-        return frozenset(label[1] for label in self.labels(state) if label[0] == "rt")
+        return frozenset(label.task for label in self.labels(state) if isinstance(label, RtLabel))
 
     def is_end(self, state: int) -> bool:
         return self.control(state) == self.automaton.terminal
@@ -215,8 +216,8 @@ class _Builder:
         before = labels[q] if labels else frozenset()
         after = labels[leaf.target] if labels else frozenset()
         for label in before & after:
-            if label[0] == "rt" and f"{label[1]}.start" not in emitted:
-                mask &= ~(1 << self.site_bit[label[2]])
+            if isinstance(label, RtLabel) and f"{label.task}.start" not in emitted:
+                mask &= ~(1 << self.site_bit[label.site])
         for event in path.events:
             if event[0] == "test" and not event[2] and event[1] in self.timer_bit:
                 mask &= ~(1 << self.timer_bit[event[1]])

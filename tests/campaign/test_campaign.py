@@ -14,7 +14,8 @@ from orccad_app.campaign.adapter import CompiledMission
 from orccad_app.campaign.executor import PoolBackend
 from orccad_app.campaign.runner import Campaign, CampaignOptions
 from orccad_app.campaign.spec import load_spec
-from orccad_app.trace import report_dict
+from orccad_app.mission.injection import parse_injection
+from orccad_app.trace import InjectionRecord, report_dict
 
 from .conftest import AUV, orccad
 
@@ -61,7 +62,9 @@ def test_the_replay_command_reproduces_the_run_bit_for_bit(leak_spec, tmp_path):
     replayed = orccad(*command.split()[1:], "--json")
     report = json.loads(replayed.stdout)
     # the same run in this process, through the campaign's adapter
-    here = report_dict(CompiledMission(AUV).mission_run(record.setting).run())
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault)
+                for i in map(parse_injection, record.setting.injections)]
+    here = report_dict(CompiledMission(AUV).mission_run(record.setting).run(), injected)
     for data in (report, here):
         data.pop("wall_time_s")
     assert report == here
@@ -117,7 +120,7 @@ def test_a_killed_worker_loses_no_run(leak_spec, tmp_path):
     assert killed and [row[0] for row in rows] == list(range(6))
     assert all(row[2] != "crashed" for row in rows)
     assert any(r.attempts == 2 for r in result.records)  # retried after the pool broke
-    reference = _campaign(leak_spec, tmp_path / "ref.db", 6).run(backend=PoolBackend(1))
+    _campaign(leak_spec, tmp_path / "ref.db", 6).run(backend=PoolBackend(1))
     assert rows == _rows(tmp_path / "ref.db")
 
 

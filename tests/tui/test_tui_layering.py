@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 CORE = ("orccad_app.lang", "orccad_app.reactive", "orccad_app.robottask", "orccad_app.verify",
-        "orccad_app.verify.checker", "orccad_app.executive", "orccad_app.executive.mission_run",
+        "orccad_app.verify.checker", "orccad_app.executive", "orccad_app.mission.run",
         "orccad_app.trace", "orccad_app.pipeline", "orccad_app.cli",
         "orccad_app.tui.live", "orccad_app.tui.session")
 

@@ -1,8 +1,7 @@
-"""The TCS of Robot-Task instances: from the application level to what the executive runs.
+"""The TCS bridge: Robot-Task instances become what the executive runs.
 
-A checked Robot-Task instance (:class:`~orccad_app.robottask.model.TaskInstance`, used here by
-duck typing so the executive does not import the language front end) becomes Module-Tasks and
-connections of a :class:`~orccad_app.tcs.graph.TCS`:
+A checked Robot-Task instance (:class:`~orccad_app.robottask.model.RobotTaskInstance`) becomes
+Module-Tasks and connections of a :class:`~orccad_app.tcs.graph.TCS`:
 
 - each module (declared, or an observer the compiler instantiated) is a
   :class:`~orccad_app.tcs.module_task.ModuleTask` named ``prefix + module`` whose compute object
@@ -18,8 +17,9 @@ connections of a :class:`~orccad_app.tcs.graph.TCS`:
 
 from __future__ import annotations
 
-from typing import Any
-
+from orccad_app.control.module import PortSpec
+from orccad_app.control.robot import RobotType
+from orccad_app.robottask.model import RobotTaskInstance
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
 from orccad_app.tcs.port import Port
@@ -27,17 +27,17 @@ from orccad_app.tcs.port import Port
 __all__ = ["tcs_port", "robot_resource", "instance_module_tasks", "add_instance", "task_tcs"]
 
 
-def tcs_port(spec: Any) -> Port:
+def tcs_port(spec: PortSpec) -> Port:
     """The TCS port of a control-library ``PortSpec`` (``dim`` 1 for non-vectors)."""
     return Port(spec.name, spec.direction, spec.type, spec.dim or 1)
 
 
-def robot_resource(name: str, robot_type: Any) -> PhysicalResource:
+def robot_resource(name: str, robot_type: RobotType) -> PhysicalResource:
     """The physical resource ``name`` of a robot type: its sensor and actuator ports."""
     return PhysicalResource(name, tuple(tcs_port(port.spec) for port in robot_type.ports))
 
 
-def instance_module_tasks(instance: Any, prefix: str = "") -> dict[str, ModuleTask]:
+def instance_module_tasks(instance: RobotTaskInstance, prefix: str = "") -> dict[str, ModuleTask]:
     """The Module-Tasks of a task instance, by local module name (named ``prefix + name``)."""
     fed = {(c.target, c.target_port) for c in instance.connections}
     tasks: dict[str, ModuleTask] = {}
@@ -51,7 +51,7 @@ def instance_module_tasks(instance: Any, prefix: str = "") -> dict[str, ModuleTa
     return tasks
 
 
-def add_instance(tcs: TCS, instance: Any, prefix: str = "") -> dict[str, str]:
+def add_instance(tcs: TCS, instance: RobotTaskInstance, prefix: str = "") -> dict[str, str]:
     """Add the Module-Tasks and connections of ``instance`` to ``tcs`` (whose resources must
     include the instance's robot); return local module name -> TCS name."""
     names = {}
@@ -69,9 +69,10 @@ def add_instance(tcs: TCS, instance: Any, prefix: str = "") -> dict[str, str]:
     return names
 
 
-def task_tcs(instance: Any) -> TCS:
+def task_tcs(instance: RobotTaskInstance) -> TCS:
     """The TCS of one Robot-Task instance alone (module names unprefixed)."""
     tcs = TCS(instance.task.name)
-    tcs.add(robot_resource(instance.robot_name, instance.context.robot))
+    tcs.add(robot_resource(instance.robot_name,
+                           instance.context.require_robot(f"Robot-Task '{instance.task.name}'")))
     add_instance(tcs, instance)
     return tcs

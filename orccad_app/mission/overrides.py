@@ -12,8 +12,12 @@
   declaration (``Survey.pilot.wcet_ms=2.5``). With a BCET, execution times are drawn in
   ``[bcet, wcet]`` from the run's seed.
 
-:func:`robot_declarations` and :func:`timed_instance` apply them where the plan is built;
-:func:`check_overrides` refuses, with a reason, any name the mission does not have.
+:func:`plan_with_overrides` builds the plan with them: without overrides, the instances
+checked when the file was loaded; with some, every run site's Robot-Task instantiated afresh
+with the robot declarations' new parameters (:func:`robot_declarations`), then given the new
+timings (:func:`timed_instance`) — the loaded instances are never changed, so one compiled
+mission serves a whole campaign. :func:`check_overrides` refuses, with a reason, any name the
+mission does not have.
 """
 
 from __future__ import annotations
@@ -25,10 +29,12 @@ from enum import Enum
 from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.lang import ast
+from orccad_app.mission.plan import MissionPlan, plan_composition
 
 __all__ = ["ParamOverride", "NoiseOverride", "TimingOverride", "TimingField", "PlanOverrides",
            "parse_set", "parse_timing", "robot_declarations", "timed_instance",
-           "check_overrides"]
+           "check_overrides", "plan_with_overrides"]
 
 _SET = re.compile(r"^\s*([A-Za-z_]\w*)\.([A-Za-z_]\w*)(?:\.(noise_std))?\s*=\s*(\S+)\s*$")
 _TIMING = re.compile(r"^\s*([A-Za-z_]\w*)\.([A-Za-z_]\w*)\.(period_ms|wcet_ms|bcet_ms)\s*="
@@ -170,8 +176,6 @@ def robot_declarations(robots: Mapping[str, Any], host: Any,
                        overrides: PlanOverrides) -> dict[str, Any]:
     """The program's robot declarations (``ast.Robot``) with the ``--set`` parameters added
     as arguments; each override is checked against the robot type's declared parameter."""
-    from orccad_app.lang import ast
-
     result = dict(robots)
     for item in overrides.params:
         robot = result.get(item.robot)
@@ -244,3 +248,33 @@ def check_overrides(overrides: PlanOverrides, tasks: set[str],
         if noise.port not in sensors:
             raise OrccadError(f"--set {noise.text()}: robot '{noise.robot}' has no sensor "
                               f"port '{noise.port}' (sensors: {', '.join(sensors)})")
+
+
+def plan_with_overrides(source: Any, mission: ast.Mission, overrides: PlanOverrides,
+                        composition: Any = None) -> MissionPlan:
+    """The plan of ``mission`` of ``source`` (a loaded :class:`~orccad_app.pipeline.Source`)
+    with ``overrides`` (see the module docstring); ``composition``: the mission's
+    :class:`~orccad_app.robottask.composition.Composition` when the caller has it already."""
+    from orccad_app.pipeline import compose_mission
+    from orccad_app.plugins.host import default_host
+    from orccad_app.robottask.model import instantiate
+
+    composition = composition or compose_mission(source, mission)
+    if not overrides:
+        instances = {site.number: source.instance(site.stmt) for site in composition.sites}
+        return plan_composition(composition, instances)
+    host = default_host()
+    robots = robot_declarations({r.name: r for r in source.program.robots}, host, overrides)
+    instances = {}
+    for site in composition.sites:
+        instance = instantiate(site.robottask, robots, host, site.stmt.args, site.stmt.loc)
+        instances[site.number] = timed_instance(instance, site.task, overrides)
+    plan = plan_composition(composition, instances)
+    types = {spec.robot: spec.robot_type for spec in plan.plants}
+    check_overrides(overrides, {site.task for site in composition.sites}, types)
+    noise = {(n.robot, n.port): n.std for n in overrides.noise}
+    plan.plants = [replace(spec, noise_std={**spec.noise_std,
+                                            **{p: v for (r, p), v in noise.items()
+                                               if r == spec.robot}})
+                   for spec in plan.plants]
+    return plan

@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.executive.simulation import RunStats
+
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "RunResult", "ErrorSamples", "STATUSES"]
 
 STATUSES = ("done", "failed", "aborted", "timeout")
@@ -93,7 +95,7 @@ class ExceptionRecord:
 
 @dataclass
 class RunResult:
-    """The outcome of :meth:`~orccad_app.executive.mission_run.MissionRun.run`.
+    """The outcome of :meth:`~orccad_app.mission.run.MissionRun.run`.
 
     :param mission: the mission's name.
     :param status: one of :data:`STATUSES`.
@@ -117,7 +119,7 @@ class RunResult:
     wall_time_s: float
     robot_tasks: list[RobotTaskRecord]
     exceptions: list[ExceptionRecord]
-    stats: Any
+    stats: RunStats
     modules: dict[str, Any]
     outputs: list[tuple[int, str, Any]] = field(default_factory=list)
     lateness_s: list[float] | None = None

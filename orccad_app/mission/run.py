@@ -1,8 +1,8 @@
 """A mission in the loop: the application automaton and the RTAs drive the executive.
 
-:class:`MissionRun` couples a :class:`~orccad_app.executive.mission_plan.MissionPlan` (the
+:class:`MissionRun` couples a :class:`~orccad_app.mission.plan.MissionPlan` (the
 composed automaton, one TCS for every ``run`` site, the plants) to a
-:class:`~orccad_app.executive.simulation.Simulation` (DESIGN.md §5, *Reactions*):
+:class:`~orccad_app.executive.simulation.Simulation` (docs/design.md, *Reactions*):
 
 **When the automaton reacts.** Observers' events (a written event port ``X.module.event`` is the
 automaton input ``X.E``), injected inputs (``--inject SIG@T``) and timers are signals. The
@@ -20,118 +20,58 @@ Reactions are events of class ``CONTROL``: a reaction at ``t`` sees the outputs 
 finished at ``t`` and its activations release at ``t``.
 
 **What a reaction does.** The labels of the new state say which Robot-Task instance runs and in
-which phase (``("phase", X, site, n)``): phase 1 runs no module, phase 2 the measuring modules
-(measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
+which :class:`~orccad_app.robottask.labels.Phase` (its
+:class:`~orccad_app.robottask.labels.PhaseLabel`): phase 1 runs no module, phase 2 the
+measuring modules (measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
 release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
 running restarts its modules; every run of a Robot-Task starts with fresh module instances
-(nominal parameters, no state, even when the same plan is run again). ``X.E.adjust`` applies
-E's type-1 update to the running module (``set_param``). ``E.raised`` records an exception. The run stops when the mission
+(nominal parameters, no state, even when the same plan is run again). An output whose role
+(:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
+applies E's update to the running module (``set_param``); one whose role is a raised exception
+records it. The run stops when the mission
 terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
 failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
-**Plant extensions and faults.** A robot type that defines ``plant_extension()`` gets the
-returned :class:`~orccad_app.executive.plant.PlantExtension` attached to its plant (extra
-physics, sensor ports, named faults). ``--inject ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``,
+**Plant extensions and faults.** A robot type whose ``plant_extension()`` returns a
+:class:`~orccad_app.control.plant_extension.PlantExtension` gets it attached to its plant
+(extra physics, sensor ports, named faults). ``--inject ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``,
 ``auv.battery=5%@60``: a trailing ``%`` is dropped, the fault's unit applies) applies the fault
 ``FAULT`` of robot ``ROBOT``'s plant at ``T`` seconds instead of raising a signal.
 
-**Observers.** Executive observers are passed to the simulation; those that also define
-``on_reaction(t_ns, inputs, outputs, status)``, ``on_task_start(t_ns, task, site)``,
-``on_task_end(t_ns, task, site, outcome)`` or ``on_exception(record)`` get those too (traces).
+**Observers.** Executive observers are passed to the simulation; those that also define the
+mission's callbacks (:class:`~orccad_app.mission.observer.MissionObserver`) get those too
+(traces).
 """
 
 from __future__ import annotations
 
-import re
 import time
-from dataclasses import dataclass
 from typing import Any, Iterable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
-from orccad_app.executive.mission_plan import MissionPlan, SitePlan
 from orccad_app.executive.observer import Observer
 from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
-from orccad_app.executive.run_result import ExceptionRecord, RobotTaskRecord, RunResult
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.mission.injection import Injection
+from orccad_app.mission.observer import MISSION_HOOKS
+from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
 from orccad_app.reactive.runtime import Reactor
+from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
+from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "Injection", "parse_injection", "run_horizon_s", "DEFAULT_UNTIL_NS",
-           "MISSION_HOOKS"]
+__all__ = ["MissionRun", "DEFAULT_UNTIL_NS", "run_horizon_s"]
 
 _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
-MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception")
-"""Mission-level callbacks an observer may define besides the executive's."""
 _INTERRUPTED = "interrupted (Ctrl-C)"
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
-_INJECTION = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:\((.*)\))?\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
-_FAULT = re.compile(r"^\s*([A-Za-z_]\w*\.[A-Za-z_]\w*)\s*=\s*([^@]*?)\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
-
-
-@dataclass(frozen=True)
-class Injection:
-    """An input signal raised at a simulated instant (``--inject Stop@2.5``).
-
-    :param name: the automaton input (a mission input, or an observer event ``X.E``).
-    :param time_ns: when [ns].
-    :param value: its value for a valued input, else ``None``.
-    :param fault: ``True`` for a plant fault ``ROBOT.FAULT=VALUE@T`` (``name`` is
-        ``ROBOT.FAULT``, ``value`` the fault's value).
-    """
-
-    name: str
-    time_ns: int
-    value: Any = None
-    fault: bool = False
-
-
-def parse_injection(text: str) -> Injection:
-    """``SIG@T``, ``SIG(value)@T`` or the plant fault ``ROBOT.FAULT=VALUE@T`` (``T`` in
-    seconds, ``VALUE`` a number with an optional trailing ``%``, or true/false); raise
-    :class:`OrccadError`."""
-    fault = _FAULT.match(text)
-    if fault is not None:
-        return _fault_injection(text, *fault.groups())
-    match = _INJECTION.match(text)
-    if match is None:
-        raise OrccadError(f"bad injection {text!r}: expected SIGNAL@SECONDS or "
-                          f"SIGNAL(value)@SECONDS, e.g. Stop@2.5")
-    name, raw, when = match.groups()
-    try:
-        seconds = float(when)
-        value = None if raw is None else _value(raw.strip())
-    except ValueError:
-        raise OrccadError(f"bad injection {text!r}: cannot read the time or the value") from None
-    if not seconds >= 0:
-        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
-    return Injection(name, int(round(seconds * 1e9)), value)
-
-
-def _fault_injection(text: str, name: str, raw: str, when: str) -> Injection:
-    try:
-        seconds = float(when)
-        value = _value(raw[:-1].strip() if raw.endswith("%") else raw)
-    except ValueError:
-        raise OrccadError(f"bad injection {text!r}: expected ROBOT.FAULT=VALUE@SECONDS, "
-                          f"e.g. auv.leak=1@120 or auv.battery=5%@60") from None
-    if not seconds >= 0:
-        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
-    return Injection(name, int(round(seconds * 1e9)), value, fault=True)
-
-
-def _value(raw: str) -> Any:
-    if raw in ("true", "false"):
-        return raw == "true"
-    try:
-        return int(raw)
-    except ValueError:
-        return float(raw)
 
 
 class _Link(Observer):
@@ -151,7 +91,7 @@ class _Link(Observer):
 class MissionRun:
     """One run of a planned mission. See the module docstring.
 
-    :param plan: the mission's plan (:func:`~orccad_app.executive.mission_plan.plan_mission`).
+    :param plan: the mission's plan (:func:`~orccad_app.mission.plan.plan_mission`).
     :param seed: the run's seed (execution times drawn in ``[bcet, wcet]``, sensor noise).
     :param until_ns: the simulated-time limit [ns].
     :param injections: inputs raised at given instants.
@@ -178,18 +118,20 @@ class MissionRun:
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
+        plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
-                              plants=_extended(plan), observers=[_Link(self), *observers])
+                              plants=plants, observers=[_Link(self), *observers])
         self.kernel = self.sim.kernel
         self._signals = plan.signals
-        self._error_site = {s.error_module: s.site for s in plan.sites if s.error_module}
-        self._outputs = {s.name for s in plan.automaton.outputs if "." not in s.name}
+        self._roles = plan.roles
+        self._error_site = {s.error_module: s.number for s in plan.sites if s.error_module}
+        self._outputs = {s.name for s in plan.automaton.outputs if plan.roles.get(s.name) is None}
         self._pending: dict[str, Any] = {}
         self._queued = False  # a reaction event is in the kernel's queue
         self._reacted_at = -1
         self._state: int | None = None
-        self._phase: dict[int, int] = {}
-        self._active: dict[int, set[str]] = {s.site: set() for s in plan.sites}
+        self._phase: dict[int, Phase] = {}
+        self._active: dict[int, set[str]] = {s.number: set() for s in plan.sites}
         self._running: dict[int, RobotTaskRecord] = {}
         self.records: list[RobotTaskRecord] = []
         self.exceptions: list[ExceptionRecord] = []
@@ -221,12 +163,12 @@ class MissionRun:
         self.kernel.schedule(0, _CONTROL, self._tick)
 
     def _schedule_fault(self, injection: Injection) -> None:
-        robot, fault = injection.name.split(".", 1)
+        robot, fault = injection.robot_fault
         plant = self.sim.plants.get(robot)
         if plant is None:
             raise OrccadError(f"--inject {injection.name}: no robot '{robot}' in mission "
                               f"'{self.plan.name}' (robots: {', '.join(self.sim.plants)})")
-        faults = getattr(plant.extension, "faults", None) or {}
+        faults = plant.extension.faults if plant.extension is not None else {}
         if fault not in faults:
             raise OrccadError(f"--inject {injection.name}: robot '{robot}' has no fault "
                               f"'{fault}' (faults: {', '.join(faults) or 'none'})")
@@ -264,8 +206,8 @@ class MissionRun:
         self.kernel.stop()
 
     @property
-    def phases(self) -> dict[int, int]:
-        """Site number -> phase (1–3) of every running Robot-Task (a copy)."""
+    def phases(self) -> dict[int, Phase]:
+        """Site number -> phase of every running Robot-Task (a copy)."""
         return dict(self._phase)
 
     def _inject(self, injection: Injection) -> None:
@@ -318,18 +260,18 @@ class MissionRun:
         if self.reactor.finished:
             self.kernel.stop()
 
-    def _phases(self) -> dict[int, int]:
-        phases: dict[int, int] = {}
+    def _phases(self) -> dict[int, Phase]:
+        phases: dict[int, Phase] = {}
         for label in self.reactor.labels:
-            if label[0] == "phase":
-                phases[label[2]] = max(phases.get(label[2], 0), label[3])
-            elif label[0] == "rt":
-                phases.setdefault(label[2], 1)
+            if isinstance(label, PhaseLabel):
+                phases[label.site] = max(phases.get(label.site, label.phase), label.phase)
+            elif isinstance(label, RtLabel):
+                phases.setdefault(label.site, Phase.SYNCHRONIZING)
         return phases
 
-    def _running_site(self, task: str) -> SitePlan | None:
+    def _running_site(self, task: str) -> SiteModules | None:
         for site in self.plan.sites:
-            if site.task == task and self._phase.get(site.site, 0) > 0:
+            if site.task == task and self._phase.get(site.number, 0) > 0:
                 return site
         return None
 
@@ -337,29 +279,28 @@ class MissionRun:
         """Record the exceptions of this reaction; return raised name -> task."""
         raised: dict[str, str | None] = {}
         for name in outputs:
-            if name.endswith(".adjust"):
-                task, exception = name.split(".")[:2]
-                site = self._running_site(task)
-                if site is not None and exception in site.adjustments:
-                    module, param, value = site.adjustments[exception]
-                    self.sim.set_param(module, param, value, at_ns=now)
-                self._record(ExceptionRecord(now, exception, 1, task))
-            elif name.endswith(".raised"):
-                exception = name[: -len(".raised")]
-                kind, task = self._origin(exception)
-                raised[exception] = task
-                self._record(ExceptionRecord(now, exception, kind, task))
+            role = self._roles.get(name)
+            if role is None or role.name is None:
+                continue
+            if role.kind is RoleKind.ADJUST and role.task is not None:
+                site = self._running_site(role.task)
+                update = site.adjustments.get(role.name) if site is not None else None
+                if update is not None:
+                    self.sim.set_param(update.module, update.param, update.value, at_ns=now)
+                self._record(ExceptionRecord(now, role.name, 1, role.task))
+            elif role.kind is RoleKind.RAISED:
+                kind, task = self._origin(role.name)
+                raised[role.name] = task
+                self._record(ExceptionRecord(now, role.name, kind, task))
         return raised
 
     def _origin(self, exception: str) -> tuple[int, str | None]:
-        """The type of ``exception`` and the running task that raised it."""
+        """The type of ``exception`` and the running task that raised it (``None`` and type 2
+        for the mission's own ``Timeout``)."""
+        raisers = {r.task: r.type for r in self._roles.raisers.get(exception, ())}
         for site in self.plan.sites:
-            if self._phase.get(site.site, 0) == 0:
-                continue
-            if exception in site.exception_types:
-                return site.exception_types[exception], site.task
-            if exception.endswith("_timeout") and exception[:-8] in site.instance.events:
-                return 2, site.task
+            if self._phase.get(site.number, 0) > 0 and site.task in raisers:
+                return raisers[site.task], site.task
         return 2, None
 
     def _record(self, record: ExceptionRecord) -> None:
@@ -368,14 +309,14 @@ class MissionRun:
             hook(record)
 
     def _update_sites(self, now: int, emitted: set[str], raised: dict[str, str | None],
-                      phases: dict[int, int]) -> None:
+                      phases: dict[int, Phase]) -> None:
         for site in self.plan.sites:
-            number = site.site
+            number = site.number
             old = self._phase.get(number, 0)
             new = phases.get(number, 0)
-            restart = old > 0 and new > 0 and f"{site.task}.start" in emitted
+            restart = old > 0 and new > 0 and site.start_signal in emitted
             if old > 0 and (new == 0 or restart):
-                self._end_task(now, site, _outcome(site.task, emitted, raised))
+                self._end_task(now, site, _outcome(site, emitted, raised))
             if new > 0 and (old == 0 or restart):
                 self._start_task(now, site)
             active = self._active[number]
@@ -390,21 +331,21 @@ class MissionRun:
                 active.update(start)
         self._phase = phases
 
-    def _start_task(self, now: int, site: SitePlan) -> None:
+    def _start_task(self, now: int, site: SiteModules) -> None:
         for name, compute in site.fresh_computes().items():  # nominal parameters, no state
             self.sim.replace_compute(name, compute)
-        record = RobotTaskRecord(site.task, site.site, now)
-        self._running[site.site] = record
+        record = RobotTaskRecord(site.task, site.number, now)
+        self._running[site.number] = record
         self.records.append(record)
         for hook in self._hooks["on_task_start"]:
-            hook(now, site.task, site.site)
+            hook(now, site.task, site.number)
 
-    def _end_task(self, now: int, site: SitePlan, outcome: str) -> None:
-        record = self._running.pop(site.site)
+    def _end_task(self, now: int, site: SiteModules, outcome: str) -> None:
+        record = self._running.pop(site.number)
         record.end_ns = now
         record.outcome = outcome
         for hook in self._hooks["on_task_end"]:
-            hook(now, site.task, site.site, outcome)
+            hook(now, site.task, site.number, outcome)
 
     # -- running -----------------------------------------------------------------------------
 
@@ -438,30 +379,16 @@ class MissionRun:
         return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
 
 
-def _extended(plan: MissionPlan) -> list[Any]:
-    """The plan's fresh plants, each with its robot type's plant extension, if any."""
-    types = {site.instance.robot_name: site.instance.context.robot for site in plan.sites}
-    plants = []
-    for name, spec in plan.plant_specs.items():
-        factory = getattr(types.get(name), "plant_extension", None)
-        extension = factory() if callable(factory) else None
-        plants.append(MujocoPlant(name, **spec, extension=extension))
-    return plants
-
-
 def run_horizon_s(plan: MissionPlan, default_s: float) -> float:
-    """The default simulated-time limit of ``plan`` [s]: ``default_s``, or longer when a
-    robot type declares a longer ``run_horizon_s`` (an AUV mission lasts minutes)."""
-    horizons = [getattr(site.instance.context.robot, "run_horizon_s", 0.0) or 0.0
-                for site in plan.sites]
-    return max([default_s, *horizons])
+    """The default simulated-time limit of ``plan`` [s] (:meth:`MissionPlan.run_horizon_s`)."""
+    return plan.run_horizon_s(default_s)
 
 
-def _outcome(task: str, emitted: set[str], raised: dict[str, str | None]) -> str:
-    if f"{task}.good_end" in emitted:
+def _outcome(site: SiteModules, emitted: set[str], raised: dict[str, str | None]) -> str:
+    if site.good_end_signal in emitted:
         return "good_end"
     for exception, origin in raised.items():
-        if origin == task:
+        if origin == site.task:
             return exception
     if "Timeout" in raised:
         return "Timeout"
