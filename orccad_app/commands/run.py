@@ -3,6 +3,7 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -46,6 +47,15 @@ def register(sub) -> None:
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
                              "repeat the flag for several injections")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
+                             "or a sensor's noise (auv.depth.noise_std=0.05); repeat the flag "
+                             "for several")
+    parser.add_argument("--timing", action="append", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms at every run of "
+                             "its Robot-Task (Survey.pilot.wcet_ms=2.5); repeat the flag for "
+                             "several")
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
@@ -129,7 +139,7 @@ def _processors(plan, args: argparse.Namespace) -> list:
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.jsonout import dumps
-    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
@@ -139,11 +149,12 @@ def run(args: argparse.Namespace) -> int:
 
     injections = [_injection(text) for text in args.inject]
     _warn_first_instant(injections)
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_with_overrides(source, mission, overrides)
     _check_values(injections, plan.automaton.inputs)
     writer = None
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
