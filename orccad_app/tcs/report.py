@@ -128,8 +128,8 @@ def _schedule_lines(report: TcsReport) -> list[str]:
 
 
 def _bus_lines(timing: Schedulability) -> list[str]:
-    if not timing.messages:
-        return []
+    if not any(m.transfer_ns for m in timing.messages):
+        return []  # no transfer time given (--bus-us): messages cost nothing
     load = timing.messages[0].bus_utilization
     lines = [f"  bus: utilization {load:.3f}, worst delay {_ms(timing.bus_busy_ns)} ms "
              f"(FIFO); per message class:"]
