@@ -22,7 +22,9 @@ from orccad_app.commands.arguments import (add_file, add_format, add_mission, ad
 
 __all__ = ["register", "run", "MAX_PROCESSORS"]
 
-#: Most processors a placement is searched on (its cost grows with processors × modules).
+#: Most processors a placement is searched on (its cost grows with processors × modules); the
+#: same figure as ``orccad_app.tcs.placement.MAX_PROCESSORS`` (not imported here: it would load
+#: networkx when the parser is built).
 MAX_PROCESSORS = 256
 
 
@@ -101,11 +103,9 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.mission.tcs_bridge import task_tcs
     from orccad_app.pipeline import load
     from orccad_app.tcs.bus_delay import BusModel
-    from orccad_app.tcs.placement import check_placement_size
     from orccad_app.tcs.report import analyse, to_dict, to_dot, to_text
 
     refuse_overwriting(args.output, args.file)
-    check_placement_size(args.processors)
     source = load(args.file)
     source.print_warnings()
     instance = _instance(source, args)
