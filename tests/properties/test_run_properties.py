@@ -133,3 +133,14 @@ def test_the_api_on_an_auv_fault_that_breaks_the_depth_limit():
     assert by_name["clear_of_seabed"].verdict is Verdict.TRUE
     # a run cut by --until cannot decide these liveness/safety properties
     assert by_name["leak_surfaces"].verdict is Verdict.UNDECIDED
+
+
+def test_the_tui_report_lists_the_properties():
+    from orccad_app.tui.session import LiveSession
+
+    session = LiveSession(str(ROOT / "missions" / "arm_pid.orc"), None, lambda update: None,
+                          speed=None)
+    session.execute()
+    report = session.report()
+    assert "Properties on this run:" in report
+    assert "true      signal shoulder_in_range   robustness 0.08" in report
