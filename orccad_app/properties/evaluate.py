@@ -91,10 +91,25 @@ class _Signal:
     prop: ast.Property
     stl: StlFormula
     unit: str
+    task_errors: dict[str, int]
 
 
 def _robot_types(plan: Any) -> dict[str, Any]:
     return {site.instance.robot_name: site.instance.context.robot for site in plan.sites}
+
+
+def _check_task_error(prop: ast.Property, robot: str, dim: int, plan: Any) -> None:
+    """``robot.e`` was typed as a vector of the robot's joints: every control law on the
+    robot must write an error of that size (a Cartesian task may not)."""
+    for site in plan.sites:
+        if site.instance.robot_name != robot or not site.error_module:
+            continue
+        module = plan.tcs.modules[site.error_module]
+        size = next((port.dim for port in module.ports if port.name == "e"), dim)
+        if size != dim:
+            raise OrccadError(f"property '{prop.name}': {robot}.e has {size} components in "
+                              f"Robot-Task '{site.task}', not the robot's {dim} joints",
+                              prop.loc)
 
 
 class PropertyMonitor:
@@ -117,10 +132,12 @@ class PropertyMonitor:
         for _, formula in self._ltl:
             keys |= atoms(formula)
         ports: set[tuple[str, str]] = set()
+        task_errors: dict[str, int] = {}
         for signal in self._signal:
             keys |= set(signal.stl.events.values())
             ports |= {(c.robot, c.port) for c in signal.stl.ports.values()}
-        self.recorder = PropertyRecorder(mission_run, keys, ports, self.period_ns)
+            task_errors.update(signal.task_errors)
+        self.recorder = PropertyRecorder(mission_run, keys, ports, self.period_ns, task_errors)
         if props:
             mission_run.add_observer(self.recorder)
 
@@ -131,8 +148,11 @@ class PropertyMonitor:
             if robot not in mission_run.sim.plants:  # pragma: no cover - one plant per robot
                 raise OrccadError(f"property '{prop.name}': robot '{robot}' has no plant in "
                                   f"mission '{self.mission.name}'", prop.loc)
+        errors = {p.robot: p.dim for p in ports.values() if p.task_error}
+        for robot, dim in errors.items():
+            _check_task_error(prop, robot, dim, plan)
         stl = translate(prop.formula, ports, self.period_ns)
-        return _Signal(prop, stl, formula_unit(ports))
+        return _Signal(prop, stl, formula_unit(ports), errors)
 
     @property
     def properties(self) -> list[ast.Property]:

@@ -23,6 +23,8 @@ property ArmPID.shoulder_tight: always (arm.q[0] < 0.9);
 property ArmPID.reaches_one: eventually[0, 2] (abs(arm.q[1] - 1.0) < 0.05);
 property ArmPID.one_end: never (done and failed);
 property ArmPID.calm_while_tracking: always (active(TrackPID) -> norm(arm.qdot) < 3.0);
+property ArmPID.error_bound: always (abs(arm.e[0]) < 1.0 and abs(arm.e[1]) < 1.0
+                                     and abs(arm.e[2]) < 1.0);
 """
 
 
@@ -55,8 +57,9 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     assert status == 1 and report["status"] == "done"
     by_name = {p["name"]: p for p in report["properties"]}
     assert list(by_name) == ["tracked_at_good_end", "terminates", "fatal_aborts",
-                             "at_rest_at_end", "shoulder_in_range", "shoulder_tight",
-                             "reaches_one", "one_end", "calm_while_tracking"]
+                             "at_rest_at_end", "shoulder_in_range", "tracking_bound",
+                             "shoulder_tight",
+                             "reaches_one", "one_end", "calm_while_tracking", "error_bound"]
     tight = by_name["shoulder_tight"]
     assert (tight["kind"], tight["verdict"], tight["unit"]) == ("signal", "false", "[rad]")
     # the shoulder follows q0 (1 + cos(pi t)) = 1.0 rad at t = 0: about 0.1 rad over 0.9
@@ -73,6 +76,11 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     # active(TrackPID) holds during the run: the bound decides, finite robustness [rad/s]
     calm = by_name["calm_while_tracking"]
     assert calm["verdict"] == "true" and 0.0 < calm["robustness"] < 3.0
+    # arm.e is the control law's task error: its worst component is the report's maximum
+    [task] = report["robot_tasks"]
+    assert by_name["error_bound"]["robustness"] == pytest.approx(
+        1.0 - task["tracking_error"]["max"], abs=1e-12)
+    assert 0.0 < by_name["tracking_bound"]["robustness"] < 0.05
     assert by_name["at_rest_at_end"]["samples"] == 4001  # 1 ms samples over 4 s, both ends
 
 
