@@ -25,6 +25,7 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 #: Modules whose distribution installs them where importlib.metadata cannot map them back
 #: (cmeel wheels put ``pinocchio`` under ``cmeel.prefix``).
 DISTRIBUTION_OF = {"pinocchio": "pin"}
+FEATURE_EXTRAS = ("cluster", "report")
 FIRST_PARTY = {"orccad_app", "orccad_control", "orccad_arm3dof", "orccad_observers", "orccad_auv"}
 
 
@@ -59,6 +60,10 @@ def test_the_package_is_marked_typed():
 
 def test_every_imported_third_party_package_is_declared():
     declared = {_requirement_name(r) for r in PYPROJECT["project"]["dependencies"]}
+    # a feature extra's packages are imported lazily by that feature, which says how to
+    # install them when they are missing (orccad campaign --cluster, --report)
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    declared |= {_requirement_name(r) for name in FEATURE_EXTRAS for r in extras[name]}
     folders = [ROOT / "orccad_app"] + [ROOT / "plugins" / name for name in FIRST_PARTY
                                        if (ROOT / "plugins" / name).is_dir()]
     imported = set().union(*(_imported_top_level(folder) for folder in folders))

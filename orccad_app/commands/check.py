@@ -15,10 +15,8 @@ import argparse
 import shlex
 import sys
 
-from orccad_app.commands.compile import emit_text, positive_int
-from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import load, select_mission
-from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
+from orccad_app.commands.arguments import (add_file, add_max_states, add_mission, emit_text,
+                                           refuse_overwriting)
 
 __all__ = ["register"]
 
@@ -28,8 +26,8 @@ def register(sub) -> None:
                             description="Check every property of a mission, and the built-in "
                                         "ones, on its composed automaton; print a "
                                         "counterexample script for each that fails.")
-    parser.add_argument("file", help="the .orc file")
-    parser.add_argument("--mission", "-m", help="the mission (default: every mission)")
+    add_file(parser)
+    add_mission(parser, "the mission (default: every mission)")
     parser.add_argument("--observe", metavar="S1,S2,…",
                         help="print the automaton reduced to these signals (hidden moves "
                              "abstracted, minimized by observational equivalence)")
@@ -37,21 +35,20 @@ def register(sub) -> None:
                         help="write the first counterexample script to this file")
     parser.add_argument("--promela", metavar="OUT",
                         help="write the model and its properties in Promela (for SPIN)")
-    parser.add_argument("--max-states", type=positive_int, default=DEFAULT_MAX_STATES,
-                        help=f"state budget of the compiler (default {DEFAULT_MAX_STATES})")
+    add_max_states(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from orccad_app.pipeline import load, require_missions, select_mission
     from orccad_app.verify.checker import check_mission
 
+    refuse_overwriting(args.counterexample, args.file)
+    refuse_overwriting(args.promela, args.file)
     source = load(args.file)
     source.print_warnings()
-    if not source.program.missions and args.mission is None:
-        print(f"{source.path}: no mission to check (the static checks pass)")
-        return 0
     missions = ([select_mission(source, args.mission)] if args.mission
-                else list(source.program.missions))
+                else list(require_missions(source)))
     if args.observe is not None:
         return _observe(source, missions, args)
     failed, written, unproved = 0, False, 0
@@ -93,6 +90,8 @@ def _script_text(source, mission, outcome) -> str:
 def _print_report(source, report, several: bool) -> None:
     model, automaton = report.model, report.composition.automaton
     data = "counters exact" if model.exact else "data abstracted"
+    if model.abstracted_because:
+        data += f": {model.abstracted_because}"
     print(f"mission {report.composition.name}: automaton {automaton.state_count} states, "
           f"model {len(model.states)} states / {model.step_count} steps ({data})")
     for outcome in report.outcomes:
@@ -125,6 +124,7 @@ def _observe(source, missions, args) -> int:
 
     names = [n.strip() for n in args.observe.split(",") if n.strip()]
     if not names:
+        from orccad_app.diagnostics import OrccadError
         raise OrccadError("--observe needs at least one signal name")
     for mission in missions:
         model = build_model(compose(source.program, mission, max_states=args.max_states))

@@ -3,6 +3,7 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -20,30 +21,13 @@ written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is pr
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
+from orccad_app.commands.arguments import (MAX_SECONDS, add_file, add_mission, bounded_int,
+                                           factor, non_negative_int, refuse_overwriting,
+                                           seconds)
+
 __all__ = ["register", "run"]
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seconds, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a duration > 0 s, got {text!r}")
-    return value
-
-
-def _non_negative(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
 
 
 def register(sub) -> None:
@@ -51,29 +35,98 @@ def register(sub) -> None:
                             description="Run the mission in the timed executive (Module-Tasks "
                                         "on simulated processors, MuJoCo plant) and print a "
                                         "report.")
-    parser.add_argument("file", help="the .orc file")
-    parser.add_argument("--mission", "-m", help="the mission (default: the file's only one)")
-    parser.add_argument("--until", type=_seconds, default=None, metavar="S",
+    add_file(parser)
+    add_mission(parser)
+    parser.add_argument("--until", type=seconds, default=None, metavar="S",
                         help="simulated-time limit [s] (default 60, or the robot type's "
-                             "longer run_horizon_s); status 'timeout' if the mission is "
-                             "still running then")
-    parser.add_argument("--seed", type=_non_negative, default=0, metavar="N",
+                             "longer run_horizon_s; at most one year); status 'timeout' if "
+                             "the mission is still running then")
+    parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
                         help="seed of execution times and sensor noise (default 0)")
-    parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
+    parser.add_argument("--inject", action="append", default=[], metavar="SIG@T",
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
-                             "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120)")
-    parser.add_argument("--realtime", type=_seconds, nargs="?", const=1.0, metavar="FACTOR",
-                        help="pace simulated time to the wall clock (× FACTOR, default 1) and "
-                             "report lateness")
+                             "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
+                             "repeat the flag for several injections")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
+                             "or a sensor's noise (auv.depth.noise_std=0.05); repeat the flag "
+                             "for several")
+    parser.add_argument("--timing", action="append", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms at every run of "
+                             "its Robot-Task (Survey.pilot.wcet_ms=2.5); repeat the flag for "
+                             "several")
+    parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
+                        help="pace simulated time to the wall clock (× FACTOR in "
+                             "[0.001, 1000], default 1) and report lateness")
     parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
-    parser.add_argument("--context-switch-us", type=_non_negative, default=0, metavar="US",
-                        help="context-switch overhead [µs] (default 0)")
-    parser.add_argument("--bus-us", type=_non_negative, default=0, metavar="US",
+    parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
+                        metavar="US", help="context-switch overhead [µs] (default 0)")
+    parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
     parser.set_defaults(func=run)
+
+
+def _injection(text: str):
+    """``--inject`` text → :class:`Injection`, its time checked finite and within a year."""
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.mission.injection import parse_injection
+
+    when = text.rpartition("@")[2]
+    try:
+        time_s = float(when)
+    except ValueError:
+        time_s = 0.0  # parse_injection names the problem
+    if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
+        raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds in "
+                          f"[0, {MAX_SECONDS:.0f}] (one year)")
+    return parse_injection(text)
+
+
+def _check_values(injections, inputs) -> None:
+    """Each injected value fits its input: none for a pure input, one of the declared type
+    (finite, integers within 64 bits) for a valued one; fault values finite."""
+    import math
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.lang.limits import MAX_INT, MIN_INT
+
+    declared = {s.name: s for s in inputs}
+    for injection in injections:
+        value, name = injection.value, injection.name
+        if isinstance(value, float) and not math.isfinite(value):
+            raise OrccadError(f"--inject {name}: the value must be a finite number, got {value}")
+        if isinstance(value, int) and not isinstance(value, bool) and \
+                not MIN_INT <= value <= MAX_INT:
+            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
+        signal = declared.get(name)
+        if injection.fault or signal is None:
+            continue  # unknown names are reported by the run, with the known inputs
+        if signal.type is None and value is not None:
+            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
+                              f"(write {name}@T)")
+        if signal.type is not None and value is None:
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
+                              f"{name}(value)@T")
+        if signal.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
+            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
+        if signal.type in ("float", "duration") and (isinstance(value, bool)
+                                                     or not isinstance(value, (int, float))):
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}, got {value!r}")
+        if signal.type == "bool" and not isinstance(value, bool):
+            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
+                              f"got {value!r}")
+
+
+def _warn_first_instant(injections) -> None:
+    for injection in injections:
+        if injection.time_ns == 0 and not injection.fault:
+            print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
+                  "first instant, where only 'immediate' tests see it (await, abort ... when "
+                  "and each look from the next instant on)", file=sys.stderr)
 
 
 def _processors(plan, args: argparse.Namespace) -> list:
@@ -85,8 +138,8 @@ def _processors(plan, args: argparse.Namespace) -> list:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
-    from orccad_app.mission.injection import parse_injection
-    from orccad_app.mission.plan import plan_mission
+    from orccad_app.jsonout import dumps
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
@@ -94,13 +147,18 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict)
 
-    injections = [parse_injection(text) for text in args.inject]
+    injections = [_injection(text) for text in args.inject]
+    _warn_first_instant(injections)
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
+    refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_with_overrides(source, mission, overrides)
+    _check_values(injections, plan.automaton.inputs)
     writer = None
-    until_s = args.until if args.until is not None else run_horizon_s(plan, 60.0)
+    until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
+                  MAX_SECONDS)
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
@@ -110,16 +168,23 @@ def run(args: argparse.Namespace) -> int:
                                          "seed": str(args.seed)})
         mission_run.add_observer(TraceRecorder(writer))
     try:
-        result = mission_run.run()
-    finally:
-        if writer is not None:
-            writer.close()
+        try:
+            result = mission_run.run()
+        finally:
+            if writer is not None:
+                writer.close()
+    except OSError as error:  # the trace's disk is full or gone
+        if not args.trace:
+            raise
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError(f"{args.trace}: cannot write the trace: "
+                          f"{error.strerror or error}") from None
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     verdicts = monitor.results()
     if args.json:
         report = report_dict(result, injected)
         report["properties"] = results_dict(verdicts)
-        print(json.dumps(report, indent=2, allow_nan=False))
+        print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
         if verdicts:

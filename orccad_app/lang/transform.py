@@ -145,12 +145,53 @@ class ToAst(RobotTaskRules, Transformer):
         return str(token[0]) if token else "duration"
 
     @_rule
-    def sig_item(self, meta, name, type_):
-        return (name, _opt(type_))
+    def sig_item(self, meta, name, type_, init, combine):
+        return (name, _opt(type_), init, combine)
 
     def _signals(self, direction: ast.Direction, items) -> list[ast.SignalDecl]:
-        return [ast.SignalDecl(name=str(name), direction=direction, type=type_,
-                               loc=self.tloc(name)) for name, type_ in items]
+        return [ast.SignalDecl(name=str(name), direction=direction, type=type_, init=init,
+                               combine=combine, loc=self.tloc(name))
+                for name, type_, init, combine in items]
+
+    @_rule
+    def combine_add(self, meta):
+        return "+"
+
+    @_rule
+    def combine_mul(self, meta):
+        return "*"
+
+    @_rule
+    def combine_and(self, meta):
+        return "and"
+
+    @_rule
+    def combine_or(self, meta):
+        return "or"
+
+    @_rule
+    def combine_name(self, meta, token):
+        if str(token) not in ("min", "max"):
+            from orccad_app.diagnostics import OrccadError
+            raise OrccadError(f"unknown combine operator '{token}' (expected + * min max and "
+                              "or)", self.tloc(token))
+        return str(token)
+
+    @_rule
+    def relation_exclusive(self, meta, *names):
+        return ast.Relation(kind="#", signals=tuple(str(n) for n in names), loc=self.loc(meta))
+
+    @_rule
+    def relation_implies(self, meta, left, right):
+        return ast.Relation(kind="=>", signals=(str(left), str(right)), loc=self.loc(meta))
+
+    @_rule
+    def signature(self, meta, *parts):
+        flat = []
+        for part in parts:
+            if part is not None:
+                flat.extend(part)
+        return ("signature", tuple(flat))
 
     @_rule
     def input_decl(self, meta, *items):
@@ -196,6 +237,14 @@ class ToAst(RobotTaskRules, Transformer):
     @_rule
     def last_value(self, meta, token):
         return ast.LastValue(signal=str(token), loc=self.loc(meta))
+
+    @_rule
+    def pre_signal(self, meta, token):
+        return ast.PreSignal(signal=str(token), loc=self.loc(meta))
+
+    @_rule
+    def pre_value(self, meta, token):
+        return ast.PreValue(signal=str(token), loc=self.loc(meta))
 
     @_rule
     def vector(self, meta, *items):
@@ -397,6 +446,23 @@ class ToAst(RobotTaskRules, Transformer):
                        task_loc=self.tloc(name), loc=self.loc(meta))
 
     @_rule
+    def run_mission(self, meta, name, renames):
+        return ast.RunMission(mission=str(name), renames=renames or (),
+                              mission_loc=self.tloc(name), loc=self.loc(meta))
+
+    @_rule
+    def renaming(self, meta, *renames):
+        return tuple(r for r in renames if r is not None)
+
+    @_rule
+    def rename(self, meta, formal, actual):
+        return ast.Rename(formal=str(formal), actual=str(actual), loc=self.loc(meta))
+
+    @_rule
+    def fail(self, meta, name):
+        return ast.Fail(exception=str(name), loc=self.loc(meta))
+
+    @_rule
     def if_(self, meta, condition, then, orelse):
         return ast.If(condition=condition, then=then, orelse=orelse, loc=self.loc(meta))
 
@@ -483,11 +549,17 @@ class ToAst(RobotTaskRules, Transformer):
         return ("on_fatal", block)
 
     @_rule
-    def mission(self, meta, name, *items):
+    def mission(self, meta, name, signature, *items):
         *items, on_fatal = items
-        signals, statements = [], []
+        own = () if signature is None else signature[1]
+        signals, statements, relations = list(own), [], []
         for item in items:
-            (signals.extend if isinstance(item, list) else statements.append)(item)
+            if isinstance(item, list):
+                signals.extend(item)
+            elif isinstance(item, ast.Relation):
+                relations.append(item)
+            else:
+                statements.append(item)
         body_loc = statements[0].loc if statements else self.loc(meta)
         if statements:
             last = statements[-1].loc
@@ -496,4 +568,5 @@ class ToAst(RobotTaskRules, Transformer):
         return ast.Mission(name=str(name), signals=tuple(signals),
                            body=ast.Block(statements=tuple(statements), loc=body_loc),
                            on_fatal=None if on_fatal is None else on_fatal[1],
+                           signature=tuple(own), relations=tuple(relations),
                            loc=self.loc(meta))
