@@ -152,3 +152,15 @@ def test_the_tui_report_lists_the_properties():
     report = session.report()
     assert "Properties on this run:" in report
     assert "true      signal shoulder_in_range   robustness 0.08" in report
+
+
+def test_strict_json_of_infinite_and_missing_robustness():
+    from orccad_app.properties import PropertyResult
+
+    infinite = PropertyResult("p", PropertyKind.SIGNAL, Verdict.TRUE, float("inf"), "[m]", 3)
+    assert infinite.as_dict()["robustness"] is None
+    assert infinite.as_dict()["robustness_infinite"] == "+inf"
+    none = PropertyResult("q", PropertyKind.SIGNAL, Verdict.UNDECIDED, None, "[m]", 3)
+    assert none.as_dict()["robustness_infinite"] is None
+    text = json.dumps([infinite.as_dict(), none.as_dict()], allow_nan=False)
+    assert _strict(text)[0]["verdict"] == "true"
