@@ -36,7 +36,7 @@ from orccad_app.properties.recorder import PropertyRecorder
 from orccad_app.verify.checker import applicable
 from orccad_app.verify.formula import atoms, from_ast
 from orccad_app.verify.monitor import Verdict, ltl_verdict
-from orccad_app.verify.signal_types import formula_unit, port_signals
+from orccad_app.lang.signal_types import formula_unit, port_signals
 from orccad_app.verify.stl import StlFormula, robustness, translate
 
 __all__ = ["PropertyKind", "PropertyResult", "PropertyMonitor", "Verdict", "results_dict"]
