@@ -1,7 +1,7 @@
 """Falsification against a plain random campaign: runs until the first violation.
 
-On ``missions/auv_survey.orc`` with ``missions/auv_survey.campaign.toml``, the check
-``rated_depth`` (the vehicle never deeper than 30 m) is violated only when the depth sensor's
+On ``missions/auv_survey.orc`` with ``missions/auv_survey.campaign.toml``, the signal property
+``safe_depth`` (``always (auv.depth < 30.0)``) is violated only when the depth sensor's
 offset fault (probability 0.1) reads about 19 m or more too shallow early enough in the survey:
 about 1 run in 100 of the spec's distribution. This prints, for the same budget:
 
@@ -33,7 +33,7 @@ from orccad_app.campaign.spec import load_spec
 ROOT = Path(__file__).resolve().parents[1]
 AUV = str(ROOT / "missions" / "auv_survey.orc")
 SPEC = str(ROOT / "missions" / "auv_survey.campaign.toml")
-PROPERTY = "rated_depth"
+PROPERTY = "safe_depth"
 
 
 def random_side(db: str | None, runs: int, workers: int) -> list[tuple[int, float | None]]:
