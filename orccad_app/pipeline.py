@@ -13,12 +13,13 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
+from orccad_app.plugin_host.host import PluginHost
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
 from orccad_app.robottask.composition import Composition, compose
-from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
+from orccad_app.robottask.model import RobotTaskInstance, TaskInstances, check_tasks
 
 __all__ = ["Source", "load", "select_mission", "compile_mission", "compose_mission",
            "COMPOSED", "ABSTRACT"]
@@ -33,6 +34,8 @@ class Source:
     :param program: its checked AST.
     :param warnings: the checker's warnings.
     :param instances: the checked Robot-Task instances (one per ``run`` site).
+    :param host: the plugin host the Robot-Tasks were checked against (``None`` when the file
+        declares none).
     """
 
     path: str
@@ -40,6 +43,7 @@ class Source:
     program: ast.Program
     warnings: tuple = ()
     instances: TaskInstances = field(default_factory=lambda: TaskInstances({}, {}))
+    host: PluginHost | None = None
 
     def instance(self, run: ast.Run) -> RobotTaskInstance:
         """The checked Robot-Task instance of the ``run`` statement ``run``."""
@@ -52,8 +56,12 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path) -> Source:
-    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations."""
+def load(path: str | Path, host: PluginHost | None = None) -> Source:
+    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations.
+
+    The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
+    declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
+    their failures printed once on stderr."""
     path = str(path)
     try:
         text = Path(path).read_text(encoding="utf-8")
@@ -65,10 +73,11 @@ def load(path: str | Path) -> Source:
     result = check(program)
     instances = TaskInstances({}, {})
     if program.robottasks:
-        from orccad_app.plugins.host import default_host  # loads plugins: only when needed
-        from orccad_app.robottask.model import check_tasks
-        instances = check_tasks(program, default_host())
-    return Source(path, text, program, result.warnings, instances)
+        if host is None:
+            host = PluginHost.load()
+            host.warn_failures()
+        instances = check_tasks(program, host)
+    return Source(path, text, program, result.warnings, instances, host)
 
 
 def select_mission(source: Source, name: str | None) -> ast.Mission:

@@ -11,10 +11,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from typing import Any
 
-from orccad_app.plugins import DISABLE_ENV, PluginHost, default_host
+from orccad_app.plugin_host import DISABLE_ENV, PluginHost
 
 __all__ = ["register", "run", "describe"]
 
@@ -129,10 +128,9 @@ def _details(entry: dict[str, Any]) -> list[str]:
 
 def run(args: argparse.Namespace) -> int:
     """Print the listing; failed plugins are warnings on stderr (exit status stays 0)."""
-    host = default_host()
+    host = PluginHost.load()
+    host.warn_failures()
     document = describe(host)
-    for failure in host.failures:
-        print(f"orccad: warning: {failure.format()}", file=sys.stderr)
     if args.json:
         print(json.dumps(document, indent=2, default=str))
     else:

@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from orccad_app.control.errors import ControlError, DimensionMismatch
-from orccad_app.control.kinds import TaskFunctionKind
 from orccad_app.control.params import REQUIRED, ParamSpec
 from orccad_app.control.trajectories import Sample, Trajectory
 
@@ -37,7 +36,6 @@ __all__ = [
     "CartesianTracking",
     "JOINT_TRACKING",
     "CARTESIAN_TRACKING",
-    "TASK_FUNCTION_KINDS",
 ]
 
 
@@ -166,28 +164,3 @@ class CartesianTracking(TaskFunction):
                          e_dot=jacobian @ qdot - reference.vel,
                          jacobian=jacobian, jacobian_inv=self.dls_inverse(jacobian),
                          de_dt=-reference.vel, f=jdot_qdot - reference.acc)
-
-
-def _cartesian(params: dict[str, Any], robot: RobotType) -> CartesianTracking:
-    frame = params["frame"] or robot.end_effector
-    if frame is None:
-        raise ControlError(f"cartesian_tracking: robot type {robot.name!r} has no "
-                           "'end_effector' site; give frame = \"...\"")
-    return CartesianTracking(robot.pinocchio_model(), params["trajectory"], frame,
-                             params["damping"])
-
-
-JOINT_TRACKING = TaskFunctionKind(
-    "joint_tracking", "e = q - q_d(t): joint-space trajectory tracking (eq. 6)",
-    (ParamSpec("trajectory", "trajectory", REQUIRED, "reference q_d(t) [rad]"),),
-    lambda p, robot: JointTracking(robot.dof, p["trajectory"]))
-
-CARTESIAN_TRACKING = TaskFunctionKind(
-    "cartesian_tracking", "e = p(q) - p_d(t): end-effector position, DLS inverse",
-    (ParamSpec("trajectory", "trajectory", REQUIRED, "reference p_d(t) [m]"),
-     ParamSpec("frame", "string", None, "frame name; default: the robot's end effector"),
-     ParamSpec("damping", "float", 0.01, "damped-least-squares λ [m]", minimum=0.0)),
-    _cartesian)
-
-#: The built-in task function kinds, registered by the ``orccad_control`` plugin.
-TASK_FUNCTION_KINDS: tuple[TaskFunctionKind, ...] = (JOINT_TRACKING, CARTESIAN_TRACKING)

@@ -22,7 +22,6 @@ from typing import Any
 import numpy as np
 
 from orccad_app.control.errors import DimensionMismatch, InvalidParameter
-from orccad_app.control.kinds import TrajectoryKind
 from orccad_app.control.params import REQUIRED, ParamSpec
 
 __all__ = [
@@ -34,7 +33,6 @@ __all__ = [
     "COSINE",
     "MINIMUM_JERK",
     "CONSTANT",
-    "TRAJECTORY_KINDS",
 ]
 
 
@@ -174,26 +172,3 @@ class Constant(Trajectory):
                                    "the trajectory module's q input)")
         zero = np.zeros_like(self.value)
         return Sample(pos=self.value, vel=zero, acc=zero)
-
-
-COSINE = TrajectoryKind(
-    "cosine", "q_d = q0 (1 + cos(omega t)) — RR-1801 eq. 9-10",
-    (ParamSpec("q0", "vector", REQUIRED, "half amplitude and offset [rad or m]"),
-     ParamSpec("omega", "float", math.pi, "angular frequency [rad/s]", minimum=0.0,
-               exclusive=True)),
-    lambda p: Cosine(p["q0"], p["omega"]))
-
-MINIMUM_JERK = TrajectoryKind(
-    "min_jerk", "minimum-jerk point to point, then hold the goal",
-    (ParamSpec("goal", "vector", REQUIRED, "final position [rad or m]"),
-     ParamSpec("duration", "float", REQUIRED, "motion time [s]", minimum=0.0, exclusive=True),
-     ParamSpec("start", "vector", None, "start position; default: first measurement")),
-    lambda p: MinimumJerk(p["goal"], p["duration"], p["start"]))
-
-CONSTANT = TrajectoryKind(
-    "constant", "hold a position (default: the first measured one)",
-    (ParamSpec("value", "vector", None, "position to hold [rad or m]"),),
-    lambda p: Constant(p["value"]))
-
-#: The built-in trajectory kinds, registered by the ``orccad_control`` plugin.
-TRAJECTORY_KINDS: tuple[TrajectoryKind, ...] = (COSINE, MINIMUM_JERK, CONSTANT)

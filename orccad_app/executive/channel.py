@@ -1,4 +1,4 @@
-"""Run-time channels: one per connection, implementing its protocol (DESIGN.md §5 table).
+"""Run-time channels: one per connection, implementing its protocol (docs/design.md, the protocols table).
 
 A channel's state lives on the consumer side. Between Module-Tasks on different processors a
 value crosses the bus (:mod:`orccad_app.executive.bus`): it becomes visible to the consumer when

@@ -1,4 +1,4 @@
-"""Plant coupling: a MuJoCo model advanced between events (DESIGN.md §5, RR-1801 §6.1).
+"""Plant coupling: a MuJoCo model advanced between events (docs/design.md, *Plant coupling*; RR-1801 §6.1).
 
 :class:`MujocoPlant` wraps an MJCF model as the physical resource of a TCS. Its ports:
 
