@@ -12,6 +12,7 @@ Reproduce the figures of ``docs/control.md``::
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,7 +21,7 @@ from orccad_app.control.errors import ControlError
 from orccad_app.control.laws.base import ControlLaw
 from orccad_app.control.physics import RobotPhysics
 
-__all__ = ["ClosedLoopResult", "simulate", "main"]
+__all__ = ["ClosedLoopResult", "simulate"]
 
 
 @dataclass(frozen=True)

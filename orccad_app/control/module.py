@@ -28,13 +28,11 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
-import numpy as np
 
 from orccad_app.control.context import ModuleContext
-from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
+from orccad_app.control.errors import ControlError, InvalidParameter
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
 from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
 

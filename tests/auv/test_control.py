@@ -10,11 +10,10 @@ import pytest
 from orccad_app.control import ModuleContext
 from orccad_app.diagnostics import OrccadError
 from orccad_app.plugin_host import PluginHost
-
-HOST = PluginHost.load()
 from orccad_auv import AUV
 from orccad_auv.control import FAR_M, allocate
 
+HOST = PluginHost.load()
 CONTEXT = ModuleContext(robot=AUV, robot_name="auv")
 
 

@@ -16,7 +16,7 @@ from orccad_app.control.laws.gains import gain_matrix
 from orccad_app.control.models import IdentityModel
 from orccad_app.control.params import ParamSpec
 
-__all__ = ["PID", "PID_KIND"]
+__all__ = ["PID"]
 
 
 class PID(ControlLaw):

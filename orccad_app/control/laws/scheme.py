@@ -25,7 +25,7 @@ from orccad_app.control.laws.gains import adjusting_matrix, gain_matrix
 from orccad_app.control.models import MODEL_NAMES
 from orccad_app.control.params import REQUIRED, ParamSpec
 
-__all__ = ["GenericScheme", "ComputedTorque", "GENERIC_KIND", "COMPUTED_TORQUE_KIND"]
+__all__ = ["GenericScheme", "ComputedTorque"]
 
 _MODEL_PARAMS = (
     ParamSpec("perturbation", "float", 0.1, "relative model error of 'perturbed' [-]", 0.0),
