@@ -1,12 +1,14 @@
 // A mission that uses every statement class, with recovery paths, on the 3-DOF arm.
 //
 // Home, then track the cosine trajectory; a lost track or a time-out is retried after
-// re-homing, at most three times; the operator may hold (suspend) or stop (abort, then go
-// home) the mission; a joint-limit violation is fatal and 'on fatal' reports it.
+// re-homing, at most three times; the operator may hold (suspend) or stop the mission: Stop
+// aborts the tracking (or the re-homing), parks the arm (Park runs to its end: the mission
+// finishes only then) and 0.5 s after Stop emits Stopping; a joint-limit violation is fatal
+// and 'on fatal' reports it.
 robot arm : arm3dof;
 
 input Stop, Hold, Gripper : float;
-output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal;
+output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal, Stopping;
 
 // Home brings the arm to the start of TrackPID's cosine, q_d(0) = 2 q0, from where it is.
 robottask Home(goal: vector = [1.0, 1.0, 1.0]) on arm {
@@ -22,6 +24,15 @@ robottask Home(goal: vector = [1.0, 1.0, 1.0]) on arm {
     connect arm.qdot    -> ctrl.qdot;
     connect ctrl.tau    -> arm.tau;
     precondition measure at_rest(tol = 0.05) within 2 s;
+}
+
+// Park brings the arm to rest at q = 0 from wherever it is, moving or not: no pre-condition,
+// so it takes over at once from an aborted tracking. Its Module-Tasks are the law's defaults
+// (traj and ctrl, wired by name: min_jerk starts from the measured position).
+robottask Park(goal: vector = [0.0, 0.0, 0.0]) on arm {
+    duration 2 s;
+    task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.5));
+    law pid(kp = 400.0, kv = 40.0);
 }
 
 robottask TrackPID(q0: vector = [0.5, 0.5, 0.5], kp: float = 400.0) on arm {
@@ -70,7 +81,7 @@ mission ArmRecovery {
                     }
                 } when Hold;
             } when Stop do {
-                run Home(goal = [0.0, 0.0, 0.0]);  // park
+                run Park();                            // park the arm, then finish
             }
         } || {
             loop {
@@ -84,7 +95,8 @@ mission ArmRecovery {
         } || {
             abort { halt; } when immediate Stop;
             await 0.5 s;
-            par { nothing; } || { await (Hold or not Hold); }
+            par { emit Stopping; } || { await (Hold or not Hold); }
+            halt;                                      // the park ends the race, not this
         }
     }
     emit Finished;
@@ -96,4 +108,6 @@ property ArmRecovery.home_before_tracking: always (started(TrackPID) -> once end
 property ArmRecovery.one_task_at_a_time: never (active(TrackPID) and active(Home));
 property ArmRecovery.retry_after_a_loss: always (Retry -> once (raised(TrackingLost) or raised(Timeout)));
 property ArmRecovery.fatal_reported: always (aborted -> Fatal);
+property ArmRecovery.park_completes: always (started(Park) -> eventually ended(Park));
+property ArmRecovery.parked_before_done: always (done -> not previously active(Park) or ended(Park));
 property ArmRecovery.finished_once: always (Finished -> previously historically not Finished);

@@ -71,3 +71,41 @@ def test_every_imported_third_party_package_is_declared():
         if not names & declared:
             undeclared[module] = sorted(names)
     assert not undeclared, f"imported but not in [project].dependencies: {undeclared}"
+
+
+def _children_of_orccad_app() -> set[str]:
+    package = ROOT / "orccad_app"
+    names = {p.stem for p in package.glob("*.py")} | {
+        p.name for p in package.iterdir() if (p / "__init__.py").is_file()}
+    return names - {"__init__"}
+
+
+def _contract(contract_id: str) -> dict:
+    contracts = PYPROJECT["tool"]["importlinter"]["contracts"]
+    return next(c for c in contracts if c["id"] == contract_id)
+
+
+def test_the_import_contracts_name_every_part_of_the_core():
+    """A new sub-package or module of orccad_app must be placed in the import contracts,
+    or it would escape them silently."""
+    children = _children_of_orccad_app()
+    layered = set()
+    for layer in _contract("layers")["layers"]:
+        layered |= {name.strip().strip("()") for name in re.split(r"[|:]", layer)}
+    assert children - layered == set(), "not in any layer of the 'layers' contract"
+    core = {m.removeprefix("orccad_app.")
+            for m in _contract("core-without-textual")["source_modules"]}
+    missing = children - core - {"tui", "__main__"}
+    assert not missing, f"missing from core-without-textual's source_modules: {sorted(missing)}"
+    forbidden = {m.removeprefix("orccad_app.")
+                 for m in _contract("plugins-through-the-api")["forbidden_modules"]}
+    missing = children - forbidden - {"plugin_api", "__main__"}
+    assert not missing, f"missing from plugins-through-the-api's forbidden_modules: {sorted(missing)}"
+
+
+def test_every_test_marked_slow_exists():
+    """tests/slow.py names tests by file and function: a renamed test must be renamed there."""
+    from tests.slow import SLOW
+    for node in sorted(SLOW):
+        path, function = node.split("::")
+        assert f"def {function}(" in (ROOT / path).read_text(encoding="utf-8"), node

@@ -86,7 +86,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.mission.plan import plan_mission
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.trace import TraceRecorder, format_report, open_trace, report_dict
+    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
+                                  report_dict)
 
     injections = [parse_injection(text) for text in args.inject]
     source = load(args.file)
@@ -107,10 +108,11 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if writer is not None:
             writer.close()
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     if args.json:
-        print(json.dumps(report_dict(result), indent=2))
+        print(json.dumps(report_dict(result, injected), indent=2))
     else:
-        print(format_report(result))
+        print(format_report(result, injected))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:

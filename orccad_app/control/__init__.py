@@ -23,7 +23,14 @@ from orccad_app.control.catalogue import (
 from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.context import ModuleContext
 from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
-from orccad_app.control.kinds import ComponentKind, LawKind, Spec, TaskFunctionKind, TrajectoryKind
+from orccad_app.control.kinds import (
+    ComponentKind,
+    DefaultModule,
+    LawKind,
+    Spec,
+    TaskFunctionKind,
+    TrajectoryKind,
+)
 from orccad_app.control.laws import PID, ComputedTorque, ControlLaw, GenericScheme, LawOutput
 from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioModel, perturbed_model
 from orccad_app.control.module import ModuleInstance, ModuleKind
@@ -46,6 +53,7 @@ __all__ = [
     "ControlError",
     "ControlLaw",
     "ControlLawModule",
+    "DefaultModule",
     "Cosine",
     "DimensionMismatch",
     "DynamicsModel",

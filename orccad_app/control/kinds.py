@@ -25,7 +25,25 @@ if TYPE_CHECKING:
     from orccad_app.control.task_functions import TaskFunction
     from orccad_app.control.trajectories import Trajectory
 
-__all__ = ["ComponentKind", "TrajectoryKind", "TaskFunctionKind", "LawKind", "Spec"]
+__all__ = ["ComponentKind", "TrajectoryKind", "TaskFunctionKind", "LawKind", "DefaultModule",
+           "STANDARD_SCHEME", "Spec"]
+
+
+@dataclass(frozen=True)
+class DefaultModule:
+    """A Module-Task a law brings when the Robot-Task does not declare one of its ``kind``:
+    ``name`` (made unique in the task) and the module kind, with the kind's default timing.
+    Its inputs read the robot sensor or module output of the same name, and its outputs
+    drive the robot actuator of the same name (``ctrl.tau -> arm.tau``)."""
+
+    name: str
+    kind: str
+
+
+#: The scheme every law runs in unless it declares another one: a reference generator and
+#: the ``control_law`` module running the law (``traj.qd -> ctrl.qd``, ``arm.q -> ctrl.q``,
+#: ``ctrl.tau -> arm.tau``…).
+STANDARD_SCHEME = (DefaultModule("traj", "trajectory"), DefaultModule("ctrl", "control_law"))
 
 
 @dataclass(frozen=True)
@@ -80,6 +98,10 @@ class LawKind(ComponentKind):
     """Factory of :class:`~orccad_app.control.laws.ControlLaw` objects."""
 
     category = "control law"
+
+    #: The time-constrained specification's omitted parts: the Module-Tasks a Robot-Task
+    #: with this ``law`` gets when it declares none of their kind.
+    default_modules: tuple[DefaultModule, ...] = STANDARD_SCHEME
 
     def create(self, params: Mapping[str, Any], robot: RobotType,
                task_function: TaskFunction) -> ControlLaw:

@@ -59,6 +59,10 @@ class ModuleKind(ABC):
     ports: ClassVar[tuple[PortSpec, ...]] = ()
     params: ClassVar[tuple[ParamSpec, ...]] = ()
     default_timing: ClassVar[Timing] = Timing(1_000_000, 100_000)
+    #: Sets of input ports of which one must be connected in full for the module ever to
+    #: compute (``tracking_error``: ``{e}`` or ``{q, qd}``). Empty: the required inputs,
+    #: and for an observer whose inputs are all optional, any one of them.
+    input_alternatives: ClassVar[tuple[frozenset[str], ...]] = ()
 
     @property
     def is_observer(self) -> bool:

@@ -16,6 +16,7 @@ arguments is checked, and the mission layer runs those very instances.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import Enum
 from typing import Any, Mapping
 
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, Timing
@@ -26,11 +27,19 @@ from orccad_app.lang.walk import runs
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 
-__all__ = ["ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances", "instantiate",
-           "check_tasks",
+__all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
+           "instantiate", "check_tasks",
            "DEFAULT_PROCESSOR"]
 
 DEFAULT_PROCESSOR = "cpu0"
+
+
+class ModuleOrigin(Enum):
+    """Why a Module-Task is in a task instance."""
+
+    DECLARED = "declared"      # a 'module' clause
+    OBSERVER = "observer"      # made for an observer named in 'from' or a condition
+    LAW_DEFAULT = "law default"  # the law's default scheme, for a kind the task omits
 
 
 @dataclass
@@ -44,8 +53,13 @@ class ModuleSpec:
     processor: str
     priority: int
     loc: SourceLocation
-    implicit: bool = False  # made for an observer named in 'from' or a condition
+    origin: ModuleOrigin = ModuleOrigin.DECLARED
     params: dict = field(default_factory=dict)  # as given, for a fresh instance
+
+    @property
+    def implicit(self) -> bool:
+        """Made by the compiler (not declared): its ports are wired by name."""
+        return self.origin is not ModuleOrigin.DECLARED
 
     def fresh(self, context: ModuleContext) -> ModuleInstance:
         """A new instance with the same parameters (the executive makes one per run)."""
@@ -138,6 +152,34 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
     return modules
 
 
+def _unique(name: str, modules: Mapping[str, ModuleSpec]) -> str:
+    base, n = name, 2
+    while name in modules:
+        name, n = f"{base}_{n}", n + 1
+    return name
+
+
+def _law_defaults(inst: RobotTaskInstance, host) -> None:
+    """The law's default Module-Tasks whose kind the task does not declare (the omitted
+    parts of the time-constrained specification)."""
+    law = inst.task.law
+    if law is None:
+        return
+    declared = {spec.kind.name for spec in inst.modules.values()}
+    processor = next(iter(inst.modules.values())).processor if inst.modules else DEFAULT_PROCESSOR
+    for default in host.control_laws.get(law.func).default_modules:
+        if default.kind in declared:
+            continue
+        try:
+            kind = host.module_kind(default.kind)
+            instance = kind.create({}, inst.context)
+        except OrccadError as error:
+            raise _located(error, law.loc) from None
+        name = _unique(default.name, inst.modules)
+        inst.modules[name] = ModuleSpec(name, kind, instance, kind.default_timing, processor, 0,
+                                        law.loc, origin=ModuleOrigin.LAW_DEFAULT)
+
+
 def _observer(call: ast.Call, loc: SourceLocation, inst: RobotTaskInstance, host) -> str:
     """The module watching for a condition or exception: declared, or made from a kind."""
     declared = inst.modules.get(call.func)
@@ -152,12 +194,10 @@ def _observer(call: ast.Call, loc: SourceLocation, inst: RobotTaskInstance, host
         instance = kind.create(values, inst.context)
     except OrccadError as error:
         raise _located(error, call.loc) from None
-    name, n = call.func, 2
-    while name in inst.modules:
-        name, n = f"{call.func}_{n}", n + 1
+    name = _unique(call.func, inst.modules)
     processor = next(iter(inst.modules.values())).processor if inst.modules else DEFAULT_PROCESSOR
     inst.modules[name] = ModuleSpec(name, kind, instance, kind.default_timing, processor, 0,
-                                    loc, implicit=True, params=values)
+                                    loc, origin=ModuleOrigin.OBSERVER, params=values)
     return name
 
 
@@ -215,6 +255,7 @@ def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
     context = _context(task, params, robots, host)
     inst = RobotTaskInstance(task, params, task.robot, context)
     inst.modules = _declared_modules(task, params, context, host)
+    _law_defaults(inst, host)
     _conditions(inst, host)
     _priorities(inst.modules)
     robot = Endpoint.robot(task.robot, context.require_robot(f"Robot-Task '{task.name}'"))

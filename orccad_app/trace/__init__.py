@@ -7,7 +7,12 @@ report or the text of ``orccad run``.
 """
 
 from orccad_app.trace.recorder import EVENTS, TraceRecorder, TraceRow, to_json
-from orccad_app.trace.report import format_report, lateness_summary, report_dict
+from orccad_app.trace.report import (
+    InjectionRecord,
+    format_report,
+    lateness_summary,
+    report_dict,
+)
 from orccad_app.trace.writers import CsvTraceWriter, McapTraceWriter, open_trace
 
 __all__ = [
@@ -18,6 +23,7 @@ __all__ = [
     "CsvTraceWriter",
     "McapTraceWriter",
     "open_trace",
+    "InjectionRecord",
     "report_dict",
     "format_report",
     "lateness_summary",

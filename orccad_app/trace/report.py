@@ -13,11 +13,16 @@ JSON keys (docs/design.md, *Command line*):
 - ``bus``: ``messages``, ``busy_ratio``;
 - ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``;
 - ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
+- ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
+  ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
+  (``false`` when the run ended before its time);
 - ``lateness_s`` (``--realtime`` only): ``median``, ``p99``, ``max``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -25,7 +30,29 @@ import numpy as np
 from orccad_app.mission.result import RunResult
 from orccad_app.trace.recorder import plain_value
 
-__all__ = ["report_dict", "format_report", "lateness_summary"]
+__all__ = ["InjectionRecord", "report_dict", "format_report", "lateness_summary"]
+
+#: A signal emitted more often than this is shown as one line ``NAME ×N, first–last s``.
+_LISTED_OUTPUTS = 3
+
+
+@dataclass(frozen=True)
+class InjectionRecord:
+    """Something raised from outside the mission during a run.
+
+    :param time_ns: when [ns] (simulated time).
+    :param name: the input (``Stop``), observer event (``Dive.Leak``) or plant fault
+        (``auv.leak``).
+    :param value: its value (``None`` for a pure signal).
+    :param fault: a plant fault rather than an automaton input.
+    :param by: who raised it: ``--inject`` (scheduled) or ``user`` (the console).
+    """
+
+    time_ns: int
+    name: str
+    value: Any = None
+    fault: bool = False
+    by: str = "--inject"
 
 
 def lateness_summary(samples: list[float]) -> dict[str, float]:
@@ -51,8 +78,16 @@ def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
     return found
 
 
-def report_dict(result: RunResult) -> dict[str, Any]:
-    """The JSON report of ``result`` (see the module docstring)."""
+def _injections(result: RunResult, injections: Iterable[InjectionRecord]) -> list[dict]:
+    ordered = sorted(injections, key=lambda i: (i.time_ns, i.name))
+    return [{"time_s": i.time_ns / 1e9, "name": i.name, "value": plain_value(i.value),
+             "kind": "fault" if i.fault else "input", "by": i.by,
+             "applied": i.time_ns <= result.sim_time_ns} for i in ordered]
+
+
+def report_dict(result: RunResult,
+                injections: Iterable[InjectionRecord] = ()) -> dict[str, Any]:
+    """The JSON report of ``result`` and what was ``injections`` (see the module docstring)."""
     bus = result.stats.bus
     report = {
         "mission": result.mission, "status": result.status, "reason": result.reason,
@@ -67,6 +102,7 @@ def report_dict(result: RunResult) -> dict[str, Any]:
         "exceptions": [record.as_dict() for record in result.exceptions],
         "outputs": [{"time_s": t / 1e9, "name": name, "value": plain_value(value)}
                     for t, name, value in result.outputs],
+        "injections": _injections(result, injections),
     }
     if result.lateness_s is not None:
         report["lateness_s"] = lateness_summary(result.lateness_s)
@@ -104,9 +140,44 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
     return lines
 
 
-def format_report(result: RunResult) -> str:
-    """The human report: status, Robot-Tasks, exceptions, modules, processors, bus."""
-    report = report_dict(result)
+def _value_text(value: Any) -> str:
+    return "" if value is None else f"({value:g})" if isinstance(value, float) else f"({value})"
+
+
+def _output_lines(report: dict[str, Any]) -> list[str]:
+    """One line per output signal, in order of first emission: each emission when there are
+    few (``Retry(1) 3.105 s``), else ``Beat ×3992, 1.500–4.700 s`` (a sustained output)."""
+    groups: dict[str, list[dict]] = {}
+    for output in report["outputs"]:
+        groups.setdefault(output["name"], []).append(output)
+    lines = ["Outputs:"]
+    for name, emitted in groups.items():
+        if len(emitted) <= _LISTED_OUTPUTS:
+            shown = ", ".join(f"{name}{_value_text(o['value'])} {o['time_s']:.3f} s"
+                              for o in emitted)
+            lines.append(f"  {shown}")
+            continue
+        values = [o["value"] for o in emitted if isinstance(o["value"], (int, float))]
+        span = f", values {min(values):g}–{max(values):g}" if values else ""
+        lines.append(f"  {name} ×{len(emitted)}, {emitted[0]['time_s']:.3f}–"
+                     f"{emitted[-1]['time_s']:.3f} s{span}")
+    return lines
+
+
+def _injection_lines(report: dict[str, Any]) -> list[str]:
+    lines = ["Injections:"]
+    for i in report["injections"]:
+        what = (f"{i['name']} = {i['value']} (plant fault" if i["kind"] == "fault" else
+                f"{i['name']}{_value_text(i['value'])} (input")
+        late = "" if i["applied"] else ", after the end: not applied"
+        lines.append(f"  {i['time_s']:.3f} s  {what}, {i['by']}{late})")
+    return lines
+
+
+def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ()) -> str:
+    """The human report: the story first (status, Robot-Tasks, exceptions, injections,
+    outputs), then the Module-Tasks' timing, processors and bus."""
+    report = report_dict(result, injections)
     ratio = report["sim_time_s"] / report["wall_time_s"] if report["wall_time_s"] else 0.0
     status = report["status"] + (f" ({report['reason']})" if report["reason"] else "")
     lines = [f"mission {report['mission']}: {status}",
@@ -118,10 +189,10 @@ def format_report(result: RunResult) -> str:
         for e in report["exceptions"]:
             lines.append(f"  {e['time_s']:.3f} s  {e['name']} (type {e['type']}"
                          f"{', ' + e['task'] if e['task'] else ''})")
+    if report["injections"]:
+        lines += _injection_lines(report)
     if report["outputs"]:
-        shown = ", ".join(f"{o['name']}@{o['time_s']:g}" for o in report["outputs"][:12])
-        more = len(report["outputs"]) - 12
-        lines.append(f"Outputs: {shown}{f' … (+{more})' if more > 0 else ''}")
+        lines += _output_lines(report)
     lines.append("Module-Tasks (times in ms):")
     lines += _module_lines(report)
     loads = ", ".join(f"{name} {p['load']:.1%}" for name, p in report["processors"].items())

@@ -29,6 +29,7 @@ from typing import Any, Callable
 import numpy as np
 
 from orccad_app.executive.observer import Observer
+from orccad_app.trace.report import InjectionRecord
 
 __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
 
@@ -157,6 +158,8 @@ class LiveObserver(Observer):
         self._window = (0, {})  # (start instant, busy per processor at it)
         self._misses: dict[str, int] = {}
         self._flushed_at = 0.0
+        self.injected: list[InjectionRecord] = []
+        """What the user raised, when it reached the run (for the report)."""
 
     # -- from the UI's thread --------------------------------------------------------------
 
@@ -192,6 +195,7 @@ class LiveObserver(Observer):
             self.flush(t_ns)
 
     def _raise(self, t_ns: int, name: str, value: Any, fault: bool) -> None:
+        self.injected.append(InjectionRecord(t_ns, name, value, fault, "user"))
         if fault:
             robot, fault_name = name.split(".", 1)
             self.run.sim.plants[robot].inject(fault_name, value)

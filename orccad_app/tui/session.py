@@ -225,7 +225,7 @@ class LiveSession:
         """``orccad run``'s text report of the finished run."""
         from orccad_app.trace import format_report
 
-        return format_report(self.result)
+        return format_report(self.result, self.observer.injected)
 
     def export(self, path: str) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""

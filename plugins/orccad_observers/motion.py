@@ -46,6 +46,7 @@ class TrackingError(ObserverKind):
     inputs = (PortSpec("e", "in", "vector", None, False, "task error e(q, t)"),
               PortSpec("q", "in", "vector", None, False, "joint positions [rad]"),
               PortSpec("qd", "in", "vector", None, False, "desired positions [rad]"))
+    input_alternatives = (frozenset({"e"}), frozenset({"q", "qd"}))
     own_params = (ParamSpec("max", "float", REQUIRED, "error bound [rad or m]", 0.0, True),)
     monitor = _TrackingErrorMonitor
 

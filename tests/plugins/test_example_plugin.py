@@ -57,7 +57,7 @@ def example_host(installed):
 
 def test_the_guide_contains_the_three_files():
     assert set(example_files()) == {"pyproject.toml", "orccad_pendulum/pendulum.xml",
-                                    "orccad_pendulum/__init__.py"}
+                                    "orccad_pendulum/__init__.py", "swing.orc"}
 
 
 def test_orccad_plugins_lists_the_example_with_its_plugin_name(installed):
@@ -100,3 +100,20 @@ def test_the_example_observer_and_module_kind_run(example_host):
     low_pass.compute(0.0, {"u": [0.0]})
     y = low_pass.compute(0.01, {"u": [1.0]})["y"]
     np.testing.assert_allclose(y, 1 - np.exp(-2 * np.pi * 10.0 * 0.01))
+
+
+def test_the_swing_plan_gets_the_law_default_modules_and_swings(installed):
+    """A Robot-Task with a law and no module: pd_gravity's default traj and ctrl drive the
+    pendulum (before, only the observer ran and nothing wrote pendulum.tau)."""
+    plan = str(installed / "swing.orc")
+    tcs = run_cli("tcs", plan, "--task", "Swing", pythonpath=installed)
+    assert tcs.returncode == 0, tcs.stderr
+    for line in ("traj.qd -> ctrl.qd", "pendulum.q -> ctrl.q", "ctrl.tau -> pendulum.tau",
+                 "pendulum.qdot -> speed_limit.qdot"):
+        assert line in tcs.stdout, line
+    run = run_cli("run", plan, "--json", pythonpath=installed)
+    assert run.returncode == 0, run.stderr
+    report = json.loads(run.stdout)
+    assert report["status"] == "done"
+    assert {"Swing.traj", "Swing.ctrl"} <= set(report["modules"])
+    assert report["robot_tasks"][0]["tracking_error"]["max"] < 0.1

@@ -112,7 +112,7 @@ def test_the_compile_summary_and_check_come_from_the_cli_functions():
     assert view.ok and view.missions == ["ArmRecovery"]
     assert view.inputs["ArmRecovery"] == ["Stop", "Hold", "Gripper"]
     summary = view.summaries["ArmRecovery"]
-    assert "Robot-Tasks: Home, TrackPID" in summary and "states" in summary
+    assert "Robot-Tasks: Home, Park, TrackPID" in summary and "states" in summary
     text = check_text(check_file(view, "ArmRecovery"))
     assert "ok    built-in no-deadlock" in text and text.endswith("all properties hold")
 
