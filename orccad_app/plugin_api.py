@@ -21,7 +21,14 @@ from orccad_app.control.catalogue import (
 from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.context import ModuleContext
 from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
-from orccad_app.control.kinds import ComponentKind, LawKind, TaskFunctionKind, TrajectoryKind
+from orccad_app.control.kinds import (
+    STANDARD_SCHEME,
+    ComponentKind,
+    DefaultModule,
+    LawKind,
+    TaskFunctionKind,
+    TrajectoryKind,
+)
 from orccad_app.control.laws.base import ControlLaw, Gains, LawOutput
 from orccad_app.control.laws.gains import adjusting_matrix, gain_matrix
 from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioModel
@@ -55,6 +62,8 @@ __all__ = [
     "TaskFunction",
     "TaskState",
     "LawKind",
+    "DefaultModule",
+    "STANDARD_SCHEME",
     "ControlLaw",
     "Gains",
     "LawOutput",
