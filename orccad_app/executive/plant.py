@@ -280,6 +280,23 @@ class MujocoPlant:
             value = np.round(value / quantum) * quantum
         return value
 
+    def observe(self, port: str) -> np.ndarray:
+        """The true value of ``port`` now, for monitors (signal properties): no noise, no
+        sensor fault (an extension's ``true_value`` when it has one), the held command for
+        the actuator ``tau``. The plant is brought to now only when now is on its timestep
+        grid, which leaves the integration unchanged; otherwise the value is the state at the
+        plant's last instant (at most one timestep old). Observing never changes a run."""
+        now = self._kernel.now if self._kernel is not None else self._time_ns
+        if now > self._time_ns and now % self.timestep_ns == 0:
+            self.advance_to(now)
+        extension = self.extension
+        if extension is not None and port in extension.sensors and hasattr(extension,
+                                                                           "true_value"):
+            return np.asarray(extension.true_value(port), dtype=float)
+        if port == "tau" and port not in self._readers:
+            return self.data.ctrl.copy()
+        return np.asarray(self._readers[port](), dtype=float)
+
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
         self.advance_to(self._kernel.now)
