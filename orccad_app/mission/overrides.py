@@ -110,8 +110,10 @@ class PlanOverrides:
     def arguments(self) -> list[str]:
         """The ``orccad run`` arguments that give these overrides (``--set``, ``--timing``)."""
         args: list[str] = []
-        for item in (*self.params, *self.noise):
+        for item in self.params:
             args += ["--set", item.text()]
+        for noise in self.noise:
+            args += ["--set", noise.text()]
         for timing in self.timings:
             args += ["--timing", timing.text()]
         return args

@@ -213,7 +213,7 @@ def edf_response_ns(task: Load, others: list[Load], busy_ns: int,
     offsets ``a`` in ``[-J_i, L)`` where a count changes. Jobs with the same absolute deadline
     count as interfering (the executive breaks such ties by priority). ``None`` when there
     are more offsets than ``points_budget`` (the caller keeps a coarser bound)."""
-    offsets = set()
+    offsets: set[int] = set()
     for x in [task, *others]:
         if x is task:
             first = -task.jitter_ns

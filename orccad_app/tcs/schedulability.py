@@ -209,7 +209,7 @@ class _Analysis:
                                 self._delay(delays, c, "request"), self.remote(c))
             if skip is None and done is None:
                 self.fail(task.name, f"no bound on its read of {c.label}")
-            elif skip is None and done > cap:
+            elif skip is None and done is not None and done > cap:
                 self.fail(task.name, f"its read of {c.label} can wait beyond its deadline "
                                      f"or its next release")
             tau = cap if done is None else min(done, cap)
