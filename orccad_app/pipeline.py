@@ -77,7 +77,7 @@ def load(path: str | Path) -> Source:
         instances = check_tasks(program, default_host())
     if any(ast.is_signal_formula(p.formula) for p in program.properties):
         from orccad_app.plugins.host import default_host
-        from orccad_app.verify.signal_types import check_signal_properties
+        from orccad_app.lang.signal_types import check_signal_properties
         check_signal_properties(program, default_host())
     return Source(path, text, program, result.warnings, instances)
 

@@ -16,7 +16,6 @@ internal error; the others are kept); 130 on Ctrl-C (every finished run is in th
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 
@@ -106,6 +105,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.campaign.output import Progress, format_result, result_dict
     from orccad_app.campaign.runner import Campaign, CampaignOptions
     from orccad_app.campaign.spec import load_spec
+    from orccad_app.jsonout import dumps
 
     spec = load_spec(args.spec)
     options = CampaignOptions(args.runs, args.workers, args.cluster,
@@ -121,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
         from orccad_app.campaign.report import write_report
         write_report(result, args.report)
     if args.json:
-        print(json.dumps(result_dict(result), indent=2, allow_nan=False))
+        print(dumps(result_dict(result), indent=2))
     else:
         print(format_result(result))
         if args.report:

@@ -294,21 +294,6 @@ class MujocoPlant:
             return self.data.ctrl.copy()
         return np.asarray(self._readers[port](), dtype=float)
 
-    def peek(self, port: str) -> np.ndarray:
-        """The physical value sensor ``port`` measures at the plant's current time: no noise,
-        quantization or sensor fault (an extension's ``true_value``); it neither advances the
-        plant nor draws random numbers, so an observer's look cannot change the run."""
-        extension = self.extension
-        if extension is not None and port in extension.sensors:
-            true_value = getattr(extension, "true_value", extension.read)
-            return np.array(true_value(port), dtype=float)
-        return self._readers[port]()
-
-    @property
-    def sensor_ports(self) -> tuple[str, ...]:
-        """The names of the sensor ports."""
-        return tuple(self._readers)
-
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
         self.advance_to(self._kernel.now)

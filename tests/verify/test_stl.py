@@ -11,7 +11,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang.parser import parse
 from orccad_app.verify.formula import from_ast
 from orccad_app.verify.monitor import Verdict, ltl_verdict
-from orccad_app.verify.signal_types import PortSignal
+from orccad_app.lang.signal_types import PortSignal
 from orccad_app.verify.stl import Component, robustness, translate
 
 INF = math.inf
