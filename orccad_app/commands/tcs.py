@@ -70,7 +70,6 @@ def register(sub) -> None:
 
 def _instance(source, args: argparse.Namespace):
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.plugins.host import default_host
     from orccad_app.robottask.model import instantiate
 
     program = source.program
@@ -82,7 +81,9 @@ def _instance(source, args: argparse.Namespace):
     robots = {r.name: r for r in program.robots}
     if args.mission is None:
         found = source.instances.defaults.get(task.name)
-        return found if found is not None else instantiate(task, robots, default_host())
+        if found is None and source.host is not None:  # (instantiating it says why not)
+            found = instantiate(task, robots, source.host)
+        return found
     from orccad_app.pipeline import compose_mission, select_mission
 
     sites = compose_mission(source, select_mission(source, args.mission)).sites
