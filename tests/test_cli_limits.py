@@ -424,3 +424,11 @@ def test_non_finite_values_are_null_in_json():
 
     text = dumps({"a": float("nan"), "b": [float("inf"), -float("inf")], "c": 1.5})
     assert strict(text) == {"a": None, "b": [None, None], "c": 1.5}
+
+
+def test_a_very_long_line_is_shown_as_a_window_around_the_error(tmp_path, capsys):
+    path = write(tmp_path, "mission M { output O; " + "emit O; pause; " * 5000 + "await C; }\n")
+    status, _, err = orccad(capsys, "compile", path)
+    head, shown, caret = err.splitlines()[:3]
+    assert status == 2 and "undeclared signal 'C'" in head
+    assert len(shown) < 200 and shown[caret.index("^")] == "C"
