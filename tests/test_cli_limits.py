@@ -86,10 +86,12 @@ def test_injected_values_must_fit_their_input(capsys, spec, message):
     assert status == 2 and message in err
 
 
-def test_inject_before_the_file_does_not_swallow_it(capsys):
-    status, out, err = orccad(capsys, "run", "--inject", "TrackPID.TrackingLost@0.05",
-                              "--inject", "TrackPID.Saturated@0.02", PID, "--json",
-                              "--until", "0.1")
+@pytest.mark.parametrize("form", ["repeated", "listed"])
+def test_inject_before_the_file_does_not_swallow_it(capsys, form):
+    specs = (["--inject", "TrackPID.TrackingLost@0.05", "--inject", "TrackPID.Saturated@0.02"]
+             if form == "repeated" else
+             ["--inject", "TrackPID.TrackingLost@0.05", "TrackPID.Saturated@0.02"])
+    status, out, err = orccad(capsys, "run", *specs, PID, "--json", "--until", "0.1")
     report = strict(out)
     assert status in (0, 1) and report["mission"] == "ArmPID"
     assert {"TrackingLost", "Saturated"} <= {e["name"] for e in report["exceptions"]}
