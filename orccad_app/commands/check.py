@@ -5,7 +5,8 @@ then proves the built-in properties and every ``property`` that applies to it (s
 ``docs/verification.md``). A failed property prints a counterexample as an input script for
 ``orccad react --composed``. ``--observe`` prints the automaton reduced to some signals
 (observational equivalence) instead. Exit status: 0 all hold, 1 a property fails, 2 bad
-input.
+input. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
+and campaigns judge them; they do not change the exit status.
 """
 
 from __future__ import annotations
@@ -50,9 +51,10 @@ def run(args: argparse.Namespace) -> int:
                 else list(require_missions(source)))
     if args.observe is not None:
         return _observe(source, missions, args)
-    failed, written = 0, False
+    failed, written, unproved = 0, False, 0
     for mission in missions:
         report = check_mission(source.program, mission, max_states=args.max_states)
+        unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
         _print_report(source, report, len(missions) > 1)
@@ -64,8 +66,10 @@ def run(args: argparse.Namespace) -> int:
                               args.counterexample)
                     written = True
     total = len(missions)
+    left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
+            if unproved else "")
     print(f"{'all properties hold' if not failed else f'{failed} failed'} "
-          f"({total} mission{'s' if total > 1 else ''})")
+          f"({total} mission{'s' if total > 1 else ''}{left})")
     return 1 if failed else 0
 
 
@@ -97,6 +101,9 @@ def _print_report(source, report, several: bool) -> None:
         if not outcome.holds and outcome.script is not None:
             for line in _script_text(source, report.composition.mission, outcome).splitlines():
                 print(f"        | {line}")
+    for prop in report.signal_properties:
+        print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
+              "judged on runs and campaigns")
 
 
 def _write_promela(source, mission, report, path: str) -> None:
@@ -104,7 +111,8 @@ def _write_promela(source, mission, report, path: str) -> None:
     from orccad_app.verify.promela import to_promela
 
     text = to_promela(report.model.automaton, tracked=report.model.tracked,
-                      properties=applicable(source.program.properties, mission),
+                      properties=[p for p in applicable(source.program.properties, mission)
+                                  if p not in report.signal_properties],
                       assumptions=applicable(source.program.assumptions, mission))
     emit_text(text.rstrip("\n"), path)
 

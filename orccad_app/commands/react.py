@@ -46,7 +46,8 @@ def _read_script(path: str | None) -> tuple[str, str]:
 def run(args: argparse.Namespace) -> int:
     from orccad_app.jsonout import dumps
     from orccad_app.pipeline import ABSTRACT, COMPOSED, compile_mission, load, select_mission
-    from orccad_app.reactive.runtime import Reactor
+    from orccad_app.diagnostics import OrccadError, SourceLocation
+    from orccad_app.reactive.runtime import Reactor, RelationViolation
     from orccad_app.reactive.script import parse_script
 
     source = load(args.file)
@@ -62,7 +63,10 @@ def run(args: argparse.Namespace) -> int:
     input_width = max(input_width, 20)
     reactor = Reactor(automaton)
     for number, instant in enumerate(instants, start=1):
-        reaction = reactor.react(instant.inputs, instant.time_ns)
+        try:
+            reaction = reactor.react(instant.inputs, instant.time_ns)
+        except RelationViolation as error:
+            raise OrccadError(error.message, SourceLocation(name, instant.line, 1)) from None
         if args.jsonl:
             record = {"instant": number, "inputs": list(instant.inputs),
                       "outputs": list(reaction.outputs), "values": reaction.values,

@@ -3,13 +3,17 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
 Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
-Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
-when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
+Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
+of every ``property`` of the mission on this run (key ``properties``, see
+:mod:`orccad_app.properties`). Exit status: 0 when the mission ends ``done`` and no property
+is false on the run; 1 when it ends ``failed``, ``aborted`` or ``timeout``, or a property is
+false (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
 """
@@ -44,6 +48,15 @@ def register(sub) -> None:
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
                              "several specs may follow one flag, or repeat the flag")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
+                             "or a sensor's noise (auv.depth.noise_std=0.05); repeat the flag "
+                             "for several")
+    parser.add_argument("--timing", action="append", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms at every run of "
+                             "its Robot-Task (Survey.pilot.wcet_ms=2.5); repeat the flag for "
+                             "several")
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
@@ -138,20 +151,23 @@ def _processors(plan, args: argparse.Namespace) -> list:
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.jsonout import dumps
-    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
+    from orccad_app.properties import PropertyMonitor, results_dict
+    from orccad_app.properties.report import format_properties
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict)
 
     _file_after_injections(args)
     injections = [_injection(text) for text in args.inject]
     _warn_first_instant(injections)
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_with_overrides(source, mission, overrides)
     _check_values(injections, plan.automaton.inputs)
     writer = None
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
@@ -159,6 +175,7 @@ def run(args: argparse.Namespace) -> int:
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
+    monitor = PropertyMonitor(source.program, mission, mission_run)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
                                          "seed": str(args.seed)})
@@ -176,10 +193,15 @@ def run(args: argparse.Namespace) -> int:
         raise OrccadError(f"{args.trace}: cannot write the trace: "
                           f"{error.strerror or error}") from None
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    verdicts = monitor.results()
     if args.json:
-        print(dumps(report_dict(result, injected), indent=2))
+        report = report_dict(result, injected)
+        report["properties"] = results_dict(verdicts)
+        print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
+        if verdicts:
+            print("\n".join(format_properties(verdicts)))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
@@ -187,4 +209,8 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
-    return result.exit_status
+    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    if violated and not args.json:
+        print(f"orccad: propert{'ies' if len(violated) > 1 else 'y'} violated on this run: "
+              f"{', '.join(violated)}", file=sys.stderr)
+    return max(result.exit_status, 1 if violated else 0)

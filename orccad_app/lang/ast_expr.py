@@ -6,15 +6,20 @@ Also the dataclass decorator every AST node uses: frozen, slotted, keyword-only.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
+from typing import TypeVar, Union, dataclass_transform
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
-__all__ = ["node", "VALUE_TYPES", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
+__all__ = ["node", "VALUE_TYPES", "PreSignal", "PreValue", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
            "LastValue", "Unary", "Binary", "Arg", "Call", "Expr"]
 
-#: The decorator of every AST node class.
-node = dataclass(frozen=True, slots=True, kw_only=True)
+_Node = TypeVar("_Node", bound=type)
+
+
+@dataclass_transform(frozen_default=True, kw_only_default=True)
+def node(cls: _Node) -> _Node:
+    """The decorator of every AST node class: a frozen, slotted, keyword-only dataclass."""
+    return dataclass(frozen=True, slots=True, kw_only=True)(cls)  # type: ignore[return-value]
 
 #: Value types of signals, variables and parameters.
 VALUE_TYPES: frozenset[str] = frozenset({"int", "float", "bool", "string", "vector", "duration"})
@@ -124,4 +129,21 @@ class Call:
         return next((a for a in self.args if a.name == name), None)
 
 
-Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, Unary, Binary, Call]
+@node
+class PreSignal:
+    """``pre(S)``: S was present in the previous instant (a presence test)."""
+
+    signal: str
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class PreValue:
+    """``pre(?S)``: the value of S at the end of the previous instant."""
+
+    signal: str
+    loc: SourceLocation = NOWHERE
+
+
+Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, PreSignal, PreValue,
+             Unary, Binary, Call]

@@ -18,7 +18,8 @@ __all__ = ["Store", "compile_expr", "format_expr", "format_test", "Unset"]
 _BINARY: dict[str, Callable[[Any, Any], Any]] = {
     "+": operator.add, "-": operator.sub, "*": operator.mul,
     "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
-    "==": operator.eq, "!=": operator.ne,
+    "==": operator.eq, "!=": operator.ne, "min": min, "max": max,
+    "last": lambda first, second: second,
 }
 
 
@@ -52,12 +53,14 @@ class Unset(LookupError):
 class Store:
     """Data memory of a running automaton."""
 
-    __slots__ = ("vars", "values", "clock_ns")
+    __slots__ = ("vars", "values", "clock_ns", "previous")
 
     def __init__(self) -> None:
         self.vars: dict[ir.VarDecl, Any] = {}
         self.values: dict[ir.SignalDecl, Any] = {}
         self.clock_ns = 0
+        #: values at the end of the previous instant, of the signals read by ``pre(?S)``
+        self.previous: dict[ir.SignalDecl, Any] = {}
 
 
 def _var(decl: ir.VarDecl):
@@ -69,13 +72,23 @@ def _var(decl: ir.VarDecl):
     return read
 
 
-def _value(decl: ir.SignalDecl):
+def _value(decl: ir.SignalDecl, table: str = "values", text: str = "?{0}"):
     def read(store: Store):
-        try:
-            return store.values[decl]
-        except KeyError:
-            raise Unset(f"?{decl.name} is read before {decl.name} ever had a value") from None
+        value = getattr(store, table).get(decl, ir.NO_VALUE)
+        if value is ir.NO_VALUE:
+            raise Unset(f"{text.format(decl.name)} is read before {decl.name} ever had a "
+                        "value (declare an initial value: 'output "
+                        f"{decl.name} : {decl.type} := …;')")
+        return value
     return read
+
+
+def _fault(expr: ir.Fault):
+    message = expr.message
+
+    def fail(store: Store):
+        raise Unset(message)
+    return fail
 
 
 def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
@@ -88,6 +101,10 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
         return _var(expr.var)
     if kind is ir.SigValue:
         return _value(expr.signal)
+    if kind is ir.PreValue:
+        return _value(expr.signal, "previous", "pre(?{0})")
+    if kind is ir.Fault:
+        return _fault(expr)
     if kind is ir.Clock:
         return lambda store: store.clock_ns
     if kind is ir.VectorExpr:
@@ -126,6 +143,10 @@ def format_expr(expr: ir.Expr, parent: int = 0) -> str:
         return expr.var.name
     if kind is ir.SigValue:
         return f"?{expr.signal.name}"
+    if kind is ir.PreValue:
+        return f"pre(?{expr.signal.name})"
+    if kind is ir.Fault:
+        return f"error({expr.message!r})"
     if kind is ir.Clock:
         return "clock"
     if kind is ir.VectorExpr:
@@ -133,6 +154,8 @@ def format_expr(expr: ir.Expr, parent: int = 0) -> str:
     if kind is ir.Unary:
         sep = " " if expr.op == "not" else ""
         return f"{expr.op}{sep}{format_expr(expr.operand, 6)}"
+    if expr.op in ("min", "max", "last"):
+        return f"{expr.op}({format_expr(expr.left)}, {format_expr(expr.right)})"
     prec = _PRECEDENCE[expr.op]
     text = f"{format_expr(expr.left, prec)} {expr.op} {format_expr(expr.right, prec + 1)}"
     return f"({text})" if prec < parent else text
@@ -142,6 +165,8 @@ def format_test(test: ir.Test) -> str:
     """Source-like text of a presence test or data test."""
     if isinstance(test, ir.SigRef):
         return test.signal.name
+    if isinstance(test, ir.PreRef):
+        return f"pre({test.signal.name})"
     if isinstance(test, ir.DataTest):
         return format_expr(test.expr)
     if isinstance(test, ir.SigNot):

@@ -106,8 +106,9 @@ class ApplicationLowerer(Lowerer):
         self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
         self.handlers: list[dict[str, ir.TrapDecl]] = []
         loc = mission.loc
-        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc)
-        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc)
+        # two exceptions in one instant: the status reports the last one (hidden signals)
+        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc, combine="last")
+        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc, combine="last")
         self.failed_trap = ir.TrapDecl("_failed", loc)
         self.fatal_trap = ir.TrapDecl("_fatal", loc)
 
@@ -125,7 +126,7 @@ class ApplicationLowerer(Lowerer):
                 ir.Trap(self.fatal_trap, d.seq(body, ir.Exit(finished, loc)), loc), on_fatal), loc)
         return ir.Program(self.mission.name, (*self.inputs, *self.extra_inputs),
                           (*self.outputs, *self.extra_outputs), wrapped, loc,
-                          self.failed, self.aborted)
+                          self.failed, self.aborted, self.relations())
 
     def raised_signal(self, name: str, loc: SourceLocation) -> ir.SignalDecl:
         """The output ``E.raised``, present in the instant exception ``E`` is raised."""
@@ -226,6 +227,10 @@ class ApplicationLowerer(Lowerer):
         outcome = ir.Trap(ended, ir.Par(tuple(branches), loc), loc)
         return ir.Mark(RtLabel(task.name, site), d.seq(ir.Emit(signals["start"], None, loc),
                                                 outcome), loc)
+
+    def _fail(self, s: ast.Fail, scope: Scope) -> ir.Stmt:
+        """``fail E;``: a type-2 exception raised by the plan itself."""
+        return self.raise_(s.exception, s.loc)
 
     def _try(self, s: ast.Try, scope: Scope) -> ir.Stmt:
         done = ir.TrapDecl("_try_done", s.loc)
