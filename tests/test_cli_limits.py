@@ -55,6 +55,9 @@ def write(tmp_path: Path, text: str, name: str = "m.orc") -> str:
     (["compile", ABRO, "--max-states", "0"], "argument --max-states"),
     (["check", ABRO, "--max-states", "1" + "0" * 30], "argument --max-states"),
     (["tui", "--speed", "inf"], "argument --speed"),
+    (["campaign", PID, "--spec", "s.toml", "--until", "inf"], "argument --until"),
+    (["campaign", PID, "--spec", "s.toml", "--runs", "0"], "argument --runs"),
+    (["falsify", PID, "--spec", "s.toml", "-p", "p", "--seed", "-1"], "argument --seed"),
 ])
 def test_out_of_range_numbers_are_usage_errors(capsys, argv, message):
     with pytest.raises(SystemExit) as stop:
@@ -95,6 +98,16 @@ def test_inject_before_the_file_does_not_swallow_it(capsys, form):
     report = strict(out)
     assert status in (0, 1) and report["mission"] == "ArmPID"
     assert {"TrackingLost", "Saturated"} <= {e["name"] for e in report["exceptions"]}
+
+
+@pytest.mark.parametrize("timing, message", [
+    ("TrackPID.ctrl.period_ms=0.0001", "a period must be at least 1 us"),
+    ("TrackPID.ctrl.period_ms=1e300", "at most one year"),
+    ("TrackPID.ctrl.wcet_ms=nan", "must be finite"),
+])
+def test_timing_overrides_keep_the_languages_limits(capsys, timing, message):
+    status, _, err = orccad(capsys, "run", PID, "--timing", timing, "--until", "0.01")
+    assert status == 2 and message in err
 
 
 def test_inject_at_zero_is_delivered_in_the_first_instant_and_says_so(capsys):
