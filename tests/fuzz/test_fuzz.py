@@ -135,6 +135,13 @@ def test_a_short_campaign_keeps_the_promises(tmp_path):
     check_outcome(run_orccad(argv, budget_s=120), json_doc=True, budget_s=120)
 
 
+def test_a_short_falsification_keeps_the_promises(tmp_path):
+    argv = ["falsify", PID, "--spec", str(ROOT / "missions" / "arm_pid.campaign.toml"),
+            "-p", "bounded", "--budget", "2", "--until", "0.05", "--workers", "1",
+            "--trace", str(tmp_path / "worst.csv")]
+    check_outcome(run_orccad(argv, budget_s=120), budget_s=120)
+
+
 def _injections(examples: int):
     @_settings(examples)
     @given(st.lists(inject_specs(), min_size=1, max_size=2))
