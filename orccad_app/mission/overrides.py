@@ -110,8 +110,10 @@ class PlanOverrides:
     def arguments(self) -> list[str]:
         """The ``orccad run`` arguments that give these overrides (``--set``, ``--timing``)."""
         args: list[str] = []
-        for item in (*self.params, *self.noise):
+        for item in self.params:
             args += ["--set", item.text()]
+        for noise in self.noise:
+            args += ["--set", noise.text()]
         for timing in self.timings:
             args += ["--timing", timing.text()]
         return args
@@ -256,14 +258,14 @@ def plan_with_overrides(source: Any, mission: ast.Mission, overrides: PlanOverri
     with ``overrides`` (see the module docstring); ``composition``: the mission's
     :class:`~orccad_app.robottask.composition.Composition` when the caller has it already."""
     from orccad_app.pipeline import compose_mission
-    from orccad_app.plugins.host import default_host
+    from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import instantiate
 
     composition = composition or compose_mission(source, mission)
     if not overrides:
         instances = {site.number: source.instance(site.stmt) for site in composition.sites}
         return plan_composition(composition, instances)
-    host = default_host()
+    host = source.host if source.host is not None else PluginHost.load()
     robots = robot_declarations({r.name: r for r in source.program.robots}, host, overrides)
     instances = {}
     for site in composition.sites:

@@ -34,7 +34,7 @@ from orccad_app.trace.report import InjectionRecord
 __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
 
 PHASES = {1: "waiting", 2: "measuring", 3: "running"}
-"""Name of each phase of a Robot-Task's RTA (DESIGN.md §3: pre-conditions, then control)."""
+"""Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
 class Pace:

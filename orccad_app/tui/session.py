@@ -134,6 +134,8 @@ def check_text(report: Any) -> str:
         if not outcome.holds and outcome.script is not None:
             script = outcome.script.text([f"counterexample to {outcome.name}"])
             lines += [f"        | {line}" for line in script.splitlines()]
+    for prop in getattr(report, "signal_properties", ()):
+        lines.append(f"  --    signal property {prop.name}: not proved; judged on runs")
     failed = sum(1 for o in report.outcomes if not o.holds)
     lines.append("all properties hold" if not failed else f"{failed} failed")
     return "\n".join(lines)
@@ -210,6 +212,11 @@ class LiveSession:
         self._trace = _Spool()
         self.run.add_observer(self.observer)
         self.run.add_observer(TraceRecorder(self._trace.writer))
+        from orccad_app.properties import PropertyMonitor
+
+        self.monitor = PropertyMonitor(source.program, source.program.mission(self.mission),
+                                       self.run)
+        """Judges the mission's properties on the run (``orccad run``'s list)."""
         self.result: Any = None
 
     def execute(self) -> Any:
@@ -223,9 +230,12 @@ class LiveSession:
 
     def report(self) -> str:
         """``orccad run``'s text report of the finished run."""
+        from orccad_app.properties.report import format_properties
         from orccad_app.trace import format_report
 
-        return format_report(self.result, self.observer.injected)
+        text = format_report(self.result, self.observer.injected)
+        verdicts = self.monitor.results()
+        return "\n".join([text, *format_properties(verdicts)]) if verdicts else text
 
     def export(self, path: str) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""
