@@ -86,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.mission_run import MissionRun, parse_injection, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict)
+                                  report_dict, sensor_ports)
 
     injections = [parse_injection(text) for text in args.inject]
     source = load(args.file)
@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)})
+                                         "seed": str(args.seed)}, sensor_ports(plan))
         mission_run.add_observer(TraceRecorder(writer))
     try:
         result = mission_run.run()

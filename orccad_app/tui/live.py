@@ -30,6 +30,7 @@ import numpy as np
 
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
+from orccad_app.trace.writers import sensor_ports
 
 __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
 
@@ -113,13 +114,6 @@ class LiveUpdate:
     samples: dict[str, list[float]] = field(default_factory=dict)
     loads: dict[str, float] = field(default_factory=dict)
     misses: dict[str, int] = field(default_factory=dict)
-
-
-def sensor_ports(plan: Any) -> dict[tuple[str, str], str]:
-    """``(module, port)`` of every input fed by a robot sensor -> the sensor (``arm.q``)."""
-    robots = {resource.name for resource in plan.tcs.resources}
-    return {tuple(c.consumer.rsplit(".", 1)): c.producer for c in plan.tcs.connections
-            if c.producer.rsplit(".", 1)[0] in robots}
 
 
 def _components(value: Any, limit: int = 6) -> list[float] | None:

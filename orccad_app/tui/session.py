@@ -157,14 +157,15 @@ class _Spool:
         self.path = Path(self._folder.name) / "trace.csv"
         self.writer = CsvTraceWriter(self.path)
 
-    def export(self, path: str, metadata: dict[str, str]) -> None:
+    def export(self, path: str, metadata: dict[str, str],
+               sensors: dict[tuple[str, str], str] | None = None) -> None:
         from orccad_app.trace import TraceRow, open_trace
 
         self.writer.close()
         if Path(path).suffix.lower() == ".csv":
             shutil.copyfile(self.path, path)
             return
-        writer = open_trace(path, metadata)
+        writer = open_trace(path, metadata, sensors)
         try:
             with self.path.open(newline="", encoding="utf-8") as rows:
                 reader = csv.reader(rows)
@@ -228,6 +229,8 @@ class LiveSession:
 
     def export(self, path: str) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""
+        from orccad_app.trace import sensor_ports
+
         self._trace.export(path, {"mission": self.mission, "file": self.path,
-                                  "seed": str(self.seed)})
+                                  "seed": str(self.seed)}, sensor_ports(self.run.plan))
         return path
