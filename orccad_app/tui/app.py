@@ -32,6 +32,7 @@ class OrccadApp(App):
 
     CSS_PATH = "orccad.tcss"
     TITLE = "ORCCAD"
+    HORIZONTAL_BREAKPOINTS = [(0, "-narrow"), (120, "-wide")]
     BINDINGS = [Binding("ctrl+s", "screenshot_svg", "Screenshot", show=False)]
 
     def __init__(self, paths: list[str] = (), *, selected: str | None = None,

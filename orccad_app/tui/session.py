@@ -22,7 +22,46 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
 __all__ = ["Diagnostic", "FileView", "inspect_file", "check_file", "check_text",
-           "LiveSession", "mission_files"]
+           "LiveSession", "mission_files", "parse_value", "VALUE_HINTS"]
+
+VALUE_HINTS = {"int": "an integer, e.g. 3", "float": "a number, e.g. 0.8",
+               "bool": "true or false", "vector": "numbers in brackets, e.g. [0.5, 0.5, 0.5]",
+               "string": "any text", "duration": "seconds, e.g. 2.5"}
+"""What the value of an input of each type looks like (for the prompt and the errors)."""
+
+
+def parse_value(text: str, type_name: str) -> Any:
+    """The value of a valued input of type ``type_name`` typed as ``text``; raises
+    ``ValueError`` saying what is expected (never a silent default)."""
+    text = text.strip()
+    expected = VALUE_HINTS.get(type_name, type_name)
+    if type_name == "string":
+        return text
+    if not text:
+        raise ValueError(f"type a value: {expected}")
+    try:
+        if type_name == "int":
+            return int(text)
+        if type_name in ("float", "duration"):
+            value = float(text)
+            if value != value or value in (float("inf"), float("-inf")):
+                raise ValueError
+            return value
+        if type_name == "bool":
+            lowered = text.lower()
+            if lowered in ("true", "1", "on", "yes"):
+                return True
+            if lowered in ("false", "0", "off", "no"):
+                return False
+            raise ValueError
+        if type_name == "vector":
+            if not (text.startswith("[") and text.endswith("]")):
+                raise ValueError
+            items = [item.strip() for item in text[1:-1].split(",") if item.strip()]
+            return [float(item) for item in items]
+    except ValueError:
+        raise ValueError(f"{text!r} is not {expected}") from None
+    raise ValueError(f"inputs of type {type_name} cannot be raised from the console")
 
 
 @dataclass(frozen=True)
@@ -194,6 +233,8 @@ class LiveSession:
 
         source = load(path)
         self.path, self.seed = path, seed
+        self.text = source.text
+        """The mission file's text (the run screen shows where the mission waits in it)."""
         self.mission = select_mission(source, mission).name
         plan = plan_mission(source, source.program.mission(self.mission))
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
@@ -222,10 +263,21 @@ class LiveSession:
         return self.result
 
     def report(self) -> str:
-        """``orccad run``'s text report of the finished run."""
+        """``orccad run``'s text report of the finished run, the real-time ratio computed
+        without the time spent paused (said on the second line)."""
+        import dataclasses
+
         from orccad_app.trace import format_report
 
-        return format_report(self.result, self.observer.injected)
+        paused = self.pace.paused_s
+        result = self.result
+        if paused > 0:
+            result = dataclasses.replace(result, wall_time_s=max(result.wall_time_s - paused,
+                                                                 1e-9))
+        lines = format_report(result, self.observer.injected).split("\n")
+        if paused > 0:
+            lines.insert(2, f"  paused {paused:.2f} s of wall time, not counted above")
+        return "\n".join(lines)
 
     def export(self, path: str) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""

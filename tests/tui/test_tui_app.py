@@ -68,7 +68,7 @@ async def test_the_browser_shows_source_diagnostics_summary_and_check():
         assert "no diagnostics" in _text(screen, "#source-view")
         await pilot.press("m")
         summary = _text(screen, "#summary-text")
-        assert "mission ArmRecovery" in summary and "Robot-Tasks: Home, TrackPID" in summary
+        assert "mission ArmRecovery" in summary and "Robot-Tasks: Home, Park, TrackPID" in summary
         assert "declared inputs: Stop, Hold, Gripper" in summary
         await pilot.press("c")
         await _until(pilot, lambda: "all properties hold" in _text(screen, "#check-text"))
@@ -135,7 +135,8 @@ async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_reco
         log = _log(run)
         assert any("input     Stop raised by the user" in line for line in log)
         assert any("TrackPID (site 2) ends: killed" in line for line in log)
-        assert any("Home (site 1) starts" in line for line in log)
+        assert any("Park (site 1) starts" in line for line in log)
+        assert any("Park (site 1) ends: good_end" in line for line in log)
 
 
 @pilot_test
