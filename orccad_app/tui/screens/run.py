@@ -192,6 +192,15 @@ class RunScreen(Screen):
     def action_inject(self) -> None:
         self.query_one(InputBar).inject()
 
+    def raise_named(self, name: str) -> None:
+        """Raise input ``name``, or inject event or fault ``name`` (the command palette)."""
+        bar = self.query_one(InputBar)
+        signal = next((s for s in bar.inputs if s.name == name), None)
+        if signal is not None:
+            bar.request(bar.keyed.index(name) + 1) if name in bar.keyed else bar._raise(signal)
+        else:
+            bar.inject(name)
+
     def action_hold_mode(self) -> None:
         bar = self.query_one(InputBar)
         bar.cycle_mode()
