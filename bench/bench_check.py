@@ -33,7 +33,7 @@ from orccad_app.lang.parser import parse  # noqa: E402
 from orccad_app.plugins.host import default_host  # noqa: E402
 from orccad_app.robottask.model import check_tasks  # noqa: E402
 from orccad_app.verify.checker import check_mission  # noqa: E402
-from orccad_app.verify.composition import compose  # noqa: E402
+from orccad_app.robottask.composition import compose  # noqa: E402
 
 TARGET_SECONDS = 5.0
 

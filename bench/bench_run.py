@@ -27,8 +27,8 @@ import mujoco
 import numpy as np
 
 from orccad_app.control.spec import resolve
-from orccad_app.executive.mission_plan import plan_mission
-from orccad_app.executive.mission_run import MissionRun
+from orccad_app.mission.plan import plan_mission
+from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 from orccad_app.plugins.host import default_host
 
@@ -80,7 +80,7 @@ def main() -> int:
     args = parser.parse_args()
     host = default_host()
     source = load(MISSION)
-    plan = plan_mission(source, select_mission(source, None), host)
+    plan = plan_mission(source, select_mission(source, None))
     executive = [run_executive(plan) for _ in range(args.repeat)]
     bare = [run_bare(host) for _ in range(args.repeat)]
     exec_wall, exec_rms = min(executive)

@@ -16,8 +16,8 @@ import re
 import tempfile
 from pathlib import Path
 
-from orccad_app.executive.mission_plan import plan_mission
-from orccad_app.executive.mission_run import MissionRun
+from orccad_app.mission.plan import plan_mission
+from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 
 ROOT = Path(__file__).resolve().parents[1]

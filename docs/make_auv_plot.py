@@ -23,8 +23,9 @@ RUNS = (("nominal (done)", ()), ("leak at 100 s (aborted)", ("auv.leak=1@100",))
 
 def run_with_trace(injections: tuple[str, ...], path: Path):
     """Run the mission with a CSV trace at ``path``; return the run result."""
-    from orccad_app.executive.mission_plan import plan_mission
-    from orccad_app.executive.mission_run import MissionRun, parse_injection
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.injection import parse_injection
+    from orccad_app.mission.run import MissionRun
     from orccad_app.pipeline import load, select_mission
     from orccad_app.trace import TraceRecorder, open_trace
 

@@ -8,29 +8,54 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
-from orccad_app.robottask.application import (ABSTRACT, COMPOSED, AbstractApplicationLowerer,
-                                              ApplicationLowerer)
+from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
+from orccad_app.robottask.composition import Composition, compose
 
-__all__ = ["Source", "load", "select_mission", "compile_mission", "compile_mission_sites",
+if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a file has tasks
+    from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
+
+__all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
+           "require_missions", "compile_mission", "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
 
 @dataclass(frozen=True)
 class Source:
-    """A parsed and checked ``.orc`` file."""
+    """A parsed and checked ``.orc`` file.
+
+    :param path: the file's path.
+    :param text: its text.
+    :param program: its checked AST.
+    :param warnings: the checker's warnings.
+    :param instances: the checked Robot-Task instances (one per ``run`` site).
+    """
 
     path: str
     text: str
     program: ast.Program
     warnings: tuple = ()
+    tasks: TaskInstances | None = None
+
+    @property
+    def instances(self) -> TaskInstances:
+        """The checked Robot-Task instances (empty for a file without Robot-Tasks)."""
+        if self.tasks is None:
+            from orccad_app.robottask.model import TaskInstances
+            return TaskInstances({}, {})
+        return self.tasks
+
+    def instance(self, run: ast.Run) -> RobotTaskInstance:
+        """The checked Robot-Task instance of the ``run`` statement ``run``."""
+        return self.instances.by_run[run.loc]
 
     def print_warnings(self, stream=None) -> None:
         """Print the checker's warnings (``file:line:col: warning: …``) to ``stream``."""
@@ -42,19 +67,54 @@ class Source:
 def load(path: str | Path) -> Source:
     """Read, parse and check ``path``; errors are :class:`OrccadError` with locations."""
     path = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise OrccadError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise OrccadError(f"{path}: cannot read: {error}") from None
+    text = read_source(path)
     program = parse(text, path)
     result = check(program)
+    instances = None
     if program.robottasks:
         from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
-        check_tasks(program, default_host())
-    return Source(path, text, program, result.warnings)
+        instances = check_tasks(program, default_host())
+    if any(ast.is_signal_formula(p.formula) for p in program.properties):
+        from orccad_app.plugins.host import default_host
+        from orccad_app.verify.signal_types import check_signal_properties
+        check_signal_properties(program, default_host())
+    return Source(path, text, program, result.warnings, instances)
+
+
+#: Largest source file or script read [bytes] (a budget: see docs/limits.md).
+MAX_SOURCE_BYTES = 1_000_000
+
+
+def read_source(path: str | bytes, name: str | None = None) -> str:
+    """The text of the file ``path`` (or of the bytes ``path``, called ``name``): UTF-8, an
+    optional byte-order mark dropped; errors are located :class:`OrccadError`."""
+    if isinstance(path, bytes):
+        data, name = path, name or "<input>"
+    else:
+        name = str(path)
+        try:
+            with open(path, "rb") as handle:
+                data = handle.read(MAX_SOURCE_BYTES + 1)
+        except FileNotFoundError:
+            raise OrccadError(f"{path}: no such file") from None
+        except IsADirectoryError:
+            raise OrccadError(f"{path}: is a folder, not a file") from None
+        except OSError as error:
+            raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if len(data) > MAX_SOURCE_BYTES:
+        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES:_} bytes an input "
+                          "may have")
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        start = data.rfind(b"\n", 0, error.start) + 1
+        col = len(data[start:error.start].decode("utf-8", "replace")) + 1
+        raise OrccadError(f"not UTF-8 text: byte 0x{data[error.start]:02x} cannot be decoded "
+                          "(save the file as UTF-8)", SourceLocation(name, line, col)) from None
 
 
 def select_mission(source: Source, name: str | None) -> ast.Mission:
@@ -66,12 +126,21 @@ def select_mission(source: Source, name: str | None) -> ast.Mission:
             known = ", ".join(m.name for m in missions) or "none"
             raise OrccadError(f"{source.path}: no mission named '{name}' (missions: {known})")
         return mission
-    if not missions:
-        raise OrccadError(f"{source.path}: the file declares no mission")
+    require_missions(source)
     if len(missions) > 1:
         names = ", ".join(m.name for m in missions)
         raise OrccadError(f"{source.path}: several missions ({names}); choose one with --mission")
     return missions[0]
+
+
+def require_missions(source: Source) -> tuple[ast.Mission, ...]:
+    """The file's missions; a located error when it declares none."""
+    if source.program.missions:
+        return tuple(source.program.missions)
+    loc = source.program.loc
+    where = (SourceLocation(source.path, loc.line, loc.col) if loc.line > 0
+             else SourceLocation(source.path, 1, 1))
+    raise OrccadError("the file declares no mission (write 'mission NAME { ... }')", where)
 
 
 def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSED,
@@ -82,15 +151,14 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
     inlined: what is checked and run) or ``abstract`` (Robot-Tasks seen through their start
     and outcome signals: what ``orccad react`` drives). See :mod:`orccad_app.robottask.application`.
     """
-    lowerer = AbstractApplicationLowerer if view == ABSTRACT else ApplicationLowerer
-    return compile_program(lower_mission(source.program, mission, lowerer), max_states=max_states)
+    if view == ABSTRACT:
+        program = lower_mission(source.program, mission, AbstractApplicationLowerer)
+        return compile_program(program, max_states=max_states)
+    return compose_mission(source, mission, max_states=max_states).automaton
 
 
-def compile_mission_sites(source: Source, mission: ast.Mission, *,
-                          max_states: int = DEFAULT_MAX_STATES) -> tuple[Automaton, list]:
-    """The composed automaton of ``mission`` and its ``run`` sites
-    (:class:`~orccad_app.robottask.application.RunSite`, in source order: the ``site`` of the
-    labels ``("rt", X, site)``), for the executive, which instantiates each site's task."""
-    lowerer = ApplicationLowerer(source.program, mission)
-    automaton = compile_program(lowerer.lower(), max_states=max_states)
-    return automaton, list(lowerer.sites)
+def compose_mission(source: Source, mission: ast.Mission, *,
+                    max_states: int = DEFAULT_MAX_STATES) -> Composition:
+    """The composed automaton of ``mission`` with its ``run`` sites and signal roles (what the
+    checker and the mission layer start from)."""
+    return compose(source.program, mission, max_states=max_states)

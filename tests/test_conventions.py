@@ -25,6 +25,7 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 #: Modules whose distribution installs them where importlib.metadata cannot map them back
 #: (cmeel wheels put ``pinocchio`` under ``cmeel.prefix``).
 DISTRIBUTION_OF = {"pinocchio": "pin"}
+FEATURE_EXTRAS = ("cluster", "report")
 FIRST_PARTY = {"orccad_app", "orccad_control", "orccad_arm3dof", "orccad_observers", "orccad_auv"}
 
 
@@ -59,6 +60,10 @@ def test_the_package_is_marked_typed():
 
 def test_every_imported_third_party_package_is_declared():
     declared = {_requirement_name(r) for r in PYPROJECT["project"]["dependencies"]}
+    # a feature extra's packages are imported lazily by that feature, which says how to
+    # install them when they are missing (orccad campaign --cluster, --report)
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    declared |= {_requirement_name(r) for name in FEATURE_EXTRAS for r in extras[name]}
     folders = [ROOT / "orccad_app"] + [ROOT / "plugins" / name for name in FIRST_PARTY
                                        if (ROOT / "plugins" / name).is_dir()]
     imported = set().union(*(_imported_top_level(folder) for folder in folders))
@@ -71,3 +76,41 @@ def test_every_imported_third_party_package_is_declared():
         if not names & declared:
             undeclared[module] = sorted(names)
     assert not undeclared, f"imported but not in [project].dependencies: {undeclared}"
+
+
+def _children_of_orccad_app() -> set[str]:
+    package = ROOT / "orccad_app"
+    names = {p.stem for p in package.glob("*.py")} | {
+        p.name for p in package.iterdir() if (p / "__init__.py").is_file()}
+    return names - {"__init__"}
+
+
+def _contract(contract_id: str) -> dict:
+    contracts = PYPROJECT["tool"]["importlinter"]["contracts"]
+    return next(c for c in contracts if c["id"] == contract_id)
+
+
+def test_the_import_contracts_name_every_part_of_the_core():
+    """A new sub-package or module of orccad_app must be placed in the import contracts,
+    or it would escape them silently."""
+    children = _children_of_orccad_app()
+    layered = set()
+    for layer in _contract("layers")["layers"]:
+        layered |= {name.strip().strip("()") for name in re.split(r"[|:]", layer)}
+    assert children - layered == set(), "not in any layer of the 'layers' contract"
+    core = {m.removeprefix("orccad_app.")
+            for m in _contract("core-without-textual")["source_modules"]}
+    missing = children - core - {"tui", "__main__"}
+    assert not missing, f"missing from core-without-textual's source_modules: {sorted(missing)}"
+    forbidden = {m.removeprefix("orccad_app.")
+                 for m in _contract("plugins-through-the-api")["forbidden_modules"]}
+    missing = children - forbidden - {"plugin_api", "__main__"}
+    assert not missing, f"missing from plugins-through-the-api's forbidden_modules: {sorted(missing)}"
+
+
+def test_every_test_marked_slow_exists():
+    """tests/slow.py names tests by file and function: a renamed test must be renamed there."""
+    from tests.slow import SLOW
+    for node in sorted(SLOW):
+        path, function = node.split("::")
+        assert f"def {function}(" in (ROOT / path).read_text(encoding="utf-8"), node

@@ -23,7 +23,7 @@ import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -31,6 +31,7 @@ from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.errors import ControlError
 from orccad_app.control.module import PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
+from orccad_app.control.plant_extension import PlantExtension
 
 __all__ = ["RobotPort", "RobotType"]
 
@@ -78,6 +79,16 @@ class RobotType:
     timestep_s: float = 0.001
     params: tuple[ParamSpec, ...] = ()
     param_values: Mapping[str, Any] = field(default_factory=dict)
+
+    run_horizon_s: ClassVar[float] = 0.0
+    """Extension point: the default simulated-time limit of ``orccad run`` for missions on
+    this robot [s] (0: the command's default, 60 s); a subclass sets it (an AUV mission
+    lasts minutes)."""
+
+    def plant_extension(self) -> PlantExtension | None:
+        """Extension point: a fresh :class:`PlantExtension` for one run's plant (extra
+        physics, sensor ports, faults), or ``None`` (the default: the MJCF model alone)."""
+        return None
 
     @property
     def dof(self) -> int:

@@ -24,14 +24,14 @@ from orccad_app.control.kinds import ComponentKind
 from orccad_app.control.module import ModuleContext
 from orccad_app.control.params import ParamSpec, as_call
 
-__all__ = ["Spec", "Registries", "resolve", "module_context"]
+__all__ = ["Spec", "KindLookup", "resolve", "module_context"]
 
 
 class _Lookup(Protocol):
     def get(self, name: str) -> Any: ...
 
 
-class Registries(Protocol):
+class KindLookup(Protocol):
     """What :func:`resolve` needs: one registry per category (see ``orccad_app.plugins``)."""
 
     robot_types: _Lookup
@@ -57,7 +57,7 @@ class Spec:
         return self.kind.factory(dict(self.params), *deps)
 
 
-def _trajectory_resolver(registries: Registries):
+def _trajectory_resolver(registries: KindLookup):
     def resolve_trajectory(spec: ParamSpec, value: Any) -> Any:
         call = as_call(value)
         if call is None:
@@ -72,7 +72,7 @@ _CATEGORIES = {"control law": "control_laws", "task function": "task_functions",
                "trajectory": "trajectories"}
 
 
-def resolve(registries: Registries, category: str, call: Any) -> Spec:
+def resolve(registries: KindLookup, category: str, call: Any) -> Spec:
     """The :class:`Spec` of ``call`` (a call form, see :func:`~.params.as_call`) in
     ``category`` (``"control law"``, ``"task function"`` or ``"trajectory"``)."""
     if category not in _CATEGORIES:
@@ -86,7 +86,7 @@ def resolve(registries: Registries, category: str, call: Any) -> Spec:
     return Spec(kind, params)
 
 
-def module_context(registries: Registries, robot: str | Any | None = None,
+def module_context(registries: KindLookup, robot: str | Any | None = None,
                    task_function: Any = None, law: Any = None,
                    duration_s: float | None = None, robot_name: str | None = None,
                    robot_params: Mapping[str, Any] | None = None) -> ModuleContext:

@@ -1,8 +1,9 @@
-"""The timed executive (DESIGN.md §5, RR-1801 §6 SIMPARC).
+"""The timed executive (docs/design.md, RR-1801 §6 SIMPARC): it runs a TCS, nothing more.
 
 A discrete-event kernel runs Module-Task jobs on simulated processors under the 8 port
 protocols, with a FIFO bus between processors, dynamic deadlock detection, and a MuJoCo plant
-advanced between events. Observers see everything without reaching in.
+advanced between events. Observers see everything without reaching in. Missions (automata
+driving the Module-Tasks) are the mission layer's business (:mod:`orccad_app.mission`).
 """
 
 from orccad_app.executive.bus import Bus, BusStats
@@ -14,7 +15,7 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor, ProcessorStats
 from orccad_app.executive.scheduler import EarliestDeadlineFirst, FixedPriority, Scheduler
 from orccad_app.executive.simulation import RunStats, Simulation
-from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.executive.task_runtime import ComputeError, ModuleTaskRuntime
 
 __all__ = [
     "Simulation",
@@ -38,4 +39,5 @@ __all__ = [
     "TaskStats",
     "DeadlockError",
     "ComputeError",
+    "ModuleTaskRuntime",
 ]

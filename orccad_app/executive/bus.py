@@ -16,7 +16,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import EventClass, Kernel
 
 if TYPE_CHECKING:
-    from orccad_app.executive.simulation import Hooks
+    from orccad_app.executive.hooks import Hooks
 
 __all__ = ["Bus", "BusStats"]
 

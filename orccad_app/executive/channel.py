@@ -6,7 +6,7 @@ its message is delivered. Control signalling (a read releasing a blocked produce
 message, matching the table's traffic column: push protocols send one message per write (per
 transfer for ``syn/syn``), pull protocols a request and a reply per read.
 
-``read(job)`` returns the value or :data:`~orccad_app.executive.task_runtime.BLOCK`;
+``read(job)`` returns the value or :data:`~orccad_app.executive.block.BLOCK`;
 ``write(job, value)`` returns ``True`` when done, ``False`` when blocked. A blocked job is
 released through ``job.runtime.wake(job, value)``; the channel sets ``job.waits_for`` to the
 Module-Task that alone can release it (for dynamic deadlock detection).
@@ -16,14 +16,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Callable
 
-from orccad_app.executive.task_runtime import BLOCK
+from orccad_app.executive.block import BLOCK
 from orccad_app.tcs.connection import Connection
 from orccad_app.tcs.protocol import Protocol
 
 if TYPE_CHECKING:
     from orccad_app.executive.bus import Bus
-    from orccad_app.executive.job import Job
-    from orccad_app.executive.task_runtime import TaskRuntime
+    from orccad_app.executive.job import Job, JobOwner
 
 __all__ = ["Channel", "make_channel", "SensorChannel", "ActuatorChannel"]
 
@@ -41,8 +40,8 @@ class Channel:
     __slots__ = ("connection", "label", "protocol_name", "producer", "consumer", "bus", "value",
                  "writes", "reads")
 
-    def __init__(self, connection: Connection, producer: TaskRuntime | None,
-                 consumer: TaskRuntime | None, initial: Any, bus: Bus | None) -> None:
+    def __init__(self, connection: Connection, producer: JobOwner | None,
+                 consumer: JobOwner | None, initial: Any, bus: Bus | None) -> None:
         self.connection = connection
         self.label = connection.label
         self.protocol_name = connection.protocol.value
@@ -336,7 +335,7 @@ class AsynSynDF(Channel):
         if self.requester is job:
             self.arrived = True
             job.waits_for = self.producer
-            job.runtime.sim.check_deadlock(job)
+            job.runtime.check_deadlock(job)
 
     def cancel(self, job: Job) -> None:
         if self.requester is job:
@@ -348,7 +347,7 @@ class SensorChannel(Channel):
 
     __slots__ = ("plant", "port")
 
-    def __init__(self, connection: Connection, consumer: TaskRuntime, plant: Any) -> None:
+    def __init__(self, connection: Connection, consumer: JobOwner, plant: Any) -> None:
         super().__init__(connection, None, consumer, None, None)
         self.plant = plant
         self.port = connection.producer_port
@@ -363,7 +362,7 @@ class ActuatorChannel(Channel):
 
     __slots__ = ("plant", "port")
 
-    def __init__(self, connection: Connection, producer: TaskRuntime, plant: Any) -> None:
+    def __init__(self, connection: Connection, producer: JobOwner, plant: Any) -> None:
         super().__init__(connection, producer, None, None, None)
         self.plant = plant
         self.port = connection.consumer_port
@@ -386,7 +385,7 @@ _CLASSES: dict[Protocol, type[Channel]] = {
 }
 
 
-def make_channel(connection: Connection, producer: TaskRuntime, consumer: TaskRuntime,
+def make_channel(connection: Connection, producer: JobOwner, consumer: JobOwner,
                  initial: Any, bus: Bus | None) -> Channel:
     """The channel class of ``connection.protocol``, built."""
     return _CLASSES[connection.protocol](connection, producer, consumer, initial, bus)

@@ -10,15 +10,33 @@ partner has acted is ``WAKING`` until it resumes, later in the same instant. A k
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
-if TYPE_CHECKING:
-    from orccad_app.executive.task_runtime import TaskRuntime
-
-__all__ = ["Job", "TaskStats", "READING", "BLOCKED", "WAKING", "READY", "WRITING", "DONE",
+__all__ = ["Job", "JobOwner", "TaskStats", "READING", "BLOCKED", "WAKING", "READY", "WRITING", "DONE",
            "ABORTED"]
 
 READING, BLOCKED, WAKING, READY, WRITING, DONE, ABORTED = range(7)
+
+
+class JobOwner(Protocol):
+    """What jobs, processors, schedulers and channels use of the Module-Task running a job
+    (:class:`~orccad_app.executive.task_runtime.ModuleTaskRuntime`)."""
+
+    name: str
+    priority: int
+    stats: TaskStats
+
+    def compute(self, job: Job) -> None:
+        """``job`` got its processor for the first time: run the compute object."""
+
+    def compute_done(self, job: Job) -> None:
+        """``job``'s execution time is consumed: write its outputs."""
+
+    def wake(self, job: Job, value: Any = None) -> None:
+        """A protocol releases the blocked ``job`` (with the value it waited for)."""
+
+    def check_deadlock(self, job: Job) -> None:
+        """``job`` just blocked: raise if it closes a wait cycle."""
 
 
 class Job:
@@ -31,7 +49,7 @@ class Job:
                  "start_ns", "phase", "op", "inputs", "outputs", "blocked_since", "blocked_port",
                  "blocked_protocol", "waits_for", "wake_value", "wake_entry")
 
-    def __init__(self, runtime: TaskRuntime, index: int, seq: int, release_ns: int,
+    def __init__(self, runtime: JobOwner, index: int, seq: int, release_ns: int,
                  deadline_ns: int, duration_ns: int) -> None:
         self.runtime = runtime
         self.index = index
@@ -48,7 +66,7 @@ class Job:
         self.blocked_since = 0
         self.blocked_port = ""
         self.blocked_protocol = ""
-        self.waits_for: TaskRuntime | None = None
+        self.waits_for: JobOwner | None = None
         """While blocked: the Module-Task whose action alone can release this job (``None``
         when the bus or nothing in particular will)."""
         self.wake_value: Any = None

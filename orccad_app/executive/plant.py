@@ -38,6 +38,7 @@ from typing import Any, Mapping
 import mujoco
 import numpy as np
 
+from orccad_app.control.plant_extension import PlantExtension
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import Kernel
 from orccad_app.tcs.module_task import PhysicalResource
@@ -64,32 +65,6 @@ def _load(xml: str | None, path: str | None) -> mujoco.MjModel:
         return mujoco.MjModel.from_xml_path(str(path))
     except ValueError as error:
         raise OrccadError(f"cannot load MJCF model {path or '<string>'}: {error}") from None
-
-
-class PlantExtension:
-    """Extra physics, sensor ports and faults of a plant (a robot type's plugin provides it).
-
-    Subclasses set :attr:`sensors` (port -> dim) and :attr:`faults` (fault -> description
-    with its unit) and override the methods; the defaults do nothing.
-    """
-
-    sensors: Mapping[str, int] = {}
-    faults: Mapping[str, str] = {}
-
-    def bind(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        """Called once by the plant before the first step (keep ``model`` and ``data``)."""
-
-    def step(self, dt_s: float) -> None:
-        """Called before each integration step of ``dt_s`` [s]: set ``data.xfrc_applied`` /
-        ``qfrc_applied``, integrate the extension's own states (battery energy...)."""
-
-    def read(self, port: str) -> np.ndarray:
-        """The value of the sensor ``port`` now (an array; 0-d for a ``float`` port)."""
-        raise KeyError(port)
-
-    def inject(self, fault: str, value: Any) -> None:
-        """Apply the fault ``fault`` with ``value`` (a name of :attr:`faults`)."""
-        raise KeyError(fault)
 
 
 class MujocoPlant:
@@ -301,6 +276,38 @@ class MujocoPlant:
         if quantum:
             value = np.round(value / quantum) * quantum
         return value
+
+    def observe(self, port: str) -> np.ndarray:
+        """The true value of ``port`` now, for monitors (signal properties): no noise, no
+        sensor fault (an extension's ``true_value`` when it has one), the held command for
+        the actuator ``tau``. The plant is brought to now only when now is on its timestep
+        grid, which leaves the integration unchanged; otherwise the value is the state at the
+        plant's last instant (at most one timestep old). Observing never changes a run."""
+        now = self._kernel.now if self._kernel is not None else self._time_ns
+        if now > self._time_ns and now % self.timestep_ns == 0:
+            self.advance_to(now)
+        extension = self.extension
+        if extension is not None and port in extension.sensors and hasattr(extension,
+                                                                           "true_value"):
+            return np.asarray(extension.true_value(port), dtype=float)
+        if port == "tau" and port not in self._readers:
+            return self.data.ctrl.copy()
+        return np.asarray(self._readers[port](), dtype=float)
+
+    def peek(self, port: str) -> np.ndarray:
+        """The physical value sensor ``port`` measures at the plant's current time: no noise,
+        quantization or sensor fault (an extension's ``true_value``); it neither advances the
+        plant nor draws random numbers, so an observer's look cannot change the run."""
+        extension = self.extension
+        if extension is not None and port in extension.sensors:
+            true_value = getattr(extension, "true_value", extension.read)
+            return np.array(true_value(port), dtype=float)
+        return self._readers[port]()
+
+    @property
+    def sensor_ports(self) -> tuple[str, ...]:
+        """The names of the sensor ports."""
+        return tuple(self._readers)
 
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""

@@ -25,7 +25,7 @@ from orccad_app.executive.scheduler import Scheduler, make_scheduler
 
 if TYPE_CHECKING:
     from orccad_app.executive.job import Job
-    from orccad_app.executive.simulation import Hooks
+    from orccad_app.executive.hooks import Hooks
 
 __all__ = ["Processor", "ProcessorStats"]
 

@@ -27,28 +27,19 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus, BusStats
 from orccad_app.executive.channel import (ActuatorChannel, Channel, SensorChannel,
                                           make_channel)
-from orccad_app.executive.deadlock import describe_cycle, wait_cycle
+from orccad_app.executive.context import RunContext
+from orccad_app.executive.hooks import Hooks
 from orccad_app.executive.job import Job, TaskStats
 from orccad_app.executive.kernel import EventClass, Kernel
-from orccad_app.executive.observer import HOOKS, Observer, listeners
+from orccad_app.executive.observer import Observer
 from orccad_app.executive.processor import Processor, ProcessorStats
-from orccad_app.executive.task_runtime import TaskRuntime
+from orccad_app.executive.task_runtime import ModuleTaskRuntime
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import PhysicalResource
 
-__all__ = ["Simulation", "RunStats", "Hooks"]
+__all__ = ["Simulation", "RunStats"]
 
 _CONTROL = EventClass.CONTROL
-
-
-class Hooks:
-    """Per callback name, the list of observers' bound methods that override it."""
-
-    __slots__ = HOOKS
-
-    def __init__(self, observers: list[Observer]) -> None:
-        for hook in HOOKS:
-            setattr(self, hook, listeners(observers, hook))
 
 
 class _SignalCallback(Observer):
@@ -100,10 +91,12 @@ class Simulation:
         self.kernel = Kernel(seed)
         self._observers = list(observers)
         self.hooks = Hooks(self._observers)
+        self.context = RunContext(self.kernel, self.hooks)
         self.processors = self._processors(tcs, processors)
         self.bus = bus
         self.plants = self._plants(tcs, plants)
-        self.tasks = {task.name: TaskRuntime(self, task, self.processors[task.processor])
+        self.tasks = {task.name: ModuleTaskRuntime(self.context, task,
+                                                   self.processors[task.processor])
                       for task in tcs.module_tasks}
         self.channels: dict[str, Channel] = {}
         self.lateness_max_s = 0.0
@@ -186,9 +179,7 @@ class Simulation:
     def add_observer(self, observer: Observer) -> None:
         """Start calling ``observer``'s overridden callbacks."""
         self._observers.append(observer)
-        fresh = Hooks(self._observers)
-        for hook in HOOKS:
-            getattr(self.hooks, hook)[:] = getattr(fresh, hook)
+        self.hooks.refresh(self._observers)
 
     def on_signal(self, callback: Callable[[int, str, Any], None]) -> None:
         """Call ``callback(t_ns, name, value)`` for every signal (event port writes and
@@ -202,7 +193,7 @@ class Simulation:
         """The current simulated instant [ns]."""
         return self.kernel.now
 
-    def _runtimes(self, modules: Iterable[str] | str | None) -> list[TaskRuntime]:
+    def _runtimes(self, modules: Iterable[str] | str | None) -> list[ModuleTaskRuntime]:
         if modules is None:
             return list(self.tasks.values())
         if isinstance(modules, str):
@@ -344,10 +335,4 @@ class Simulation:
     def check_deadlock(self, job: Job) -> None:
         """Raise :class:`~orccad_app.executive.deadlock.DeadlockError` if ``job`` closes a
         wait cycle (called by the executive whenever a job blocks)."""
-        cycle = wait_cycle(job)
-        if cycle is None:
-            return
-        error = describe_cycle(cycle, self.kernel.now)
-        for hook in self.hooks.on_deadlock:
-            hook(self.kernel.now, error.cycle)
-        raise error
+        self.context.check_deadlock(job)

@@ -1,4 +1,4 @@
-"""The running instance of a Module-Task: releases, reads, compute, writes (DESIGN.md §5).
+"""The running instance of a Module-Task: releases, reads, compute, writes (docs/design.md, *The timed executive*).
 
 Job life cycle, all instants in [ns]:
 
@@ -24,38 +24,29 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.block import BLOCK
+from orccad_app.executive.context import RunContext
 from orccad_app.executive.job import (ABORTED, BLOCKED, DONE, READING, READY, WAKING, WRITING,
                                       Job, TaskStats)
 from orccad_app.executive.kernel import EventClass
+from orccad_app.executive.processor import Processor
 from orccad_app.tcs.module_task import ModuleTask
 
 if TYPE_CHECKING:
     from orccad_app.executive.channel import Channel
-    from orccad_app.executive.processor import Processor
-    from orccad_app.executive.simulation import Simulation
 
-__all__ = ["TaskRuntime", "ComputeError", "BLOCK"]
+__all__ = ["ModuleTaskRuntime", "ComputeError"]
 
 _RELEASE = EventClass.RELEASE
 _WAKE = EventClass.WAKE
 _DRAW_BLOCK = 256
 
 
-class _Blocked:
-    """The value a channel returns from a read that blocks."""
-
-    def __repr__(self) -> str:
-        return "BLOCK"
-
-
-BLOCK = _Blocked()
-
-
 class ComputeError(OrccadError):
     """A Module-Task's compute object raised or returned something that is not a dict."""
 
 
-class TaskRuntime:
+class ModuleTaskRuntime:
     """Runs one Module-Task inside a :class:`~orccad_app.executive.simulation.Simulation`.
 
     :attr:`reads` lists ``(port, channel)`` per connected input in port order;
@@ -63,8 +54,8 @@ class TaskRuntime:
     marks the port's own write (observers, signals) before its connections.
     """
 
-    def __init__(self, sim: Simulation, task: ModuleTask, processor: Processor) -> None:
-        self.sim = sim
+    def __init__(self, context: RunContext, task: ModuleTask, processor: Processor) -> None:
+        self.context = context
         self.task = task
         self.name = task.name
         self.priority = task.priority
@@ -74,14 +65,14 @@ class TaskRuntime:
         self.stats = TaskStats()
         self.active = False
         self.job: Job | None = None
-        self._kernel = sim.kernel
-        self._hooks = sim.hooks
+        self._kernel = context.kernel
+        self._hooks = context.hooks
         self._release_entry: list | None = None
         self._count = 0
         self._draws: list[int] = []
         self._rng = None
         if task.bcet_ns is not None and task.bcet_ns < task.wcet_ns:
-            self._rng = sim.kernel.stream(f"mt/{task.name}/duration")
+            self._rng = context.kernel.stream(f"mt/{task.name}/duration")
 
     # -- activation --------------------------------------------------------------------------
 
@@ -181,7 +172,11 @@ class TaskRuntime:
         job.blocked_protocol = channel.protocol_name
         for hook in self._hooks.on_block:
             hook(now, self.name, port, operation, channel.protocol_name)
-        self.sim.check_deadlock(job)
+        self.context.check_deadlock(job)
+
+    def check_deadlock(self, job: Job) -> None:
+        """``job`` just blocked: raise if it closes a wait cycle (the run's check)."""
+        self.context.check_deadlock(job)
 
     def wake(self, job: Job, value: Any = None) -> None:
         """Called by a channel: the blocked operation of ``job`` completes (with ``value``

@@ -42,9 +42,13 @@ from typing import Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 from orccad_app.lang.ast_expr import (VALUE_TYPES, Arg, Binary, Bool, Call, DurationLit, Expr,
-                                      LastValue, Name, Number, String, Unary, Vector, node)
-from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, Formula, FPredicate,
-                                         FSignal, FStatus, FUnary, Property)
+                                      LastValue, Name, Number, PreSignal, PreValue, String,
+                                      Unary, Vector, node)
+from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, FCompare, Formula,
+                                         FPredicate, FSignal, FStatus, FUnary, Interval,
+                                         Property, SArith, SCall, SignalExpr, SNeg, SNumber,
+                                         SPort, SIGNAL_FUNCTIONS, formula_nodes,
+                                         is_signal_formula)
 from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust, Connect,
                                            ExceptionDecl, ExceptionType, MeasurePostcondition,
                                            MeasurePrecondition, Module, Param, PortRef,
@@ -53,10 +57,11 @@ from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust, 
 
 __all__ = [
     # expressions
-    "Name", "Number", "String", "Bool", "Vector", "DurationLit", "LastValue", "Unary",
+    "Name", "Number", "String", "Bool", "Vector", "DurationLit", "LastValue", "PreSignal",
+    "PreValue", "Unary",
     "Binary", "Call", "Arg", "Expr",
     # declarations
-    "SignalDecl", "Direction", "Robot", "Param",
+    "SignalDecl", "Direction", "Robot", "Param", "Relation",
     # Robot-Tasks
     "PortRef", "Module", "Connect", "SignalPrecondition", "MeasurePrecondition",
     "ExceptionType", "Adjust", "ExceptionDecl", "MeasurePostcondition",
@@ -64,9 +69,11 @@ __all__ = [
     # statements
     "Trigger", "Block", "Nothing", "Pause", "Halt", "Emit", "Sustain", "Await", "Run", "If",
     "Loop", "Repeat", "Every", "Abort", "Suspend", "Trap", "Exit", "Catch", "Try", "Par",
-    "Race", "LocalSignals", "VarDecl", "Assign", "Stmt",
+    "Race", "LocalSignals", "VarDecl", "Assign", "RunMission", "Rename", "Fail", "Stmt",
     # missions, properties, root
     "Mission", "FSignal", "FPredicate", "FStatus", "FBool", "FUnary", "FBinary", "Formula",
+    "FCompare", "Interval", "SPort", "SNumber", "SCall", "SNeg", "SArith", "SignalExpr",
+    "is_signal_formula", "SIGNAL_FUNCTIONS", "formula_nodes",
     "Property", "Assumption", "Program", "SourceFile", "TopItem", "VALUE_TYPES",
 ]
 
@@ -88,17 +95,31 @@ class SignalDecl:
     """One signal: ``input A``, ``output Done : string``, or a local ``signal S``.
 
     ``type`` is ``None`` for a pure signal, else a value type name (``"float"``...).
+    ``init`` is the declared initial value (``output O : int := 0;``), ``combine`` how the
+    emissions of one instant combine (``+ * min max and or``).
     """
 
     name: str
     direction: Direction
     type: str | None = None
+    init: Expr | None = None
+    combine: str | None = None
     loc: SourceLocation = NOWHERE
 
     @property
     def valued(self) -> bool:
         """Whether the signal carries a value."""
         return self.type is not None
+
+
+@_node
+class Relation:
+    """``relation A # B # C;`` (``kind`` ``"#"``: never two together) or ``relation A => B;``
+    (``kind`` ``"=>"``: A present implies B present), between input signals."""
+
+    kind: str
+    signals: tuple[str, ...]
+    loc: SourceLocation = NOWHERE
 
 
 @_node
@@ -350,8 +371,38 @@ class Assign:
     loc: SourceLocation = NOWHERE
 
 
+@_node
+class Rename:
+    """``formal / actual`` in ``run mission M [...]``."""
+
+    formal: str
+    actual: str
+    loc: SourceLocation = NOWHERE
+
+
+@_node
+class RunMission:
+    """``run mission M [formal / actual, ...];`` - runs the sub-mission M, inlined, with its
+    signals bound to the caller's (renamed ones, others by name)."""
+
+    mission: str
+    renames: tuple[Rename, ...] = ()
+    mission_loc: SourceLocation = NOWHERE
+    loc: SourceLocation = NOWHERE
+
+
+@_node
+class Fail:
+    """``fail E;`` - raises exception E: caught by an enclosing ``try … catch E``, else the
+    mission ends ``failed(E)``."""
+
+    exception: str
+    loc: SourceLocation = NOWHERE
+
+
 Stmt = Union[Block, Nothing, Pause, Halt, Emit, Sustain, Await, Run, If, Loop, Repeat, Every,
-             Abort, Suspend, Trap, Exit, Try, Par, Race, LocalSignals, VarDecl, Assign]
+             Abort, Suspend, Trap, Exit, Try, Par, Race, LocalSignals, VarDecl, Assign,
+             RunMission, Fail]
 
 # --------------------------------------------------------------------------- missions
 
@@ -359,19 +410,22 @@ Stmt = Union[Block, Nothing, Pause, Halt, Emit, Sustain, Await, Run, If, Loop, R
 class Mission:
     """``mission NAME { declarations and statements [on fatal { ... }] }``.
 
-    ``signals`` are the mission-level ``input``/``output`` declarations in source order;
-    ``body`` holds the statements.
+    ``signals`` are the mission-level ``input``/``output`` declarations in source order (the
+    ``[signature]`` of a reusable sub-mission first); ``body`` holds the statements;
+    ``relations`` the mission's own relations between inputs.
     """
 
     name: str
     signals: tuple[SignalDecl, ...]
     body: Block
     on_fatal: Block | None = None
+    signature: tuple[SignalDecl, ...] = ()
+    relations: tuple[Relation, ...] = ()
     loc: SourceLocation = NOWHERE
 
 # --------------------------------------------------------------------------- root
 
-TopItem = Union[Robot, SignalDecl, RobotTask, Mission, Property, Assumption]
+TopItem = Union[Robot, SignalDecl, Relation, RobotTask, Mission, Property, Assumption]
 
 
 @_node
@@ -393,6 +447,11 @@ class Program:
     def signals(self) -> tuple[SignalDecl, ...]:
         """File-level ``input``/``output`` declarations (visible in every mission)."""
         return self._of(SignalDecl)
+
+    @property
+    def relations(self) -> tuple[Relation, ...]:
+        """File-level relations (assumed by every mission)."""
+        return self._of(Relation)
 
     @property
     def robottasks(self) -> tuple[RobotTask, ...]:

@@ -10,7 +10,7 @@ from typing import Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
-__all__ = ["node", "VALUE_TYPES", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
+__all__ = ["node", "VALUE_TYPES", "PreSignal", "PreValue", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
            "LastValue", "Unary", "Binary", "Arg", "Call", "Expr"]
 
 #: The decorator of every AST node class.
@@ -124,4 +124,21 @@ class Call:
         return next((a for a in self.args if a.name == name), None)
 
 
-Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, Unary, Binary, Call]
+@node
+class PreSignal:
+    """``pre(S)``: S was present in the previous instant (a presence test)."""
+
+    signal: str
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class PreValue:
+    """``pre(?S)``: the value of S at the end of the previous instant."""
+
+    signal: str
+    loc: SourceLocation = NOWHERE
+
+
+Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, PreSignal, PreValue,
+             Unary, Binary, Call]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
-from orccad_app.lang.walk import runs
+from orccad_app.lang.walk import nodes, runs
 from orccad_app.lang.declarations import check_type
 from orccad_app.lang.scope import (Binding, ConditionKind, NameKind, Problems, Scope,
                                    classify_condition, signal_leaves)
@@ -66,7 +66,7 @@ class MissionChecker:
             return
         if isinstance(expr, ast.Name):
             self._value_name(expr, scope)
-        elif isinstance(expr, ast.LastValue):
+        elif isinstance(expr, (ast.LastValue, ast.PreValue)):
             self._last_value(expr, scope)
         elif isinstance(expr, ast.Call):
             self.error(f"unknown function '{expr.func}' (missions have no functions)",
@@ -283,7 +283,9 @@ class MissionChecker:
         """Exceptions the ``run`` statements of ``body`` can raise (``None``: unknown)."""
         if self.tasks is None:
             return None
-        names: set[str] = set()
+        names: set[str] = {n.exception for n in nodes(body) if isinstance(n, ast.Fail)}
+        if any(isinstance(n, ast.RunMission) for n in nodes(body)):
+            return None  # a sub-mission may raise anything its Robot-Tasks raise
         for run in runs(body):
             task = self.tasks.get(run.task)
             if task is None:

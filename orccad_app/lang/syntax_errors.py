@@ -49,7 +49,7 @@ _TERMINAL_WORDS = {
 
 #: Terminals that start an expression, or continue one: left out of "expected ..." lists.
 _EXPRESSION_START = frozenset({"NAME", "INT", "FLOAT", "DURATION", "STRING", "LSQB", "LPAR",
-                               "QMARK", "MINUS", "NOT", "TRUE", "FALSE", "PI"})
+                               "QMARK", "MINUS", "NOT", "TRUE", "FALSE", "PI", "PRE"})
 _OPERATORS = frozenset({"+", "-", "*", "/", "<", "<=", ">", ">=", "==", "!=", "and", "or"})
 
 
@@ -141,6 +141,16 @@ def _statement_kind(tokens: list[_Tok]) -> str:
     return "statement"
 
 
+def _in_signal_declaration(tokens: list[_Tok]) -> bool:
+    """Whether the tokens end inside ``input``/``output``/``signal`` declarations."""
+    for tok in reversed(tokens):
+        if tok.text in (";", "{", "}"):
+            return False
+        if tok.text in ("input", "output", "signal"):
+            return True
+    return False
+
+
 def _characters_error(error: UnexpectedCharacters, loc: _Locator) -> OrccadError:
     pos = error.pos_in_stream
     rest = loc.text[pos:]
@@ -181,7 +191,8 @@ def _token_error(error: UnexpectedToken, loc: _Locator, keywords: frozenset[str]
     if token.type == "NAME" and prev is not None and prev.kind == "num":
         return OrccadError(f"bad duration unit '{token}' (expected one of "
                            f"{', '.join(UNITS)})", here)
-    if prev is not None and prev.kind == "word" and ":=" in texts:
+    if prev is not None and prev.kind == "word" and ":=" in texts \
+            and not _in_signal_declaration(before):  # `output O := 0;` is fine
         return _unknown_statement(prev, loc, keywords)
     if (prev is not None and prev.kind == "word" and prev.text not in keywords
             and token.type in ("NAME", "LPAR")):

@@ -43,19 +43,24 @@ class _NeedInput(Exception):
 class _Oracle:
     """Answers inputs from a fixed valuation and data tests from a depth-first prefix."""
 
-    __slots__ = ("valuation", "prefix", "asked", "answers")
+    __slots__ = ("valuation", "prefix", "asked", "answers", "relations")
 
-    def __init__(self, valuation: dict, prefix: list[bool]):
+    def __init__(self, valuation: dict, prefix: list[bool], relations=()):
         self.valuation = valuation
         self.prefix = prefix
         self.asked: dict[int, bool] = {}
         self.answers: list[bool] = []
+        self.relations = relations
 
     def input(self, signal: ir.SignalDecl) -> bool:
         try:
             return self.valuation[signal]
         except KeyError:
+            forced = _forced(signal, self.valuation, self.relations)
+            if forced is not None:
+                return forced
             raise _NeedInput(signal) from None
+
 
     def data(self, number: int) -> bool:
         answer = self.asked.get(number)
@@ -66,6 +71,23 @@ class _Oracle:
             self.answers.append(answer)
         return answer
 
+
+def _forced(signal: ir.SignalDecl, valuation: dict, relations) -> bool | None:
+    """The status of input ``signal`` the relations impose given ``valuation``, if any: the
+    transitions that would violate a relation are never built."""
+    for relation in relations:
+        if signal not in relation.signals:
+            continue
+        if relation.kind == "#":
+            if any(valuation.get(other) for other in relation.signals if other is not signal):
+                return False
+        else:
+            left, right = relation.signals
+            if signal is right and valuation.get(left) is True:
+                return True
+            if signal is left and valuation.get(right) is False:
+                return False
+    return None
 
 class _Explorer:
     def __init__(self, prep: Prepared, max_states: int):
@@ -83,7 +105,7 @@ class _Explorer:
         runs: list[Outcome] = []
         prefix: list[bool] = []
         while True:
-            oracle = _Oracle(valuation, prefix)
+            oracle = _Oracle(valuation, prefix, self.prep.program.relations)
             try:
                 runs.append(react(self.prep, state, oracle))
             except _NeedInput as need:
@@ -199,7 +221,7 @@ def _targets(tree):
 def _waiting(prep: Prepared, key) -> tuple:
     if key is BOOT or key == TERMINAL:
         return ()
-    return tuple(prep.pauses[pid].src.loc for pid in key)
+    return tuple(prep.pauses[pid].src.loc for pid in key if pid < prep.pre_base)
 
 
 def _labels_by_pause(prep: Prepared) -> list[frozenset]:
@@ -215,7 +237,7 @@ def _labels(by_pause: list[frozenset], key) -> frozenset:
     """Labels of the marked regions holding an active pause of control state ``key``."""
     if key is BOOT or key == TERMINAL:
         return frozenset()
-    return frozenset().union(*(by_pause[p] for p in key))
+    return frozenset().union(*(by_pause[p] for p in key if p < len(by_pause)))
 
 
 def _variables(prep: Prepared) -> tuple[ir.VarDecl, ...]:

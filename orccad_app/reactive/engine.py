@@ -60,15 +60,38 @@ class Outcome:
     state: tuple[int, ...]
 
 
+class _Values:
+    """What the walks of one reaction share about values (see :func:`react`).
+
+    ``not_ready`` holds the signal keys whose value may still change in this instant (an
+    emission of them is not yet sure, or waits for a value itself); ``None`` before the first
+    walk, when every signal with a valued emission counts as not ready. ``first_round`` gives
+    each data event (by node and occurrence) the walk where it first became sure and ready:
+    events are performed in that order, so a read of ``?S`` comes after every emission of S of
+    the instant, whatever parallel branch holds it.
+    """
+
+    __slots__ = ("round", "not_ready", "first_round", "sure_events")
+
+    def __init__(self) -> None:
+        self.round = 0
+        self.not_ready: set | None = None
+        self.first_round: dict = {}
+        self.sure_events = 0
+
+
 class _Walk:
     """Mutable scratch of one walk over the program."""
 
     __slots__ = ("prep", "active", "oracle", "env", "must", "can", "unknown", "unknown_at",
-                 "events", "next", "tested")
+                 "events", "next", "tested", "values", "unready", "blocked", "fresh",
+                 "occurrences", "active_set", "deferred_vars", "old_reads", "deferred_keys")
 
-    def __init__(self, prep: Prepared, active: tuple[int, ...], oracle: Oracle, env: dict):
+    def __init__(self, prep: Prepared, active: tuple[int, ...], oracle: Oracle, env: dict,
+                 values: _Values):
         self.prep = prep
         self.active = active
+        self.active_set = frozenset(active) if prep.pre_signals else frozenset()
         self.oracle = oracle
         self.env = env
         self.must: set = set()
@@ -78,12 +101,50 @@ class _Walk:
         self.events: list = []
         self.next: list[int] = []
         self.tested: set[int] = set()
+        self.values = values
+        self.unready: set = set()     # keys with an emission not sure or not ready yet
+        self.blocked: list = []       # (signal key, location) of reads that had to wait
+        self.fresh: set = set()       # local signals entered in surface mode (sure)
+        self.occurrences: dict = {}
+        self.deferred_vars: set = set()  # variables whose assignment waits for a value
+        self.old_reads: set = set()      # locals whose old incarnation has a read waiting
+        self.deferred_keys: set = set()  # new incarnations waiting for those reads
 
     # ------------------------------------------------------------------ helpers
     def selected(self, node: KNode) -> bool:
         active = self.active
         i = bisect_left(active, node.lo)
         return i < len(active) and active[i] < node.hi
+
+    def missing(self, expr: ir.Expr, scope: dict) -> list:
+        """What ``expr`` reads that is not final yet: signal keys, and variables whose
+        assignment waits (as ``("var", decl)``)."""
+        found: list = []
+        reads = _reads(expr, [], self.deferred_vars)
+        for decl in reads:
+            if type(decl) is tuple:
+                found.append(decl)
+            elif decl in self.prep.valued_emitted:
+                key = scope.get(decl, decl)
+                not_ready = self.values.not_ready
+                if not_ready is None or key in not_ready:
+                    found.append(key)
+                    if type(key) is tuple and key[1]:
+                        self.old_reads.add(decl)
+        return found
+
+    def block(self, waiting: list, loc) -> None:
+        self.blocked.extend((key, loc) for key in waiting if not _is_var(key))
+
+    def read_keys(self, expr: ir.Expr, scope: dict) -> tuple:
+        return tuple(scope.get(decl, decl) for decl in _reads(expr, []))
+
+    def record(self, occurrence, event: tuple) -> None:
+        """A sure data event; its order key is (first walk it was sure in, walk position)."""
+        n = self.occurrences.get(occurrence, 0)
+        self.occurrences[occurrence] = n + 1
+        first = self.values.first_round.setdefault((occurrence, n), self.values.round)
+        self.events.append(((first, len(self.events)), event))
 
     def test(self, test: ir.Test, scope: dict, sure: bool) -> bool | None:
         kind = type(test)
@@ -98,14 +159,25 @@ class _Walk:
                 self.unknown_at.setdefault(key, test.loc)
             return status
         if kind is ir.DataTest:
+            waiting = self.missing(test.expr, scope)
+            if waiting:
+                self.block(waiting, test.loc)
+                return None
             number = self.prep.data_test_index[id(test)]
             outcome = self.oracle.data(number)
             if sure and number not in self.tested:
                 # a test shared by two statements (suspend and watcher of an abort) is
                 # decided once per instant, at its first use
                 self.tested.add(number)
-                self.events.append(("test", number, outcome))
+                self.record(("test", number), ("test", number, outcome, None,
+                                               self.read_keys(test.expr, scope), test.loc))
             return outcome
+        if kind is ir.PreRef:
+            key = scope.get(test.signal, test.signal)
+            if type(key) is tuple and not key[1]:
+                return False  # a fresh incarnation of a local signal has no past
+            bit = self.prep.pre_base + self.prep.pre_signals.index(test.signal)
+            return bit in self.active_set
         if kind is ir.SigNot:
             value = self.test(test.operand, scope, sure)
             return None if value is None else not value
@@ -137,7 +209,7 @@ class _Walk:
                 self.next.append(node.pid)
             return 1, 2
         if kind == EMIT:
-            self._emit(node.src, sure, scope)
+            self._emit(node, sure, scope)
             return 0, 1
         if kind == PRESENT:
             return self._present(node, depth, sure, scope)
@@ -152,26 +224,58 @@ class _Walk:
         if kind == SUSPEND:
             return self._suspend(node, depth, sure, scope)
         if kind == ASSIGN:
-            if sure:
-                self.events.append(("assign", node.src.var, node.src.expr))
+            if not sure:
+                return None, 1
+            stmt = node.src
+            waiting = self.missing(stmt.expr, scope)
+            if waiting or stmt.var in self.deferred_vars:
+                # the assignment waits for a value; what reads the variable waits for it
+                self.block(waiting, stmt.loc)
+                self.deferred_vars.add(stmt.var)
+                return 0, 1
+            self.record(node.index, ("assign", stmt.var, _fresh_pre(self.prep, stmt.expr, scope),
+                                     None, self.read_keys(stmt.expr, scope), stmt.loc))
             return 0, 1
         if kind == LOCAL:
             inner = dict(scope)
             for decl in node.src.signals:
                 inner[decl] = (decl, depth)
+                if not depth and sure:
+                    self.fresh.add(decl)
+                    if decl in self.old_reads:
+                        # the old incarnation's value is still to be read in this instant
+                        self.deferred_keys.add((decl, False))
+                        self.unready.add((decl, False))
+                    elif decl.valued and (decl.init is not None or node.in_loop):
+                        # a new incarnation: ?S starts from the initial value (or none)
+                        self.record(node.index, ("init", decl, None, (decl, False), (),
+                                                 node.src.loc))
             return self.go(node.children[0], depth, sure, inner)
         if kind == MARK:
             return self.go(node.children[0], depth, sure, scope)
         assert kind == NOTHING
         return 0, 1
 
-    def _emit(self, stmt: ir.Emit, sure: bool, scope: dict) -> None:
+    def _emit(self, node: KNode, sure: bool, scope: dict) -> bool:
+        """Emits; False when the value must wait for another value of the instant."""
+        stmt = node.src
         key = scope.get(stmt.signal, stmt.signal)
         self.can.add(key)
         if sure:
             self.must.add(key)
-            if stmt.value is not None:
-                self.events.append(("emit", stmt.signal, stmt.value))
+        if stmt.value is None:
+            return True
+        if not sure or key in self.deferred_keys:
+            self.unready.add(key)
+            return True
+        waiting = self.missing(stmt.value, scope)
+        if waiting:
+            self.unready.add(key)
+            self.block(waiting, stmt.loc)
+            return True
+        self.record(node.index, ("emit", stmt.signal, _fresh_pre(self.prep, stmt.value, scope),
+                                 key, self.read_keys(stmt.value, scope), stmt.loc))
+        return True
 
     def _seq(self, node: KNode, depth: bool, sure: bool, scope: dict):
         children = node.children
@@ -268,15 +372,20 @@ class _Walk:
         return None, codes | 2
 
 
+#: Walks allowed for one reaction (each walk decides at least one status or value).
+MAX_WALKS = 10_000
+
+
 def react(prep: Prepared, state: tuple[int, ...] | None, oracle: Oracle) -> Outcome:
     """One reaction from ``state`` (``BOOT`` for the first instant) under ``oracle``."""
     env: dict = {}
     depth = state is not None
     active = state or ()
+    values = _Values()
     while True:
-        walk = _Walk(prep, active, oracle, env)
+        walk = _Walk(prep, active, oracle, env, values)
         must, _ = walk.go(prep.root, depth, True, {})
-        if not walk.unknown:
+        if not walk.unknown and not walk.blocked:
             break
         progress = False
         for key in walk.unknown:
@@ -285,12 +394,34 @@ def react(prep: Prepared, state: tuple[int, ...] | None, oracle: Oracle) -> Outc
             elif key not in walk.can:
                 env[key] = False
                 progress = True
-        if not progress:
-            _non_causal(walk)
+        if values.not_ready is None or walk.unready != values.not_ready:
+            progress = True
+        values.not_ready = walk.unready
+        if len(walk.events) > values.sure_events:
+            values.sure_events = len(walk.events)
+            progress = True
+        values.round += 1
+        if not progress or values.round > MAX_WALKS:
+            if walk.unknown:
+                _non_causal(walk)
+            key, loc = walk.blocked[0]
+            name = key[0].name if type(key) is tuple else key.name
+            raise OrccadError(f"non-causal program: the value of {name} is read in an instant "
+                              "where its emission depends on that read", loc)
     assert must is not None
     emitted = frozenset(k for k in walk.must if isinstance(k, ir.SignalDecl) and k.kind == ir.OUTPUT)
-    _check_value_order(walk)
-    return Outcome(tuple(walk.events), emitted, must, tuple(sorted(set(walk.next))))
+    events = _schedule(prep, walk)
+    state_out = sorted(set(walk.next))
+    for k, decl in enumerate(prep.pre_signals):
+        if decl.kind == ir.INPUT:
+            present = oracle.input(decl)
+        elif decl.kind == ir.LOCAL:
+            present = (decl, decl not in walk.fresh) in walk.must
+        else:
+            present = decl in walk.must
+        if present:
+            state_out.append(prep.pre_base + k)
+    return Outcome(events, emitted, must, tuple(state_out))
 
 
 def _non_causal(walk: _Walk):
@@ -301,35 +432,122 @@ def _non_causal(walk: _Walk):
         f"cannot be decided in this instant (it depends on itself)", walk.unknown_at[key])
 
 
-def _reads(expr: ir.Expr, out: set) -> set:
-    if isinstance(expr, ir.SigValue):
-        out.add(expr.signal)
-    elif isinstance(expr, ir.Unary):
-        _reads(expr.operand, out)
-    elif isinstance(expr, ir.Binary):
-        _reads(expr.left, out)
-        _reads(expr.right, out)
-    elif isinstance(expr, ir.VectorExpr):
+def _is_var(key) -> bool:
+    return type(key) is tuple and key[0] == "var"
+
+
+def _reads(expr: ir.Expr, out: list, variables: set = frozenset()) -> list:
+    """The signals whose value (``?S``, not ``pre(?S)``) ``expr`` reads, and
+    ``("var", v)`` for the variables of ``variables`` it reads."""
+    kind = type(expr)
+    if kind is ir.SigValue:
+        out.append(expr.signal)
+    elif kind is ir.VarRef:
+        if expr.var in variables:
+            out.append(("var", expr.var))
+    elif kind is ir.Unary:
+        _reads(expr.operand, out, variables)
+    elif kind is ir.Binary:
+        _reads(expr.left, out, variables)
+        _reads(expr.right, out, variables)
+    elif kind is ir.VectorExpr:
         for item in expr.items:
-            _reads(item, out)
+            _reads(item, out, variables)
     return out
 
 
-def _check_value_order(walk: _Walk) -> None:
-    """``?S`` read before ``emit S(v)`` in the same instant would see a stale value."""
-    emitters = {e[1] for e in walk.events if e[0] == "emit"}
-    if not emitters:
-        return
-    done: set = set()
-    for event in walk.events:
-        if event[0] == "test":
-            expr = walk.prep.data_tests[event[1]].expr
-        else:
-            expr = event[2]
-        for signal in _reads(expr, set()) & emitters:
-            if signal not in done:
+def _fresh_pre(prep: Prepared, expr: ir.Expr, scope: dict) -> ir.Expr:
+    """``expr`` with ``pre(?S)`` of a local signal in its first instant (a fresh incarnation)
+    replaced by S's initial value: the fresh signal has no past (Esterel v5)."""
+    fresh = [d for d, key in scope.items() if type(key) is tuple and not key[1]]
+    if not fresh or not _has_pre(expr, fresh):
+        return expr
+    return _made(prep, ("fresh", id(expr), tuple(id(d) for d in fresh)),
+                 lambda: _substitute_pre(expr, fresh))
+
+
+def _has_pre(expr: ir.Expr, decls: list) -> bool:
+    kind = type(expr)
+    if kind is ir.PreValue:
+        return expr.signal in decls
+    if kind is ir.Unary:
+        return _has_pre(expr.operand, decls)
+    if kind is ir.Binary:
+        return _has_pre(expr.left, decls) or _has_pre(expr.right, decls)
+    if kind is ir.VectorExpr:
+        return any(_has_pre(i, decls) for i in expr.items)
+    return False
+
+
+def _substitute_pre(expr: ir.Expr, decls: list) -> ir.Expr:
+    kind = type(expr)
+    if kind is ir.PreValue and expr.signal in decls:
+        if expr.signal.init is None:
+            return ir.Fault(f"pre(?{expr.signal.name}) is read in the first instant of local "
+                            f"signal {expr.signal.name}, which has no initial value", expr.loc)
+        return ir.Const(expr.signal.init, expr.loc)
+    if kind is ir.Unary:
+        return ir.Unary(expr.op, _substitute_pre(expr.operand, decls), expr.loc)
+    if kind is ir.Binary:
+        return ir.Binary(expr.op, _substitute_pre(expr.left, decls),
+                         _substitute_pre(expr.right, decls), expr.loc)
+    if kind is ir.VectorExpr:
+        return ir.VectorExpr(tuple(_substitute_pre(i, decls) for i in expr.items), expr.loc)
+    return expr
+
+
+def _made(prep: Prepared, key: tuple, make):
+    found = prep.made.get(key)
+    if found is None:
+        found = prep.made[key] = make()
+    return found
+
+
+def _schedule(prep: Prepared, walk: _Walk) -> tuple:
+    """The instant's run-time events in execution order (see :class:`_Values`).
+
+    A second emission of a valued signal combines with the first (``combine``); without
+    ``combine`` it is a compile error when no data test of the instant could rule it out, and
+    otherwise a :class:`~orccad_app.reactive.ir.Fault` raised at run time if it happens.
+    """
+    ordered = [event for _, event in sorted(walk.events, key=lambda e: e[0])]
+    first_at: dict = {}
+    written: set = set()
+    tested = False
+    out: list = []
+    for kind, target, expr, key, reads, loc in ordered:
+        for read in reads:
+            if type(read) is tuple and read[1] and (read[0], False) in written:
                 raise OrccadError(
-                    f"non-causal program: the value of {signal.name} is read before it is "
-                    "emitted in the same instant", getattr(expr, "loc", None))
-        if event[0] == "emit":
-            done.add(event[1])
+                    f"the value of the previous incarnation of local signal {read[0].name} is "
+                    "read after its new incarnation was given a value in the same instant "
+                    "(not supported: read it before the loop restarts)", loc)
+        if kind == "test":
+            tested = True
+            out.append(("test", target, expr))
+        elif kind == "assign":
+            out.append(("assign", target, expr))
+        elif kind == "init":
+            written.add(key)
+            value = _made(prep, ("init", target), lambda: ir.Const(
+                ir.NO_VALUE if target.init is None else target.init, loc))
+            out.append(("emit", target, value))
+        else:
+            written.add(key)
+            if key not in first_at:
+                first_at[key] = loc
+                out.append(("emit", target, expr))
+            elif target.combine is not None:
+                out.append(("emit", target, _made(prep, ("combine", id(expr)), lambda: ir.Binary(
+                    target.combine, ir.SigValue(target, loc), expr, loc))))
+            elif tested:
+                message = (f"signal {target.name} is emitted twice in one instant (first at "
+                           f"{first_at[key]}) and declares no 'combine'")
+                out.append(("emit", target, _made(prep, ("fault", id(expr)),
+                                                  lambda: ir.Fault(message, loc))))
+            else:
+                raise OrccadError(
+                    f"signal {target.name} is emitted twice in one instant (first at "
+                    f"{first_at[key]}): declare how its values combine, e.g. "
+                    f"'output {target.name} : {target.type} combine +;'", loc)
+    return tuple(out)

@@ -89,12 +89,23 @@ def to_summary(automaton: Automaton) -> str:
             where = ", ".join(str(loc) for loc in automaton.waiting[t.source])
             label = "initial" if t.source == automaton.initial else f"waiting at {where}" \
                 if where else "terminated"
-            lines.append(f"state {t.source} ({label})")
+            lines.append(f"state {t.source} ({label}{_missions_in(automaton, t.source)})")
         effects = [_action_text(a) for a in t.actions] + [s.name for s in t.emitted]
         tail = f" / {', '.join(effects)}" if effects else ""
         status = f" [{t.status}]" if t.status != "running" else ""
         lines.append(f"  {guard_text(automaton, t)}{tail} -> {t.target}{status}")
     return "\n".join(lines)
+
+
+def mission_labels(automaton: Automaton, state: int) -> list[str]:
+    """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
+    labels = automaton.labels[state] if automaton.labels else ()
+    return sorted(f"{label[1]}#{label[2]}" for label in labels if label[0] == "mission")
+
+
+def _missions_in(automaton: Automaton, state: int) -> str:
+    inside = mission_labels(automaton, state)
+    return f"; in mission {', '.join(inside)}" if inside else ""
 
 
 def _quote(text: str) -> str:

@@ -6,18 +6,44 @@ automaton: variables, last signal values and the clock of the instant in integer
 
 from __future__ import annotations
 
+import math
 import operator
 from typing import Any, Callable
 
+from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 
 __all__ = ["Store", "compile_expr", "format_expr", "format_test", "Unset"]
 
 _BINARY: dict[str, Callable[[Any, Any], Any]] = {
-    "+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
+    "+": operator.add, "-": operator.sub, "*": operator.mul,
     "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
-    "==": operator.eq, "!=": operator.ne,
+    "==": operator.eq, "!=": operator.ne, "min": min, "max": max,
+    "last": lambda first, second: second,
 }
+
+
+def _divide(left: Any, right: Any) -> Any:
+    """``/``: integer division truncating toward zero when both sides are integers (as in
+    Esterel and C: ``7 / 2`` is 3, ``-7 / 2`` is -3), else real division."""
+    if type(left) is int and type(right) is int:
+        quotient = abs(left) // abs(right)  # ZeroDivisionError for 0: a run-time error
+        return quotient if (left < 0) == (right < 0) else -quotient
+    return operator.truediv(left, right)
+
+
+_BINARY["/"] = _divide
+
+
+def _checked(value: Any) -> Any:
+    """An arithmetic result, checked: integers stay within 64 bits, reals finite
+    (``docs/limits.md``); else :class:`OverflowError`, reported as a located run-time error."""
+    kind = type(value)
+    if kind is int and not MIN_INT <= value <= MAX_INT:
+        raise OverflowError(f"integer overflow (the result is outside [{MIN_INT}, {MAX_INT}])")
+    if kind is float and not math.isfinite(value):
+        raise OverflowError(f"the result is not a finite number ({value})")
+    return value
 
 
 class Unset(LookupError):
@@ -27,12 +53,14 @@ class Unset(LookupError):
 class Store:
     """Data memory of a running automaton."""
 
-    __slots__ = ("vars", "values", "clock_ns")
+    __slots__ = ("vars", "values", "clock_ns", "previous")
 
     def __init__(self) -> None:
         self.vars: dict[ir.VarDecl, Any] = {}
         self.values: dict[ir.SignalDecl, Any] = {}
         self.clock_ns = 0
+        #: values at the end of the previous instant, of the signals read by ``pre(?S)``
+        self.previous: dict[ir.SignalDecl, Any] = {}
 
 
 def _var(decl: ir.VarDecl):
@@ -44,13 +72,23 @@ def _var(decl: ir.VarDecl):
     return read
 
 
-def _value(decl: ir.SignalDecl):
+def _value(decl: ir.SignalDecl, table: str = "values", text: str = "?{0}"):
     def read(store: Store):
-        try:
-            return store.values[decl]
-        except KeyError:
-            raise Unset(f"?{decl.name} is read before {decl.name} ever had a value") from None
+        value = getattr(store, table).get(decl, ir.NO_VALUE)
+        if value is ir.NO_VALUE:
+            raise Unset(f"{text.format(decl.name)} is read before {decl.name} ever had a "
+                        "value (declare an initial value: 'output "
+                        f"{decl.name} : {decl.type} := …;')")
+        return value
     return read
+
+
+def _fault(expr: ir.Fault):
+    message = expr.message
+
+    def fail(store: Store):
+        raise Unset(message)
+    return fail
 
 
 def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
@@ -63,6 +101,10 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
         return _var(expr.var)
     if kind is ir.SigValue:
         return _value(expr.signal)
+    if kind is ir.PreValue:
+        return _value(expr.signal, "previous", "pre(?{0})")
+    if kind is ir.Fault:
+        return _fault(expr)
     if kind is ir.Clock:
         return lambda store: store.clock_ns
     if kind is ir.VectorExpr:
@@ -71,7 +113,7 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
     if kind is ir.Unary:
         inner = compile_expr(expr.operand)
         if expr.op == "-":
-            return lambda store: -inner(store)
+            return lambda store: _checked(-inner(store))
         return lambda store: not inner(store)
     left, right = compile_expr(expr.left), compile_expr(expr.right)
     if expr.op == "and":
@@ -79,7 +121,12 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
     if expr.op == "or":
         return lambda store: bool(left(store)) or bool(right(store))
     op = _BINARY[expr.op]
+    if expr.op in _ARITHMETIC:
+        return lambda store: _checked(op(left(store), right(store)))
     return lambda store: op(left(store), right(store))
+
+
+_ARITHMETIC = frozenset({"+", "-", "*", "/"})
 
 
 _PRECEDENCE = {"or": 1, "and": 2, "<": 3, "<=": 3, ">": 3, ">=": 3, "==": 3, "!=": 3,
@@ -96,6 +143,10 @@ def format_expr(expr: ir.Expr, parent: int = 0) -> str:
         return expr.var.name
     if kind is ir.SigValue:
         return f"?{expr.signal.name}"
+    if kind is ir.PreValue:
+        return f"pre(?{expr.signal.name})"
+    if kind is ir.Fault:
+        return f"error({expr.message!r})"
     if kind is ir.Clock:
         return "clock"
     if kind is ir.VectorExpr:
@@ -103,6 +154,8 @@ def format_expr(expr: ir.Expr, parent: int = 0) -> str:
     if kind is ir.Unary:
         sep = " " if expr.op == "not" else ""
         return f"{expr.op}{sep}{format_expr(expr.operand, 6)}"
+    if expr.op in ("min", "max", "last"):
+        return f"{expr.op}({format_expr(expr.left)}, {format_expr(expr.right)})"
     prec = _PRECEDENCE[expr.op]
     text = f"{format_expr(expr.left, prec)} {expr.op} {format_expr(expr.right, prec + 1)}"
     return f"({text})" if prec < parent else text
@@ -112,6 +165,8 @@ def format_test(test: ir.Test) -> str:
     """Source-like text of a presence test or data test."""
     if isinstance(test, ir.SigRef):
         return test.signal.name
+    if isinstance(test, ir.PreRef):
+        return f"pre({test.signal.name})"
     if isinstance(test, ir.DataTest):
         return format_expr(test.expr)
     if isinstance(test, ir.SigNot):

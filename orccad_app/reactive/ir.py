@@ -28,20 +28,31 @@ it comes from, so compile errors point at the user's text.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import Any, Hashable, Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
 __all__ = [
     "SignalDecl", "VarDecl", "TrapDecl",
-    "Const", "VarRef", "SigValue", "Clock", "Unary", "Binary", "VectorExpr", "Expr",
-    "SigRef", "SigNot", "SigAnd", "SigOr", "DataTest", "Test",
+    "Const", "VarRef", "SigValue", "PreValue", "Fault", "Clock", "Unary", "Binary", "VectorExpr", "Expr",
+    "SigRef", "PreRef", "SigNot", "SigAnd", "SigOr", "DataTest", "Test",
     "Nothing", "Pause", "Emit", "Present", "Seq", "Loop", "Par", "Trap", "Exit",
     "Suspend", "Local", "Assign", "Mark", "Stmt", "Program",
-    "INPUT", "OUTPUT", "LOCAL",
+    "INPUT", "OUTPUT", "LOCAL", "Relation", "NO_VALUE",
 ]
 
 INPUT, OUTPUT, LOCAL = "input", "output", "local"
+
+
+class _NoValue:
+    """The value of a signal that never had one (a fresh incarnation without initial value)."""
+
+    def __repr__(self) -> str:
+        return "no value"
+
+
+#: Stored as the value of a fresh local signal without initial value: reading it is an error.
+NO_VALUE = _NoValue()
 
 
 # --------------------------------------------------------------------------- declarations
@@ -57,6 +68,11 @@ class SignalDecl:
     kind: str
     type: str | None = None
     loc: SourceLocation = NOWHERE
+    #: the initial value (a Python value) of ``?S`` before any emission; ``None``: none
+    init: Any = None
+    #: how the emissions of one instant combine (``+ * min max and or``); ``None``: a second
+    #: emission in an instant is an error
+    combine: str | None = None
 
     @property
     def valued(self) -> bool:
@@ -103,6 +119,24 @@ class SigValue:
 
 
 @dataclass(frozen=True, slots=True, eq=False)
+class PreValue:
+    """``pre(?S)``: the value of S at the end of the previous instant (its initial value at
+    the first instant)."""
+
+    signal: SignalDecl
+    loc: SourceLocation = NOWHERE
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Fault:
+    """A run-time error raised when evaluated (made by the compiler, e.g. for two emissions of
+    a valued signal without ``combine`` in an instant the compiler could not rule out)."""
+
+    message: str
+    loc: SourceLocation = NOWHERE
+
+
+@dataclass(frozen=True, slots=True, eq=False)
 class Clock:
     """The executive clock of the current instant, in integer nanoseconds."""
 
@@ -130,13 +164,22 @@ class VectorExpr:
     loc: SourceLocation = NOWHERE
 
 
-Expr = Union[Const, VarRef, SigValue, Clock, Unary, Binary, VectorExpr]
+Expr = Union[Const, VarRef, SigValue, PreValue, Fault, Clock, Unary, Binary, VectorExpr]
 
 
 # --------------------------------------------------------------------------- tests
 
 @dataclass(frozen=True, slots=True, eq=False)
 class SigRef:
+    signal: SignalDecl
+    loc: SourceLocation = NOWHERE
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class PreRef:
+    """``pre(S)``: S was present in the previous instant (absent at the first instant of the
+    program, or of the incarnation of a local signal)."""
+
     signal: SignalDecl
     loc: SourceLocation = NOWHERE
 
@@ -169,7 +212,7 @@ class DataTest:
     loc: SourceLocation = NOWHERE
 
 
-Test = Union[SigRef, SigNot, SigAnd, SigOr, DataTest]
+Test = Union[SigRef, PreRef, SigNot, SigAnd, SigOr, DataTest]
 
 
 # --------------------------------------------------------------------------- statements
@@ -265,13 +308,34 @@ class Mark:
     Robot-Task instance is active, and in which phase).
     """
 
-    label: tuple
+    label: Hashable
     body: "Stmt"
     loc: SourceLocation = NOWHERE
 
 
 Stmt = Union[Nothing, Pause, Emit, Present, Seq, Loop, Par, Trap, Exit, Suspend, Local, Assign,
              Mark]
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Relation:
+    """An assumption on the inputs of every instant: ``A # B # C`` (``kind`` ``"#"``: at most
+    one present) or ``A => B`` (``kind`` ``"=>"``: A present implies B present)."""
+
+    kind: str
+    signals: tuple[SignalDecl, ...]
+    loc: SourceLocation = NOWHERE
+
+    @property
+    def text(self) -> str:
+        return f" {self.kind} ".join(s.name for s in self.signals)
+
+    def holds(self, present) -> bool:
+        """Whether a set of present input *names* satisfies the relation."""
+        names = [s.name in present for s in self.signals]
+        if self.kind == "#":
+            return sum(names) <= 1
+        return not names[0] or names[1]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -289,3 +353,4 @@ class Program:
     loc: SourceLocation = NOWHERE
     failed: SignalDecl | None = None
     aborted: SignalDecl | None = None
+    relations: tuple[Relation, ...] = ()

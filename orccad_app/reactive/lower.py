@@ -64,9 +64,47 @@ def mission_interface(program: ast.Program, mission: ast.Mission | None) -> tupl
             raise OrccadError(f"signal '{decl.name}' is declared twice (first at "
                               f"{seen[decl.name]})", decl.loc)
         seen[decl.name] = decl.loc
-        lowered = ir.SignalDecl(decl.name, _kind(decl.direction), decl.type, decl.loc)
+        lowered = signal_decl(decl, _kind(decl.direction))
         (inputs if lowered.kind == ir.INPUT else outputs).append(lowered)
     return tuple(inputs), tuple(outputs)
+
+
+_COMBINE_TYPES = {"+": ("int", "float", "vector", "string"), "*": ("int", "float"),
+                  "min": ("int", "float"), "max": ("int", "float"), "and": ("bool",),
+                  "or": ("bool",)}
+
+
+def _constant(e: ast.Expr, kind: str | None):
+    """The value of a constant initial-value expression, checked against the type."""
+    if isinstance(e, ast.Unary) and e.op == "-" and isinstance(e.operand, ast.Number):
+        value = -e.operand.value
+    elif isinstance(e, (ast.Number, ast.String, ast.Bool)):
+        value = e.value
+    elif isinstance(e, ast.Vector) and all(isinstance(i, ast.Number) for i in e.items):
+        value = tuple(float(i.value) for i in e.items)
+    else:
+        raise OrccadError("an initial value must be a constant (a number, string, boolean "
+                          "or vector of numbers)", e.loc)
+    ok = {"int": lambda v: isinstance(v, int) and not isinstance(v, bool),
+          "float": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+          "bool": lambda v: isinstance(v, bool), "string": lambda v: isinstance(v, str),
+          "vector": lambda v: isinstance(v, tuple), "duration": lambda v: False}
+    if kind is None or not ok.get(kind, lambda v: True)(value):
+        raise OrccadError(f"initial value {value!r} does not fit the signal's type "
+                          f"{kind or '(pure)'}", e.loc)
+    return float(value) if kind == "float" else value
+
+
+def signal_decl(decl: ast.SignalDecl, kind: str) -> ir.SignalDecl:
+    """The kernel declaration of ``decl``: initial value and combine operator checked."""
+    init = None if decl.init is None else _constant(decl.init, decl.type)
+    if decl.combine is not None:
+        allowed = _COMBINE_TYPES[decl.combine]
+        if decl.type not in allowed:
+            raise OrccadError(f"'combine {decl.combine}' needs a signal of type "
+                              f"{' or '.join(allowed)}, not {decl.type or 'a pure signal'}",
+                              decl.loc)
+    return ir.SignalDecl(decl.name, kind, decl.type, decl.loc, init, decl.combine)
 
 
 def lower_mission(program: ast.Program, mission: ast.Mission,
@@ -100,7 +138,28 @@ class Lowerer:
         if self.mission.on_fatal is not None:
             not_yet("'on fatal'", self.mission.on_fatal.loc)
         body = self.block(self.mission.body, self.scope)
-        return ir.Program(self.mission.name, self.inputs, self.outputs, body, self.mission.loc)
+        return ir.Program(self.mission.name, self.inputs, self.outputs, body, self.mission.loc,
+                          relations=self.relations())
+
+    def relations(self) -> tuple[ir.Relation, ...]:
+        """The file's and the mission's relations, over the mission's inputs."""
+        out = []
+        file_level = self.source.relations
+        for relation in (*file_level, *self.mission.relations):
+            decls = []
+            for name in relation.signals:
+                decl = self.scope.signals.get(name)
+                if decl is None:
+                    if any(relation is r for r in file_level):
+                        break  # a file-level relation over another mission's signals
+                    raise OrccadError(f"relation: undeclared signal '{name}'", relation.loc)
+                if decl.kind != ir.INPUT:
+                    raise OrccadError(f"relation {name}: '{name}' is not an input signal "
+                                      "(relations constrain the environment)", relation.loc)
+                decls.append(decl)
+            else:
+                out.append(ir.Relation(relation.kind, tuple(decls), relation.loc))
+        return tuple(out)
 
     # ------------------------------------------------------------------ statements
     def block(self, block: ast.Block, scope: Scope) -> ir.Stmt:
@@ -155,6 +214,9 @@ class Lowerer:
         body = self.block(s.body, scope)
         if s.each is None:
             return ir.Loop(body, s.loc)
+        if s.each.count is not None:
+            run = self.counted_abort(d.seq(body, d.halt(s.loc)), s.each, scope, s.loc)
+            return ir.Loop(run, s.loc, "loop … each")
         setup, test, rearm = self.trigger(s.each, scope, "loop … each")
         run = d.abort(d.seq(body, d.halt(s.loc)), test, loc=s.loc)
         return d.seq(*setup, ir.Loop(d.seq(run, *rearm), s.loc, "loop … each"))
@@ -166,21 +228,46 @@ class Lowerer:
         body = self.block(s.body, scope)
         if s.trigger.duration_ns is not None:
             return d.every_duration(ir.Const(s.trigger.duration_ns, s.trigger.loc), body, s.loc)
-        self._no_count(s.trigger, "every")
         test = self.condition(s.trigger.condition, scope)
+        if s.trigger.count is not None:
+            # every n S { p } = await n S; loop { abort { p; halt } when n S }
+            start = d.await_count(self.expr(s.trigger.count, scope), test, s.loc)
+            run = self.counted_abort(d.seq(body, d.halt(s.loc)), s.trigger, scope, s.loc)
+            return d.seq(start, ir.Loop(run, s.loc, "every"))
         return d.every_signal(test, body, immediate=s.trigger.immediate, loc=s.loc)
 
+    def counted_abort(self, body: ir.Stmt, trigger: ast.Trigger, scope: Scope,
+                      loc: SourceLocation, weak: bool = False,
+                      handler: ir.Stmt | None = None) -> ir.Stmt:
+        """``abort body when n S``: a watcher counts the occurrences (``await n S``) and emits
+        a hidden local signal that preempts the body, as Esterel v5 expands it."""
+        if trigger.immediate:
+            raise OrccadError("a counted trigger cannot be 'immediate'", trigger.loc)
+        reached = ir.SignalDecl("_counted", ir.LOCAL, None, trigger.loc)
+        test = self.condition(trigger.condition, scope)
+        watcher = d.seq(d.await_count(self.expr(trigger.count, scope), test, loc),
+                        ir.Emit(reached, None, loc), d.halt(loc))
+        done = ir.TrapDecl("_counted_done", loc)
+        preempted = d.abort(body, ir.SigRef(reached, loc), weak=weak, handler=handler, loc=loc)
+        return ir.Local((reached,), ir.Trap(done, ir.Par(
+            (d.seq(preempted, ir.Exit(done, loc)), watcher), loc), loc), loc)
+
     def _abort(self, s: ast.Abort, scope: Scope) -> ir.Stmt:
-        setup, test, _ = self.trigger(s.trigger, scope, "abort")
         handler = None if s.handler is None else self.block(s.handler, scope)
         body = self.block(s.body, scope)
+        if s.trigger.count is not None:
+            return self.counted_abort(body, s.trigger, scope, s.loc, s.weak, handler)
+        setup, test, _ = self.trigger(s.trigger, scope, "abort")
         return d.seq(*setup, d.abort(body, test, weak=s.weak, immediate=s.trigger.immediate,
                                      handler=handler, loc=s.loc))
 
     def _suspend(self, s: ast.Suspend, scope: Scope) -> ir.Stmt:
         if s.trigger.duration_ns is not None:
             raise OrccadError("'suspend' needs a signal condition, not a duration", s.trigger.loc)
-        self._no_count(s.trigger, "suspend")
+        if s.trigger.count is not None:
+            raise OrccadError("'suspend' cannot be counted: it freezes its body in each instant "
+                              "where its condition holds (count with 'await n S' and a local "
+                              "signal instead)", s.trigger.loc)
         test = self.condition(s.trigger.condition, scope)
         return d.suspend(self.block(s.body, scope), test, immediate=s.trigger.immediate, loc=s.loc)
 
@@ -208,10 +295,70 @@ class Lowerer:
         inner = scope.child()
         decls = []
         for decl in s.signals:
-            local = ir.SignalDecl(decl.name, ir.LOCAL, decl.type, decl.loc)
+            local = signal_decl(decl, ir.LOCAL)
             inner.signals[decl.name] = local
             decls.append(local)
         return ir.Local(tuple(decls), self.block(s.body, inner), s.loc)
+
+    def _fail(self, s: ast.Fail, scope: Scope) -> ir.Stmt:
+        not_yet("'fail'", s.loc)
+
+    def _runmission(self, s: ast.RunMission, scope: Scope) -> ir.Stmt:
+        """``run mission M [formal / actual, ...]``: M's body inlined, its signals bound."""
+        target = self.source.mission(s.mission)
+        if target is None:
+            raise OrccadError(f"unknown mission '{s.mission}'", s.mission_loc or s.loc)
+        stack = getattr(self, "_inlining", (self.mission.name,))
+        if target.name in stack:
+            chain = " -> ".join((*stack, target.name))
+            raise OrccadError(f"recursive sub-mission: {chain}", s.loc)
+        if target.on_fatal is not None:
+            raise OrccadError(f"mission '{target.name}' has an 'on fatal' block: it cannot run "
+                              "as a sub-mission", s.loc)
+        inner = Scope()
+        inner.signals.update({d.name: d for d in (*self.inputs, *self.outputs)
+                              if any(d.name == f.name for f in self.source.signals)})
+        inner.signals.update(self._bind(target, s, scope))
+        self.site_count = getattr(self, "site_count", 0) + 1
+        site = self.site_count
+        self._inlining = (*stack, target.name)
+        try:
+            body = self.block(target.body, inner)
+        finally:
+            self._inlining = stack
+        return ir.Mark(("mission", target.name, site), body, s.loc)
+
+    def _bind(self, target: ast.Mission, s: ast.RunMission, scope: Scope) -> dict:
+        """The caller's signal for each of the sub-mission's (renamed, else same name)."""
+        renames = {}
+        for rename in s.renames:
+            if rename.formal in renames:
+                raise OrccadError(f"signal '{rename.formal}' renamed twice", rename.loc)
+            if not any(f.name == rename.formal for f in target.signals):
+                raise OrccadError(f"mission '{target.name}' has no signal '{rename.formal}' "
+                                  f"(its signals: {', '.join(f.name for f in target.signals)})",
+                                  rename.loc)
+            renames[rename.formal] = rename
+        bound = {}
+        for formal in target.signals:
+            rename = renames.get(formal.name)
+            actual_name = rename.actual if rename else formal.name
+            where = rename.loc if rename else s.loc
+            actual = scope.lookup("signals", actual_name)
+            if actual is None:
+                raise OrccadError(f"sub-mission '{target.name}' needs signal '{formal.name}': "
+                                  f"'{actual_name}' is not declared here (rename it: "
+                                  f"[{formal.name} / …])", where)
+            if actual.type != formal.type:
+                raise OrccadError(
+                    f"signature mismatch: '{formal.name}' of mission '{target.name}' is "
+                    f"{formal.type or 'pure'}, '{actual_name}' is {actual.type or 'pure'}", where)
+            if formal.direction is ast.Direction.OUTPUT and actual.kind == ir.INPUT:
+                raise OrccadError(
+                    f"signature mismatch: mission '{target.name}' emits '{formal.name}', but "
+                    f"'{actual_name}' is an input here", where)
+            bound[formal.name] = actual
+        return bound
 
     def _vardecl(self, s: ast.VarDecl, scope: Scope) -> ir.Stmt:
         value = self.expr(s.value, scope)  # the initial value cannot see the new variable
@@ -260,6 +407,8 @@ class Lowerer:
 
     # ------------------------------------------------------------------ conditions
     def _mentions_signal(self, e: ast.Expr, scope: Scope) -> bool:
+        if isinstance(e, ast.PreSignal):
+            return True
         if isinstance(e, ast.Name):
             return scope.lookup("variables", e.name) is None and \
                 scope.lookup("signals", e.name) is not None
@@ -270,7 +419,7 @@ class Lowerer:
         return False
 
     def _presence_shaped(self, e: ast.Expr) -> bool:
-        if isinstance(e, ast.Name):
+        if isinstance(e, (ast.Name, ast.PreSignal)):
             return True
         if isinstance(e, ast.Unary) and e.op == "not":
             return self._presence_shaped(e.operand)
@@ -295,6 +444,8 @@ class Lowerer:
         return self._presence(e, scope)
 
     def _presence(self, e: ast.Expr, scope: Scope) -> ir.Test:
+        if isinstance(e, ast.PreSignal):
+            return ir.PreRef(self.signal(e.signal, e.loc, scope), e.loc)
         if isinstance(e, ast.Name):
             if scope.lookup("variables", e.name) is not None:
                 self._mixed(e)
@@ -330,6 +481,14 @@ class Lowerer:
                 raise OrccadError(f"?{e.signal}: signal '{e.signal}' is pure and has no value",
                                   e.loc)
             return ir.SigValue(signal, e.loc)
+        if isinstance(e, ast.PreValue):
+            signal = self.signal(e.signal, e.loc, scope)
+            if not signal.valued:
+                raise OrccadError(f"pre(?{e.signal}): signal '{e.signal}' is pure and has no "
+                                  "value", e.loc)
+            return ir.PreValue(signal, e.loc)
+        if isinstance(e, ast.PreSignal):
+            raise OrccadError(f"pre({e.signal}) is a presence test, not a value", e.loc)
         if isinstance(e, ast.Vector):
             return ir.VectorExpr(tuple(self.expr(i, scope) for i in e.items), e.loc)
         if isinstance(e, ast.Unary):

@@ -42,7 +42,8 @@ _KIND = {
 class KNode:
     """A kernel statement ready for the engine (mutable only while being prepared)."""
 
-    __slots__ = ("kind", "src", "children", "lo", "hi", "code", "pid", "child_los", "index")
+    __slots__ = ("kind", "src", "children", "lo", "hi", "code", "pid", "child_los", "index",
+                 "in_loop")
 
     def __init__(self, kind: int, src: ir.Stmt, index: int):
         self.kind = kind
@@ -53,6 +54,7 @@ class KNode:
         self.code = 0          # exit code of a trap (TRAP) or of its exit (EXIT)
         self.pid = -1          # pause number (PAUSE)
         self.child_los: tuple[int, ...] = ()  # SEQ: lo of each child, for bisection
+        self.in_loop = False   # inside a loop body (a LOCAL there has several incarnations)
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"KNode({type(self.src).__name__}@{self.src.loc}, [{self.lo},{self.hi}))"
@@ -69,6 +71,15 @@ class Prepared:
     data_test_index: dict[int, int] = field(default_factory=dict)  # id(DataTest) -> number
     marks: list[tuple[tuple, int, int]] = field(default_factory=list)  # (label, lo, hi)
     nodes: int = 0
+    #: signals with a valued emission somewhere: reading ?S of another signal never waits
+    valued_emitted: set = field(default_factory=set)
+    #: signals whose ``pre(S)`` is tested; the control state holds, after the pauses, one
+    #: number ``pre_base + k`` for each ``pre_signals[k]`` present in the previous instant
+    pre_signals: list = field(default_factory=list)
+    pre_base: int = 0
+    #: expressions made by the engine (combinations, faults), made once so that equal events
+    #: of two runs are the same objects
+    made: dict = field(default_factory=dict)
 
 
 def _children(stmt: ir.Stmt) -> tuple[ir.Stmt, ...]:
@@ -84,7 +95,7 @@ def _children(stmt: ir.Stmt) -> tuple[ir.Stmt, ...]:
 
 
 def _tests_of(test: ir.Test):
-    if isinstance(test, ir.DataTest):
+    if isinstance(test, (ir.DataTest, ir.PreRef)):
         yield test
     elif isinstance(test, ir.SigNot):
         yield from _tests_of(test.operand)
@@ -99,8 +110,9 @@ class _Builder:
         self.trap_level: dict[ir.TrapDecl, int] = {}
         self.max_level = 0
 
-    def build(self, stmt: ir.Stmt, level: int) -> KNode:
+    def build(self, stmt: ir.Stmt, level: int, in_loop: bool = False) -> KNode:
         node = KNode(_KIND[type(stmt)], stmt, self.out.nodes)
+        node.in_loop = in_loop
         self.out.nodes += 1
         node.lo = len(self.out.pauses)
         if node.kind == PAUSE:
@@ -113,11 +125,17 @@ class _Builder:
             raise OrccadError(f"'exit {stmt.trap.name}' is outside the trap it names", stmt.loc)
         elif node.kind == PRESENT or node.kind == SUSPEND:
             for test in _tests_of(stmt.test):  # derived forms may share one test object
-                if id(test) not in self.out.data_test_index:
+                if isinstance(test, ir.PreRef):
+                    if test.signal not in self.out.pre_signals:
+                        self.out.pre_signals.append(test.signal)
+                elif id(test) not in self.out.data_test_index:
                     self.out.data_test_index[id(test)] = len(self.out.data_tests)
                     self.out.data_tests.append(test)
+        elif node.kind == EMIT and stmt.value is not None:
+            self.out.valued_emitted.add(stmt.signal)
         inner = level + 1 if node.kind == TRAP else level
-        node.children = tuple(self.build(child, inner) for child in _children(stmt))
+        looped = in_loop or node.kind == LOOP
+        node.children = tuple(self.build(child, inner, looped) for child in _children(stmt))
         if node.kind == TRAP:
             del self.trap_level[stmt.trap]
         node.hi = len(self.out.pauses)
@@ -209,5 +227,6 @@ def prepare(program: ir.Program) -> Prepared:
     root = builder.build(program.body, 0)
     _assign_codes(root, builder.max_level)
     builder.out.root = root
+    builder.out.pre_base = len(builder.out.pauses)
     _check_loops(root)
     return builder.out

@@ -42,12 +42,20 @@ class _Writer:
             return self.vars[e.var]
         if kind is ir.SigValue:
             return f"value_{identifier(e.signal.name)}"
+        if kind is ir.PreValue:
+            return f"pre_value_{identifier(e.signal.name)}"
+        if kind is ir.Fault:
+            return f"error({e.message!r})"
         if kind is ir.Clock:
             return "clock"
         if kind is ir.VectorExpr:
             return "[" + ", ".join(self.expr(i) for i in e.items) + "]"
         if kind is ir.Unary:
             return f"({'not ' if e.op == 'not' else '-'}{self.expr(e.operand)})"
+        if e.op in ("min", "max"):
+            return f"{e.op}({self.expr(e.left)}, {self.expr(e.right)})"
+        if e.op == "last":
+            return self.expr(e.right)
         return f"({self.expr(e.left)} {e.op} {self.expr(e.right)})"
 
     def node(self, state: int, tree) -> str:

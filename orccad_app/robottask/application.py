@@ -15,8 +15,9 @@
 
 In both views the output ``E.raised`` is present in the instant exception ``E`` is raised,
 ``X.start`` when task X starts (and, composed, ``X.good_end`` at its good end); each instance
-of a task is a region labelled ``("rt", X, site)`` (composed: with phases ``("phase", X,
-site, n)``), so ``active(X)`` is a property of states. A type-2 exception raised by a task
+of a task is a region labelled :class:`~orccad_app.robottask.labels.RtLabel` (composed: with
+:class:`~orccad_app.robottask.labels.PhaseLabel` regions), so ``active(X)`` is a property of
+states, and every signal the lowering adds has its role in :attr:`ApplicationLowerer.roles`. A type-2 exception raised by a task
 is caught by the innermost enclosing
 ``try`` that names it (the task and the ``try`` body are killed, the handler runs); an
 uncaught one ends the mission with status ``failed`` and the exception's name. A type-3
@@ -27,29 +28,66 @@ raises ``Timeout`` if the task has not ended after D.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
 from orccad_app.reactive.lower import Lowerer, Scope
 from orccad_app.robottask.conflicts import check_resources
-from orccad_app.robottask.rta import TaskSignals, rta_body, task_signals
+from orccad_app.robottask.labels import RtLabel
+from orccad_app.robottask.rta import TaskSignals, record_raisers, rta_body, task_signals
+from orccad_app.robottask.signals import RoleKind, SignalRoles
 
-__all__ = ["ApplicationLowerer", "AbstractApplicationLowerer", "RunSite", "COMPOSED", "ABSTRACT"]
+__all__ = ["ApplicationLowerer", "AbstractApplicationLowerer", "RunSite", "COMPOSED", "ABSTRACT",
+           "contains"]
 
 COMPOSED, ABSTRACT = "composed", "abstract"
 
 
-class RunSite:
-    """One ``run`` statement of the mission: its number, task and arguments."""
+def contains(outer: SourceLocation, inner: SourceLocation) -> bool:
+    """Is ``inner``'s start inside ``outer``'s span (same file)?"""
+    if outer.file != inner.file or outer.end_line is None:
+        return False
+    start, end = (outer.line, outer.col), (outer.end_line, outer.end_col or 0)
+    return start <= (inner.line, inner.col) <= end
 
-    def __init__(self, number: int, task: ast.RobotTask, stmt: ast.Run):
-        self.number = number
-        self.task = task
-        self.stmt = stmt
+
+@dataclass(frozen=True, eq=False)
+class RunSite:
+    """One ``run`` statement of a mission: the unit the checker reasons about and the mission
+    layer instantiates (one Robot-Task instance per site).
+
+    :param number: the site's number (source order, from 0): the ``site`` of its
+        :class:`~orccad_app.robottask.labels.RtLabel`.
+    :param robottask: the Robot-Task it runs.
+    :param stmt: the ``run`` statement (arguments, location).
+    :param on_fatal: the statement lies in the mission's ``on fatal`` block.
+    """
+
+    number: int
+    robottask: ast.RobotTask
+    stmt: ast.Run
+    on_fatal: bool = False
+
+    @property
+    def task(self) -> str:
+        """The Robot-Task's name."""
+        return self.robottask.name
+
+    @property
+    def robot(self) -> str:
+        """The robot the task runs on."""
+        return self.robottask.robot
+
+    @property
+    def loc(self) -> SourceLocation:
+        """The ``run`` statement's location."""
+        return self.stmt.loc
 
     def __repr__(self) -> str:
-        return f"RunSite({self.number}, {self.task.name} at {self.stmt.loc})"
+        return f"RunSite({self.number}, {self.task} at {self.loc})"
 
 
 class ApplicationLowerer(Lowerer):
@@ -61,14 +99,16 @@ class ApplicationLowerer(Lowerer):
         super().__init__(program, mission)
         self.tasks = {t.name: t for t in program.robottasks}
         self.sites: list[RunSite] = []
+        self.roles = SignalRoles()
         self.extra_inputs: list[ir.SignalDecl] = []
         self.extra_outputs: list[ir.SignalDecl] = []
         self.task_sigs: dict[str, TaskSignals] = {}
         self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
         self.handlers: list[dict[str, ir.TrapDecl]] = []
         loc = mission.loc
-        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc)
-        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc)
+        # two exceptions in one instant: the status reports the last one (hidden signals)
+        self.failed = ir.SignalDecl("_failed", ir.OUTPUT, "string", loc, combine="last")
+        self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc, combine="last")
         self.failed_trap = ir.TrapDecl("_failed", loc)
         self.fatal_trap = ir.TrapDecl("_fatal", loc)
 
@@ -86,7 +126,7 @@ class ApplicationLowerer(Lowerer):
                 ir.Trap(self.fatal_trap, d.seq(body, ir.Exit(finished, loc)), loc), on_fatal), loc)
         return ir.Program(self.mission.name, (*self.inputs, *self.extra_inputs),
                           (*self.outputs, *self.extra_outputs), wrapped, loc,
-                          self.failed, self.aborted)
+                          self.failed, self.aborted, self.relations())
 
     def raised_signal(self, name: str, loc: SourceLocation) -> ir.SignalDecl:
         """The output ``E.raised``, present in the instant exception ``E`` is raised."""
@@ -94,6 +134,7 @@ class ApplicationLowerer(Lowerer):
         if decl is None:
             decl = self._add(ir.SignalDecl(f"{name}.raised", ir.OUTPUT, None, loc))
             self.scope.signals[decl.name] = decl
+            self.roles.add(decl.name, RoleKind.RAISED, name=name)
         return decl
 
     def raise_(self, name: str, loc: SourceLocation) -> ir.Stmt:
@@ -131,6 +172,7 @@ class ApplicationLowerer(Lowerer):
             sig = task_signals(task, self.global_signal)
             for decl in (*sig.inputs, *sig.outputs):
                 self._add(decl)
+            sig.record(self.roles)
             self.task_sigs[task.name] = sig
         return self.task_sigs[task.name]
 
@@ -143,6 +185,11 @@ class ApplicationLowerer(Lowerer):
             fatal = [e.name for e in task.exceptions if e.type is ast.ExceptionType.FATAL]
             for name in (*task.raisable(), *fatal):
                 found[name] = self._add(ir.SignalDecl(f"{x}.{name}", ir.INPUT, None, loc))
+            self.roles.add(found["start"].name, RoleKind.START, x)
+            self.roles.add(found["good_end"].name, RoleKind.GOOD_END, x)
+            for name in (*task.raisable(), *fatal):
+                self.roles.add(found[name].name, RoleKind.EVENT, x, name)
+            record_raisers(task, self.roles)
             self.outcomes[task.name] = found
         return self.outcomes[task.name]
 
@@ -151,7 +198,9 @@ class ApplicationLowerer(Lowerer):
         task = self.tasks.get(s.task)
         if task is None:
             raise OrccadError(f"unknown Robot-Task '{s.task}'", s.task_loc or s.loc)
-        site = RunSite(len(self.sites), task, s)
+        fatal_block = self.mission.on_fatal.loc if self.mission.on_fatal is not None else None
+        site = RunSite(len(self.sites), task, s,
+                       fatal_block is not None and contains(fatal_block, s.loc))
         self.sites.append(site)
         if self.view == COMPOSED:
             body = rta_body(self.signals_of(task), site.number, self.raise_, self.fatal)
@@ -176,8 +225,12 @@ class ApplicationLowerer(Lowerer):
         branches += [d.seq(wait(e.name), self.fatal(e.name, loc)) for e in task.exceptions
                      if e.type is ast.ExceptionType.FATAL]
         outcome = ir.Trap(ended, ir.Par(tuple(branches), loc), loc)
-        return ir.Mark(("rt", task.name, site), d.seq(ir.Emit(signals["start"], None, loc),
-                                                      outcome), loc)
+        return ir.Mark(RtLabel(task.name, site), d.seq(ir.Emit(signals["start"], None, loc),
+                                                outcome), loc)
+
+    def _fail(self, s: ast.Fail, scope: Scope) -> ir.Stmt:
+        """``fail E;``: a type-2 exception raised by the plan itself."""
+        return self.raise_(s.exception, s.loc)
 
     def _try(self, s: ast.Try, scope: Scope) -> ir.Stmt:
         done = ir.TrapDecl("_try_done", s.loc)

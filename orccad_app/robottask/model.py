@@ -1,15 +1,16 @@
 """A Robot-Task instantiated against the plugin registries: its checked control scheme.
 
 :func:`instantiate` turns a ``robottask`` block and the arguments of one ``run`` into a
-:class:`TaskInstance`: the robot type, the control law and task function (their coherence
+:class:`RobotTaskInstance`: the robot type, the control law and task function (their coherence
 checks — ``dim e = dim q``, positive gains, shapes — run here), every Module-Task with its
 kind, parameters and timing, the observers named by exceptions and conditions (a declared
 module, or an observer kind instantiated with its default timing), and the connections,
 checked: ports exist, producer to consumer, same type and dimension, each input fed once,
 required inputs fed. Every error names the bad value and carries the clause's location.
 
-The timed executive builds its Module-Tasks from a :class:`TaskInstance`; the compiler
-instantiates every task once per ``run`` so that each set of arguments is checked.
+The mission layer builds its Module-Tasks from a :class:`RobotTaskInstance`; the compiler
+instantiates every task once per ``run`` site (:func:`check_tasks`) so that each set of
+arguments is checked, and the mission layer runs those very instances.
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ from orccad_app.lang.walk import runs
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 
-__all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "TaskInstance", "instantiate", "check_tasks",
+__all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
+           "instantiate", "check_tasks",
            "DEFAULT_PROCESSOR"]
 
 DEFAULT_PROCESSOR = "cpu0"
@@ -75,7 +77,7 @@ class Adjustment:
 
 
 @dataclass
-class TaskInstance:
+class RobotTaskInstance:
     """A Robot-Task ready to run: modules, connections, events, adjustments."""
 
     task: ast.RobotTask
@@ -157,7 +159,7 @@ def _unique(name: str, modules: Mapping[str, ModuleSpec]) -> str:
     return name
 
 
-def _law_defaults(inst: TaskInstance, host) -> None:
+def _law_defaults(inst: RobotTaskInstance, host) -> None:
     """The law's default Module-Tasks whose kind the task does not declare (the omitted
     parts of the time-constrained specification)."""
     law = inst.task.law
@@ -178,7 +180,7 @@ def _law_defaults(inst: TaskInstance, host) -> None:
                                         law.loc, origin=ModuleOrigin.LAW_DEFAULT)
 
 
-def _observer(call: ast.Call, loc: SourceLocation, inst: TaskInstance, host) -> str:
+def _observer(call: ast.Call, loc: SourceLocation, inst: RobotTaskInstance, host) -> str:
     """The module watching for a condition or exception: declared, or made from a kind."""
     declared = inst.modules.get(call.func)
     if declared is not None and not call.args:
@@ -199,7 +201,7 @@ def _observer(call: ast.Call, loc: SourceLocation, inst: TaskInstance, host) -> 
     return name
 
 
-def _conditions(inst: TaskInstance, host) -> None:
+def _conditions(inst: RobotTaskInstance, host) -> None:
     task = inst.task
     measuring = []
     for pre in task.preconditions:
@@ -219,7 +221,7 @@ def _conditions(inst: TaskInstance, host) -> None:
     inst.measuring = tuple(measuring)
 
 
-def _adjustment(exc: ast.ExceptionDecl, inst: TaskInstance) -> Adjustment:
+def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
     target = exc.adjust.target
     module = inst.modules.get(target.component)
     if module is None:
@@ -244,14 +246,14 @@ def _priorities(modules: dict[str, ModuleSpec]) -> None:
 
 def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
                 args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
-                ) -> TaskInstance:
+                ) -> RobotTaskInstance:
     """Check ``task`` with the arguments of one ``run`` and build its instance."""
     try:
         params = task_arguments(task, args)
     except OrccadError as error:
         raise _located(error, run_loc or task.loc) from None
     context = _context(task, params, robots, host)
-    inst = TaskInstance(task, params, task.robot, context)
+    inst = RobotTaskInstance(task, params, task.robot, context)
     inst.modules = _declared_modules(task, params, context, host)
     _law_defaults(inst, host)
     _conditions(inst, host)
@@ -261,27 +263,45 @@ def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
     return inst
 
 
-def check_tasks(program: ast.Program, host) -> dict[tuple, TaskInstance]:
+@dataclass(frozen=True)
+class TaskInstances:
+    """The checked instances of a program's Robot-Tasks.
+
+    :param defaults: task name -> its instance with its default arguments (tasks that have
+        them all).
+    :param by_run: ``run`` statement location -> the instance of that run site (a run
+        without arguments shares its task's default instance).
+    """
+
+    defaults: dict[str, RobotTaskInstance]
+    by_run: dict[SourceLocation, RobotTaskInstance]
+
+
+def check_tasks(program: ast.Program, host) -> TaskInstances:
     """Instantiate every Robot-Task: once with its defaults (when it has them all) and once
-    per ``run`` with that run's arguments. Returns the instances keyed by
-    ``(task name, run location or None)``; raises on the first incoherence."""
+    per ``run`` with that run's arguments (a run without arguments reuses the default
+    instance); raise on the first incoherence."""
     robots = {r.name: r for r in program.robots}
     tasks = {t.name: t for t in program.robottasks}
-    found: dict[tuple, TaskInstance] = {}
+    defaults: dict[str, RobotTaskInstance] = {}
+    by_run: dict[SourceLocation, RobotTaskInstance] = {}
     for task in program.robottasks:
         if all(p.default is not None for p in task.params):
-            found[(task.name, None)] = instantiate(task, robots, host)
+            defaults[task.name] = instantiate(task, robots, host)
     for mission in program.missions:
         for run in runs(mission):
             task = tasks.get(run.task)
             if task is None:
                 continue
+            if not run.args and task.name in defaults:
+                by_run[run.loc] = defaults[task.name]
+                continue
             try:
-                found[(task.name, run.loc)] = instantiate(task, robots, host, run.args, run.loc)
+                by_run[run.loc] = instantiate(task, robots, host, run.args, run.loc)
             except OrccadError as error:
                 if not run.args or error.location == run.loc:
                     raise
                 note = Diagnostic("note", "in this clause of the Robot-Task", error.location)
                 raise OrccadError(f"{error.message} (with the arguments of this run of "
                                   f"{task.name})", run.loc, (note, *error.notes)) from None
-    return found
+    return TaskInstances(defaults, by_run)

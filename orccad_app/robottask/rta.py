@@ -28,8 +28,11 @@ A measurement pre-condition's watchdog expiring raises ``<observer>_timeout`` (t
 How an exception reaches the application is given by the caller (``raise_``/``fatal``), so
 the same generator serves the stand-alone RTA (``orccad rta``) and its instances inlined at
 each ``run`` of a mission. Each instance is a marked region labelled
-``("rt", X, site)`` with phase regions ``("phase", X, site, n)``, so every state of the
-compiled automaton tells which Robot-Task is active and in which phase.
+:class:`~orccad_app.robottask.labels.RtLabel` with phase regions
+:class:`~orccad_app.robottask.labels.PhaseLabel`, so every state of the compiled automaton
+tells which Robot-Task is active and in which :class:`~orccad_app.robottask.labels.Phase`.
+The role of each signal made here is recorded in a
+:class:`~orccad_app.robottask.signals.SignalRoles` (:meth:`TaskSignals.record`).
 """
 
 from __future__ import annotations
@@ -41,8 +44,10 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
+from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
+from orccad_app.robottask.signals import RoleKind, SignalRoles
 
-__all__ = ["TaskSignals", "task_signals", "rta_body", "rta_program", "Raise"]
+__all__ = ["TaskSignals", "task_signals", "rta_body", "rta_program", "Raise", "record_raisers"]
 
 #: ``raise_(exception_name, location) -> statement`` reports an exception to the application.
 Raise = Callable[[str, SourceLocation], ir.Stmt]
@@ -69,6 +74,29 @@ class TaskSignals:
     @property
     def outputs(self) -> tuple[ir.SignalDecl, ...]:
         return (self.start, self.measure, self.activate, *self.adjusts.values(), self.good_end)
+
+    def record(self, roles: SignalRoles) -> None:
+        """Record the role of each of these signals (and what the task can raise)."""
+        x = self.task.name
+        roles.add(self.start.name, RoleKind.START, x)
+        roles.add(self.measure.name, RoleKind.MEASURE, x)
+        roles.add(self.activate.name, RoleKind.ACTIVATE, x)
+        roles.add(self.good_end.name, RoleKind.GOOD_END, x)
+        for event, decl in self.events.items():
+            roles.add(decl.name, RoleKind.EVENT, x, event)
+        for exception, decl in self.adjusts.items():
+            roles.add(decl.name, RoleKind.ADJUST, x, exception)
+        record_raisers(self.task, roles)
+
+
+def record_raisers(task: ast.RobotTask, roles: SignalRoles) -> None:
+    """Record the exceptions a run of ``task`` can raise into the application: its type-2
+    ones (with the watchdogs' ``OBSERVER_timeout``) and its type-3 ones."""
+    for name in task.raisable():
+        roles.add_raiser(name, task.name, 2)
+    for exc in task.exceptions:
+        if exc.type is ast.ExceptionType.FATAL:
+            roles.add_raiser(exc.name, task.name, 3)
 
 
 def _out(name: str, loc: SourceLocation) -> ir.SignalDecl:
@@ -161,19 +189,20 @@ def _phase3(sig: TaskSignals, raise_: Raise, fatal: Raise) -> ir.Stmt:
 
 
 def rta_body(sig: TaskSignals, site: int, raise_: Raise, fatal: Raise) -> ir.Stmt:
-    """One instance of the RTA, marked ``("rt", task, site)`` with its three phases."""
+    """One instance of the RTA, marked :class:`RtLabel` with its three :class:`PhaseLabel`
+    regions."""
     task, loc = sig.task, sig.task.loc
     phase1 = _all([_await(s, loc, immediate=True) for s in sig.sync_pre], loc)
     good_end = [ir.Emit(sig.good_end, None, loc)] + [ir.Emit(s, None, loc) for s in sig.sync_post]
     body = d.seq(
         ir.Emit(sig.start, None, loc),
-        ir.Mark(("phase", task.name, site, 1), phase1, loc),
+        ir.Mark(PhaseLabel(task.name, site, Phase.SYNCHRONIZING), phase1, loc),
         ir.Emit(sig.measure, None, loc),
-        ir.Mark(("phase", task.name, site, 2), _phase2(sig, raise_), loc),
+        ir.Mark(PhaseLabel(task.name, site, Phase.MEASURING), _phase2(sig, raise_), loc),
         ir.Emit(sig.activate, None, loc),
-        ir.Mark(("phase", task.name, site, 3), _phase3(sig, raise_, fatal), loc),
+        ir.Mark(PhaseLabel(task.name, site, Phase.ACTIVE), _phase3(sig, raise_, fatal), loc),
         *good_end)
-    return ir.Mark(("rt", task.name, site), body, loc)
+    return ir.Mark(RtLabel(task.name, site), body, loc)
 
 
 def rta_program(task: ast.RobotTask, declared: dict[str, ir.SignalDecl] | None = None

@@ -15,7 +15,7 @@ import networkx as nx
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.tcs.connection import Connection
 from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
-from orccad_app.tcs.port import Direction, Port
+from orccad_app.tcs.port import PortDirection, Port
 from orccad_app.tcs.protocol import Protocol
 
 __all__ = ["TCS"]
@@ -65,10 +65,10 @@ class TCS:
             raise OrccadError(error.message, location) from None
         out_port = self._port(connection.producer_module, connection.producer_port, location)
         in_port = self._port(connection.consumer_module, connection.consumer_port, location)
-        if out_port.direction is not Direction.OUT:
+        if out_port.direction is not PortDirection.OUT:
             raise OrccadError(f"'{producer}' is an input port: a connection must start at "
                               f"an output (producer) port", location)
-        if in_port.direction is not Direction.IN:
+        if in_port.direction is not PortDirection.IN:
             raise OrccadError(f"'{consumer}' is an output port: a connection must end at "
                               f"an input (consumer) port", location)
         if out_port.type != in_port.type or out_port.dim != in_port.dim:

@@ -21,9 +21,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
-from orccad_app.tcs.port import Direction, Port
+from orccad_app.tcs.phasing import Activation
+from orccad_app.tcs.port import PortDirection, Port
 
-__all__ = ["ModuleTask", "PhysicalResource"]
+__all__ = ["ModuleTask", "PhysicalResource", "Activation"]
 
 
 def _check_ports(owner: str, ports: tuple[Port, ...]) -> dict[str, Port]:
@@ -61,12 +62,12 @@ class _HasPorts:
     @property
     def inputs(self) -> tuple[Port, ...]:
         """Consumer ports, in declaration order (the order of reads)."""
-        return tuple(p for p in self.ports if p.direction is Direction.IN)
+        return tuple(p for p in self.ports if p.direction is PortDirection.IN)
 
     @property
     def outputs(self) -> tuple[Port, ...]:
         """Producer ports, in declaration order (the order of writes)."""
-        return tuple(p for p in self.ports if p.direction is Direction.OUT)
+        return tuple(p for p in self.ports if p.direction is PortDirection.OUT)
 
 
 @dataclass(eq=False)
@@ -85,6 +86,10 @@ class ModuleTask(_HasPorts):
     :param deadline_ns: relative deadline [ns]; defaults to the period.
     :param offset_ns: delay of the first release after activation [ns].
     :param kind: the module kind (plugin name), informative.
+    :param activation: :attr:`Activation.PERIODIC` (released every ``period_ns``) or
+        :attr:`Activation.SPORADIC` (released by an event, interrupt-driven: then ``period_ns``
+        is its minimum inter-arrival time, see :attr:`min_interarrival_ns`). The
+        schedulability analysis handles both; the executive releases periodic ones.
     :param location: where the plan language declared it, for diagnostics.
     """
 
@@ -100,6 +105,7 @@ class ModuleTask(_HasPorts):
     offset_ns: int = 0
     kind: str = ""
     location: SourceLocation | None = None
+    activation: Activation = Activation.PERIODIC
     _by_name: dict[str, Port] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -109,6 +115,11 @@ class ModuleTask(_HasPorts):
         self.ports = tuple(self.ports)
         self._by_name = _check_ports(self.name, self.ports)
         self._check_times()
+        try:
+            self.activation = Activation(self.activation)
+        except ValueError:
+            raise OrccadError(f"module-task '{self.name}': activation must be 'periodic' or "
+                              f"'sporadic', got {self.activation!r}") from None
         if not isinstance(self.priority, int) or self.priority < 1:
             raise OrccadError(f"module-task '{self.name}': priority must be an integer >= 1 "
                               f"(1 is the highest), got {self.priority!r}")
@@ -134,6 +145,12 @@ class ModuleTask(_HasPorts):
         if self.deadline_ns is None:
             self.deadline_ns = self.period_ns
         positive_int("deadline_ns", self.deadline_ns, True)
+
+    @property
+    def min_interarrival_ns(self) -> int:
+        """The shortest time between two releases [ns]: the period of a periodic Module-Task,
+        the minimum inter-arrival time of a sporadic one."""
+        return self.period_ns
 
     @property
     def utilization(self) -> float:
@@ -162,9 +179,9 @@ class PhysicalResource(_HasPorts):
     @staticmethod
     def sensor(name: str, dim: int = 1, type: str = "float") -> Port:
         """A sensor port (producer, sampled when read)."""
-        return Port(name, Direction.OUT, type, dim)
+        return Port(name, PortDirection.OUT, type, dim)
 
     @staticmethod
     def actuator(name: str, dim: int = 1, type: str = "float") -> Port:
         """An actuator port (consumer, held until the next write)."""
-        return Port(name, Direction.IN, type, dim)
+        return Port(name, PortDirection.IN, type, dim)

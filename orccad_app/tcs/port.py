@@ -14,7 +14,7 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["Direction", "Port", "EVENT", "NUMERIC_TYPES", "split_port_ref"]
+__all__ = ["PortDirection", "Port", "EVENT", "NUMERIC_TYPES", "split_port_ref"]
 
 EVENT = "event"
 """Type name of event ports: a value that is not ``None``/``False`` is a signal occurrence."""
@@ -23,7 +23,7 @@ NUMERIC_TYPES = frozenset({"float", "int", "bool"})
 """Types whose default initial value is zero (a scalar if ``dim == 1``, else a vector)."""
 
 
-class Direction(str, Enum):
+class PortDirection(str, Enum):
     """Which way values cross a port."""
 
     IN = "in"
@@ -46,7 +46,7 @@ class Port:
     """
 
     name: str
-    direction: Direction
+    direction: PortDirection
     type: str = "float"
     dim: int = 1
     initial: Any = None
@@ -55,7 +55,7 @@ class Port:
         if not self.name or not self.name.isidentifier():
             raise OrccadError(f"invalid port name {self.name!r}: expected an identifier")
         try:
-            object.__setattr__(self, "direction", Direction(self.direction))
+            object.__setattr__(self, "direction", PortDirection(self.direction))
         except ValueError:
             raise OrccadError(f"port '{self.name}': direction must be 'in' or 'out', "
                               f"got {self.direction!r}") from None

@@ -2,7 +2,7 @@
 
 :class:`TraceRecorder` observes a run (an executive observer with the mission hooks) and
 writes each event at once to a CSV or MCAP file (:func:`open_trace`); :func:`report_dict` and
-:func:`format_report` turn a :class:`~orccad_app.executive.run_result.RunResult` into the JSON
+:func:`format_report` turn a :class:`~orccad_app.mission.result.RunResult` into the JSON
 report or the text of ``orccad run``.
 """
 

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.executive.run_result import RunResult
+from orccad_app.mission.result import RunResult
 from orccad_app.trace.recorder import plain_value
 
 __all__ = ["InjectionRecord", "report_dict", "format_report", "lateness_summary"]

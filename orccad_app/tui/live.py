@@ -6,7 +6,7 @@ executive's thread. At each reaction of the automaton it
 - **paces** the run against the wall clock (:class:`Pace`: paused, × factor, or as fast as
   possible) by sleeping;
 - raises the inputs queued by the user (:meth:`LiveObserver.raise_input`) with
-  :meth:`~orccad_app.executive.mission_run.MissionRun.inject`, so they reach the automaton on
+  :meth:`~orccad_app.mission.run.MissionRun.inject`, so they reach the automaton on
   its own thread, in the current instant; applies the plant faults queued
   (:meth:`LiveObserver.inject_fault`, e.g. ``auv.leak``) to the robot's plant;
 - hands a :class:`LiveUpdate` to ``post`` at most every ``flush_s`` wall seconds: the
@@ -159,7 +159,7 @@ def _components(value: Any, limit: int = 6) -> list[float] | None:
 class LiveObserver(Observer):
     """See the module docstring.
 
-    :param run: the :class:`~orccad_app.executive.mission_run.MissionRun` observed.
+    :param run: the :class:`~orccad_app.mission.run.MissionRun` observed.
     :param post: called with each :class:`LiveUpdate` (on the executive's thread).
     :param pace: the run's speed.
     :param sample_ns: plot sampling period [ns] (simulated time).
@@ -171,7 +171,7 @@ class LiveObserver(Observer):
         self.run, self.post, self.pace = run, post, pace
         self.sample_ns, self.flush_s = sample_ns, flush_s
         self._sensors = sensor_ports(run.plan)
-        self._site_task = {site.site: site.task for site in run.plan.sites}
+        self._site_task = {site.number: site.task for site in run.plan.sites}
         self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
         self._queue: deque[tuple[str, Any, bool]] = deque()
         self._abort: str | None = None

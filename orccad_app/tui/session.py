@@ -22,7 +22,7 @@ from typing import Any, Callable
 from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
-__all__ = ["Diagnostic", "FileView", "inspect_file", "check_file", "check_text",
+__all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
            "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
            "write_atomically"]
 
@@ -67,7 +67,7 @@ def parse_value(text: str, type_name: str) -> Any:
 
 
 @dataclass(frozen=True)
-class Diagnostic:
+class FileDiagnostic:
     """A message at a line of the source (``line`` 0 when it has no location)."""
 
     severity: str
@@ -86,7 +86,7 @@ class FileView:
 
     path: str
     text: str
-    diagnostics: list[Diagnostic] = field(default_factory=list)
+    diagnostics: list[FileDiagnostic] = field(default_factory=list)
     missions: list[str] = field(default_factory=list)
     summaries: dict[str, str] = field(default_factory=dict)
     inputs: dict[str, list[str]] = field(default_factory=dict)
@@ -111,18 +111,19 @@ def mission_files(paths: list[str]) -> list[str]:
     return list(found)
 
 
-def _diagnostic(severity: str, error: Any) -> Diagnostic:
+def _diagnostic(severity: str, error: Any) -> FileDiagnostic:
     loc = getattr(error, "location", None) or getattr(error, "loc", None)
-    return Diagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
+    return FileDiagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
                       getattr(error, "message", str(error)))
 
 
 def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
-    from orccad_app.pipeline import compile_mission_sites
+    from orccad_app.pipeline import compose_mission
     from orccad_app.reactive.export import to_summary
 
-    automaton, sites = compile_mission_sites(source, mission)
-    tasks = ", ".join(dict.fromkeys(site.task.name for site in sites)) or "-"
+    composition = compose_mission(source, mission)
+    automaton, sites = composition.automaton, composition.sites
+    tasks = ", ".join(dict.fromkeys(site.task for site in sites)) or "-"
     inputs = [s.name for s in automaton.inputs if "." not in s.name]
     head = (f"mission {mission.name}: {automaton.state_count} states, "
             f"{automaton.transition_count} transitions\n  Robot-Tasks: {tasks}\n")
@@ -136,7 +137,7 @@ def inspect_file(path: str) -> FileView:
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as error:
-        return FileView(path, "", [Diagnostic("error", 0, 0, f"cannot read: {error}")])
+        return FileView(path, "", [FileDiagnostic("error", 0, 0, f"cannot read: {error}")])
     view = FileView(path, text)
     try:
         source = load(path)
@@ -262,12 +263,12 @@ class LiveSession:
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
                  speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0) -> None:
-        from orccad_app.executive.mission_plan import plan_mission
-        from orccad_app.executive.mission_run import MissionRun
+        from orccad_app.mission.plan import plan_mission
+        from orccad_app.mission.run import MissionRun
         from orccad_app.pipeline import load, select_mission
         from orccad_app.trace import TraceRecorder
 
-        from orccad_app.executive import mission_run
+        from orccad_app.mission import run as mission_run
 
         source = load(path)
         self.path, self.seed = path, seed

@@ -17,7 +17,7 @@ from typing import Any
 
 from orccad_app.tui.live import PHASES, LiveUpdate
 
-__all__ = ["SpeedMeter", "status_text", "waiting_lines", "where_text", "rta_text", "tcs_rows",
+__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "where_text", "rta_text", "tcs_rows",
            "LAG_RATIO"]
 
 LAG_RATIO = 0.8
@@ -66,6 +66,13 @@ def waiting_lines(session: Any, state: int | None) -> list[int]:
                    if loc.line > 0 and Path(loc.file or name).name == name})
 
 
+def run_site_lines(session: Any, tasks: list[tuple[str, int, int]]) -> list[int]:
+    """Lines of the ``run`` statements of the Robot-Tasks running now."""
+    running = {number for _, number, _ in tasks}
+    return sorted({site.site.stmt.loc.line for site in session.run.plan.sites
+                   if site.number in running and site.site.stmt.loc.line > 0})
+
+
 def where_text(session: Any, state: int | None, status: str = "running") -> str:
     """``waiting at arm_recovery.orc:58, 77`` (or the status once the mission ended)."""
     if status in ("done", "failed", "aborted"):
@@ -108,7 +115,7 @@ def rta_text(session: Any, tasks: list[tuple[str, int, int]]) -> str:
     marked, its observers and exceptions with their types."""
     if not tasks:
         return "no Robot-Task is running: the RTA of each one shows here while it runs"
-    sites = {site.site: site for site in session.run.plan.sites}
+    sites = {site.number: site for site in session.run.plan.sites}
     blocks = []
     for task, number, phase in tasks:
         site = sites.get(number)
@@ -122,11 +129,14 @@ def rta_text(session: Any, tasks: list[tuple[str, int, int]]) -> str:
             if site.measuring:
                 lines.append("  measuring: " + ", ".join(m.split(".", 1)[-1]
                                                          for m in site.measuring))
-            for name, kind in sorted(site.exception_types.items()):
-                adjust = site.adjustments.get(name)
-                what = (f"adjust {adjust[0].split('.', 1)[-1]}.{adjust[1]} := {adjust[2]}"
-                        if adjust else {2: "abort the task", 3: "fatal"}.get(kind, ""))
-                lines.append(f"  exception {name}: type {kind}, {what}")
+            for exception in site.site.robottask.exceptions:
+                kind = exception.type.number
+                adjust = site.adjustments.get(exception.name)
+                what = (f"adjust {adjust.module.split('.', 1)[-1]}.{adjust.param} := "
+                        f"{adjust.value}" if adjust else
+                        {2: "abort the task", 3: "fatal"}.get(kind, ""))
+                lines.append(f"  exception {exception.name} from {exception.source.func}: "
+                             f"type {kind}, {what}")
         blocks.append("\n".join(lines))
     return "\n\n".join(blocks)
 
@@ -136,7 +146,7 @@ def tcs_rows(session: Any, tasks: list[tuple[str, int, int]], loads: dict[str, f
     """Rows ``(module, processor, T ms, C ms, priority, active, misses)`` of the TCS, the
     running tasks' modules first, then one row per processor with its load."""
     running = {module for site in session.run.plan.sites
-               if any(site.site == number for _, number, _ in tasks) for module in site.modules}
+               if any(site.number == number for _, number, _ in tasks) for module in site.modules}
     modules = sorted(session.run.plan.tcs.module_tasks,
                      key=lambda m: (m.name not in running, m.name))
     rows = [(m.name, m.processor, f"{m.period_ns / 1e6:g}", f"{m.wcet_ns / 1e6:g}",

@@ -30,7 +30,7 @@ from typing import Callable
 import networkx as nx
 
 from orccad_app.lang import ast
-from orccad_app.verify.composition import contains
+from orccad_app.robottask.application import contains
 from orccad_app.verify.model import ENDED, Model, Step
 
 __all__ = ["Violation", "BUILTINS", "check_builtin", "shortest_run"]

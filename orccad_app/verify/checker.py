@@ -18,7 +18,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
 from orccad_app.verify.builtins import BUILTINS, check_builtin
-from orccad_app.verify.composition import Composition, compose
+from orccad_app.robottask.composition import Composition, compose
 from orccad_app.verify.counterexample import Script, make_script
 from orccad_app.verify.formula import F, TRUE, atoms, conj, from_ast, is_past, neg
 from orccad_app.verify.lasso import Periodic, evaluate, holds_on_lasso
@@ -27,11 +27,11 @@ from orccad_app.verify.model import Model, build_model
 from orccad_app.verify.search import Instant, Lasso, find_lasso
 from orccad_app.verify.tableau import Tableau
 
-__all__ = ["Outcome", "MissionReport", "check_mission", "check_formula", "applicable"]
+__all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable"]
 
 
 @dataclass
-class Outcome:
+class PropertyOutcome:
     """The verdict on one property (``kind`` is ``built-in`` or ``property``)."""
 
     kind: str
@@ -48,7 +48,9 @@ class MissionReport:
 
     composition: Composition
     model: Model
-    outcomes: list[Outcome] = field(default_factory=list)
+    outcomes: list[PropertyOutcome] = field(default_factory=list)
+    signal_properties: list[ast.Property] = field(default_factory=list)
+    """Signal (STL) properties: not proved here, judged on runs and campaigns."""
 
     @property
     def holds(self) -> bool:
@@ -107,30 +109,30 @@ def _script(model: Model, formula: F, lasso: Lasso, alphabet: Alphabet,
                        loop_start)
 
 
-def _check_property(model: Model, prop: ast.Property, assumptions: list[F]) -> Outcome:
+def _check_property(model: Model, prop: ast.Property, assumptions: list[F]) -> PropertyOutcome:
     started = time.perf_counter()
     formula = from_ast(prop.formula)
     lasso, alphabet = check_formula(model, formula, assumptions)
     if lasso is None:
-        return Outcome("property", prop.name, True, seconds=time.perf_counter() - started)
+        return PropertyOutcome("property", prop.name, True, seconds=time.perf_counter() - started)
     prefix, loop = _word(lasso, alphabet)
     if holds_on_lasso(formula, prefix, loop):  # pragma: no cover - a checker defect
         raise OrccadError(f"internal error: the counterexample to '{prop.name}' does not "
                           "violate it", prop.loc)
     script = _script(model, formula, lasso, alphabet, bool(assumptions))
     kind = "a finite run" if script.loop_start is None else "a run that loops forever"
-    return Outcome("property", prop.name, False, f"{kind} violates it", script,
+    return PropertyOutcome("property", prop.name, False, f"{kind} violates it", script,
                    time.perf_counter() - started)
 
 
-def _check_builtin(model: Model, name: str) -> Outcome:
+def _check_builtin(model: Model, name: str) -> PropertyOutcome:
     started = time.perf_counter()
     violation = check_builtin(model, name)
     if violation is None:
-        return Outcome("built-in", name, True, seconds=time.perf_counter() - started)
+        return PropertyOutcome("built-in", name, True, seconds=time.perf_counter() - started)
     steps = violation.steps
     script = make_script(model, steps, [()] * len(steps), None)
-    return Outcome("built-in", name, False, violation.message, script,
+    return PropertyOutcome("built-in", name, False, violation.message, script,
                    time.perf_counter() - started)
 
 
@@ -144,5 +146,8 @@ def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool 
         report.outcomes += [_check_builtin(model, name) for name in BUILTINS]
     assumptions = [from_ast(a.formula) for a in applicable(program.assumptions, mission)]
     for prop in applicable(program.properties, mission):
+        if ast.is_signal_formula(prop.formula):
+            report.signal_properties.append(prop)
+            continue
         report.outcomes.append(_check_property(model, prop, assumptions))
     return report

@@ -9,7 +9,7 @@ An instant is one step. Its letter is the set of atoms true in it:
 ``ended(X)``        ``X.good_end`` is emitted (its good end)
 ``raised(E)``       ``E.raised`` is emitted (exception E is raised, type 2 or 3)
 ``active(X)``       the state *after* the instant is inside an instance of X
-                    (it has a label ``("rt", X, site)``): true from the instant X starts,
+                    (it has an ``RtLabel(X, site)``): true from the instant X starts,
                     false from the instant it ends, raises or is killed
 ``done``            the mission terminates normally in the instant
 ``failed``          an uncaught type-2 exception ends the mission in the instant

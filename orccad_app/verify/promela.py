@@ -28,6 +28,7 @@ from orccad_app.lang import ast
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, Action, Automaton,
                                           DataBranch, InputTest, Leaf, Node)
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify import data
 from orccad_app.verify.formula import F, from_ast, is_past
 
@@ -56,8 +57,8 @@ class _Writer:
                         if not s.name.startswith("_")}
         labels = automaton.labels or tuple(frozenset() for _ in automaton.trees)
         self.labels = labels
-        self.sites = sorted({(l[1], l[2]) for ls in labels for l in ls if l[0] == "rt"},
-                            key=lambda s: s[1])
+        self.sites = sorted({(l.task, l.site) for ls in labels for l in ls
+                             if isinstance(l, RtLabel)}, key=lambda s: s[1])
         self.tasks = sorted({task for task, _ in self.sites})
         self.timers = [n for n, t in enumerate(automaton.data_tests)
                        if data.is_clock_test(t.expr)]
@@ -106,7 +107,7 @@ class _Writer:
         emitted = {s.name for s in leaf.emitted if not s.name.startswith("_")}
         lines = [f"{indent}{self.outputs[n]} = 1;" for n in sorted(emitted)]
         for task, site in self.sites:
-            label = ("rt", task, site)
+            label = RtLabel(task, site)
             if label in self.labels[q] and label in self.labels[leaf.target] \
                     and f"{task}.start" not in emitted:
                 lines.append(f"{indent}fs{site} = 0;")
@@ -154,7 +155,7 @@ class _Writer:
         body.append("      fi;")
         for task in self.tasks:
             states = [q for q, ls in enumerate(self.labels) if any(
-                l[0] == "rt" and l[1] == task for l in ls)]
+                isinstance(l, RtLabel) and l.task == task for l in ls)]
             test = " || ".join(f"state == {q}" for q in states) or "0"
             body.append(f"      {_ident('a_', task)} = ({test});")
         body += [f"      {line}" for line in self.fairness_counter() + monitors]

@@ -12,8 +12,9 @@ import pytest
 
 from orccad_app.cli import main
 from orccad_app.diagnostics import OrccadError
-from orccad_app.executive.mission_plan import plan_mission
-from orccad_app.executive.mission_run import MissionRun, parse_injection
+from orccad_app.mission.plan import plan_mission
+from orccad_app.mission.injection import parse_injection
+from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 
 ROOT = Path(__file__).resolve().parents[2]

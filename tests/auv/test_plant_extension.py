@@ -8,7 +8,8 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import Kernel
-from orccad_app.executive.plant import MujocoPlant, PlantExtension
+from orccad_app.control.plant_extension import PlantExtension
+from orccad_app.executive.plant import MujocoPlant
 
 BLOCK = """
 <mujoco>

@@ -117,7 +117,7 @@ robottask Hold(kp: float = 400.0) on arm {
 
 def _plan_text(tmp_path, text: str, mission: str | None = None):
     """The :class:`MissionPlan` of a plan written to a file under ``tmp_path``."""
-    from orccad_app.executive.mission_plan import plan_mission
+    from orccad_app.mission.plan import plan_mission
     from orccad_app.pipeline import load, select_mission
 
     path = tmp_path / "mission.orc"
@@ -128,7 +128,7 @@ def _plan_text(tmp_path, text: str, mission: str | None = None):
 
 def _plan_file(path, replacements: dict[str, str] | None = None, tmp_path=None):
     """The plan of a mission file of the repository, optionally edited (text replaced)."""
-    from orccad_app.executive.mission_plan import plan_mission
+    from orccad_app.mission.plan import plan_mission
     from orccad_app.pipeline import load, select_mission
 
     path = ROOT / path
@@ -145,7 +145,7 @@ def _plan_file(path, replacements: dict[str, str] | None = None, tmp_path=None):
 @pytest.fixture(scope="session")
 def pid_run():
     """One run of missions/arm_pid.orc (seed 0): ``(plan, result)``."""
-    from orccad_app.executive.mission_run import MissionRun
+    from orccad_app.mission.run import MissionRun
 
     plan = _plan_file("missions/arm_pid.orc")
     return plan, MissionRun(plan).run()

@@ -7,7 +7,8 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive import EventLog
-from orccad_app.executive.mission_run import Injection, MissionRun, parse_injection
+from orccad_app.mission.injection import Injection, parse_injection
+from orccad_app.mission.run import MissionRun
 from orccad_app.tcs import response_time_analysis
 
 PID = "missions/arm_pid.orc"

@@ -21,7 +21,7 @@ import pytest
 from orccad_app.control.closed_loop import simulate
 from orccad_app.control.spec import resolve
 from orccad_app.executive import Observer
-from orccad_app.executive.mission_run import MissionRun
+from orccad_app.mission.run import MissionRun
 from orccad_app.plugins import default_host
 
 

@@ -42,8 +42,14 @@ from their Esterel v5 meaning (a started strong ``abort`` tests its condition be
 reacts, a weak one after), so the expansions of :mod:`orccad_app.reactive.derived`, which the
 compiler receives, are checked too. ``count``/``duration`` are read when the statement starts.
 
-Data (variables, ``?S`` values, the clock) is evaluated directly, in program order (left to
-right in parallels). As in Esterel, where ``abort``/``suspend`` decide their condition once per
+*Values by a fixpoint instead of scheduling.* ``?S`` reads the value S has at the *end* of the
+instant (all its emissions of the instant, combined with its ``combine`` operator; two without
+one is a run-time error), or its value before the instant when S is not emitted. The instant is
+executed under an assumption on those end-of-instant values (none at first) and re-executed
+with the values the run emitted until they agree; a read of a value not known yet abandons the
+run (the emissions it made are learned). Each local signal incarnation has its own value.
+``pre(S)`` and ``pre(?S)`` read the status and value of the previous instant, kept per key.
+Variables and the clock are evaluated in program order. As in Esterel, where ``abort``/``suspend`` decide their condition once per
 instant, a data test *object* (the expansion of ``abort`` shares one between the suspension and
 the watcher) is evaluated once per instant, at its first use.
 """
@@ -68,7 +74,8 @@ _OUTERMOST = 10_000  # exit codes are 2 + _OUTERMOST - (trap nesting depth)
 _BINARY = {
     "+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
     "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
-    "==": operator.eq, "!=": operator.ne,
+    "==": operator.eq, "!=": operator.ne, "min": min, "max": max,
+    "last": lambda first, second: second,
 }
 
 
@@ -144,6 +151,10 @@ _Repeating = _node("_Repeating", "left", "current", "body",
 _NOTHING = ir.Nothing()
 
 
+class _Pending(Exception):
+    """A value read whose end-of-instant value is not known yet (see :class:`ReferenceReactor`)."""
+
+
 class _Guess(Exception):
     """Execution needs the status of a signal incarnation the assumption does not give."""
 
@@ -160,15 +171,19 @@ class _Memory:
     vars: dict = field(default_factory=dict)
     values: dict = field(default_factory=dict)
     clock_ns: int = 0
+    previous: dict = field(default_factory=dict)   # pre(?S): values before the instant
+    was_present: frozenset = frozenset()            # pre(S): keys present in the last instant
 
     def copy(self) -> "_Memory":
-        return _Memory(dict(self.vars), dict(self.values), self.clock_ns)
+        return _Memory(dict(self.vars), dict(self.values), self.clock_ns, self.previous,
+                       self.was_present)
 
 
 class _Run:
     """One deterministic execution of an instant under an assumption on signal statuses."""
 
-    def __init__(self, instant: int, inputs: frozenset[str], assumption: dict, memory: _Memory):
+    def __init__(self, instant: int, inputs: frozenset[str], assumption: dict, memory: _Memory,
+                 final_values: dict | None = None):
         self.instant = instant
         self.inputs = inputs
         self.assumption = assumption
@@ -176,6 +191,9 @@ class _Run:
         self.emitted: set = set()
         self.tested_data: dict[int, bool] = {}
         self.serial = 0
+        self.final_values = final_values or {}  # assumed end-of-instant values, by key
+        self.emissions: dict = {}                 # key -> (decl, [values emitted])
+        self.scope: dict = {}
 
     # ------------------------------------------------------------------ statements
     def react(self, term, scope: dict, traps: tuple) -> tuple[int, Any]:
@@ -190,14 +208,29 @@ class _Run:
         return 1, _NOTHING
 
     def _emit(self, term: ir.Emit, scope, traps):
-        self.emitted.add(scope.get(term.signal, term.signal))
+        key = scope.get(term.signal, term.signal)
+        self.emitted.add(key)
         if term.value is not None:
-            self.memory.values[term.signal] = self.value(term.value)
+            value = self.value(term.value, scope)
+            self.emissions.setdefault(key, (term.signal, []))[1].append(value)
         return 0, _NOTHING
 
     def _assign(self, term: ir.Assign, scope, traps):
-        self.memory.vars[term.var] = self.value(term.expr)
+        self.memory.vars[term.var] = self.value(term.expr, scope)
         return 0, _NOTHING
+
+    def combined(self) -> dict:
+        """The end-of-instant value of each signal key emitted with a value."""
+        out = {}
+        for key, (decl, values) in self.emissions.items():
+            if len(values) > 1 and decl.combine is None:
+                raise ReferenceError_(f"{decl.name} emitted twice in one instant")
+            value = values[0]
+            for other in values[1:]:
+                value = _BINARY[decl.combine](value, other) if decl.combine in _BINARY \
+                    else (value and other if decl.combine == "and" else value or other)
+            out[key] = value
+        return out
 
     def _present(self, term: ir.Present, scope, traps):
         branch = term.then if self.holds(term.test, scope) else term.orelse
@@ -260,7 +293,10 @@ class _Run:
         bindings = []
         for decl in term.signals:
             self.serial += 1
-            bindings.append((decl, (decl, self.instant, self.serial)))
+            key = (decl, self.instant, self.serial)
+            bindings.append((decl, key))
+            if decl.init is not None:
+                self.memory.values[key] = decl.init
         return self._scoped(Scoped(tuple(bindings), term.body), scope, traps)
 
     def _scoped(self, term: Scoped, scope, traps):
@@ -285,7 +321,7 @@ class _Run:
         return (0, _NOTHING) if self.holds(term.test, scope) else (1, term)
 
     def _await_count(self, term, scope, traps):
-        return 1, _Counting(term.test, self.value(term.count))
+        return 1, _Counting(term.test, self.value(term.count, scope))
 
     def _counting(self, term, scope, traps):
         if not self.holds(term.test, scope):
@@ -293,7 +329,7 @@ class _Run:
         return (0, _NOTHING) if term.left <= 1 else (1, _Counting(term.test, term.left - 1))
 
     def _await_duration(self, term, scope, traps):
-        return 1, _Until(self.memory.clock_ns + self.value(term.duration))
+        return 1, _Until(self.memory.clock_ns + self.value(term.duration, scope))
 
     def _until(self, term, scope, traps):
         return (0, _NOTHING) if self.memory.clock_ns >= term.deadline else (1, term)
@@ -335,7 +371,7 @@ class _Run:
         return self.react(ir.Seq((start, LoopEach(term.body, term.test))), scope, traps)
 
     def _repeat(self, term, scope, traps):
-        return self._repeat_from(self.value(term.count), term.body, scope, traps)
+        return self._repeat_from(self.value(term.count, scope), term.body, scope, traps)
 
     def _repeating(self, term, scope, traps):
         code, residual = self.react(term.current, scope, traps)
@@ -380,6 +416,8 @@ class _Run:
             if key not in self.assumption:
                 raise _Guess(key)
             return self.assumption[key]
+        if kind is ir.PreRef:
+            return scope.get(test.signal, test.signal) in self.memory.was_present
         if kind is ir.SigNot:
             return not self.holds(test.operand, scope)
         if kind is ir.SigAnd:
@@ -388,10 +426,10 @@ class _Run:
             return self.holds(test.left, scope) or self.holds(test.right, scope)
         assert kind is ir.DataTest
         if id(test) not in self.tested_data:
-            self.tested_data[id(test)] = bool(self.value(test.expr))
+            self.tested_data[id(test)] = bool(self.value(test.expr, scope))
         return self.tested_data[id(test)]
 
-    def value(self, expr: ir.Expr) -> Any:
+    def value(self, expr: ir.Expr, scope: dict) -> Any:
         kind = type(expr)
         if kind is ir.Const:
             return expr.value
@@ -400,21 +438,31 @@ class _Run:
                 raise ReferenceError_(f"variable {expr.var.name} read before assigned")
             return self.memory.vars[expr.var]
         if kind is ir.SigValue:
-            if expr.signal not in self.memory.values:
-                raise ReferenceError_(f"?{expr.signal.name} read before any value")
-            return self.memory.values[expr.signal]
+            key = scope.get(expr.signal, expr.signal)
+            if key in self.final_values:
+                return self.final_values[key]
+            if key not in self.memory.values:
+                raise _Pending(key)
+            return self.memory.values[key]
+        if kind is ir.PreValue:
+            key = scope.get(expr.signal, expr.signal)
+            if key not in self.memory.previous:
+                if type(key) is tuple and expr.signal.init is not None:
+                    return expr.signal.init  # a fresh incarnation: its initial value
+                raise ReferenceError_(f"pre(?{expr.signal.name}) read before any value")
+            return self.memory.previous[key]
         if kind is ir.Clock:
             return self.memory.clock_ns
         if kind is ir.VectorExpr:
-            return tuple(self.value(item) for item in expr.items)
+            return tuple(self.value(item, scope) for item in expr.items)
         if kind is ir.Unary:
-            operand = self.value(expr.operand)
+            operand = self.value(expr.operand, scope)
             return -operand if expr.op == "-" else not operand
         if expr.op == "and":
-            return bool(self.value(expr.left)) and bool(self.value(expr.right))
+            return bool(self.value(expr.left, scope)) and bool(self.value(expr.right, scope))
         if expr.op == "or":
-            return bool(self.value(expr.left)) or bool(self.value(expr.right))
-        return _BINARY[expr.op](self.value(expr.left), self.value(expr.right))
+            return bool(self.value(expr.left, scope)) or bool(self.value(expr.right, scope))
+        return _BINARY[expr.op](self.value(expr.left, scope), self.value(expr.right, scope))
 
     def coherent(self) -> bool:
         return all((key in self.emitted) == status for key, status in self.assumption.items())
@@ -453,6 +501,9 @@ class ReferenceReactor:
         self.program = program
         self.term: Any = program.body
         self.memory = _Memory()
+        for decl in (*program.inputs, *program.outputs):
+            if decl.init is not None:
+                self.memory.values[decl] = decl.init
         self.done = False
         self.instant = 0
         self._inputs = {s.name: s for s in program.inputs}
@@ -460,6 +511,10 @@ class ReferenceReactor:
     def react(self, inputs: Mapping[str, Any] | set[str] | frozenset[str] = frozenset(),
               clock_ns: int | None = None) -> RefReaction:
         self.instant += 1
+        for relation in self.program.relations:
+            if not relation.holds(inputs):
+                raise ReferenceError_(f"inputs violate relation {relation.text}")
+        self.memory.previous = dict(self.memory.values)
         if clock_ns is not None:
             self.memory.clock_ns = clock_ns
         if isinstance(inputs, Mapping):
@@ -468,35 +523,65 @@ class ReferenceReactor:
                     self.memory.values[self._inputs[name]] = value
         if self.done:
             return RefReaction((), {}, "done")
-        run, tried = self._solve(frozenset(inputs))
+        final: dict = {}
+        tried = 0
+        for _ in range(20):  # the end-of-instant values: a fixpoint
+            found = self._solve(frozenset(inputs), final)
+            tried += found[1]
+            if found[0] is not None:
+                run = found[0]
+                combined = run.combined()
+                if combined == final:
+                    break
+                final = combined
+            else:
+                learned = {**final, **found[2]}
+                if learned == final:
+                    raise ReferenceError_("a value is read before it can be known")
+                final = learned
+        else:
+            raise ReferenceError_("end-of-instant values do not settle")
         code, residual = run.react(self.term, {}, ())  # replay the coherent run for its residual
         if code > 1:
             raise ReferenceError_(f"exit escaped the program (code {code})")
+        run.memory.values.update(run.combined())
+        run.memory.was_present = frozenset(run.emitted) | frozenset(
+            s for s in self.program.inputs if s.name in inputs)
         self.term, self.memory, self.done = residual, run.memory, code == 0
         emitted = [s for s in self.program.outputs if s in run.emitted]
         values = {s.name: run.memory.values.get(s) for s in emitted if s.valued}
         return RefReaction(tuple(s.name for s in emitted), values,
                            "done" if self.done else "running", tried)
 
-    def _solve(self, inputs: frozenset[str]) -> tuple[_Run, int]:
-        """The unique coherent execution of this instant, found by guessing statuses."""
+    def _solve(self, inputs: frozenset[str], final: dict):
+        """The unique coherent execution of this instant, found by guessing statuses: (run or
+        None, executions tried, values learned from runs that read a value not known yet)."""
         pending: list[dict] = [{}]
         solutions: list[dict] = []
+        learned: dict = {}
+        stuck = False
         tried = 0
         while pending:
             assumption = pending.pop()
             tried += 1
             if tried > MAX_RUNS:
                 raise ReferenceError_(f"more than {MAX_RUNS} executions in one instant")
-            run = _Run(self.instant, inputs, assumption, self.memory.copy())
+            run = _Run(self.instant, inputs, assumption, self.memory.copy(), final)
             try:
                 run.react(self.term, {}, ())
             except _Guess as guess:
                 pending.append({**assumption, guess.key: False})
                 pending.append({**assumption, guess.key: True})
                 continue
+            except _Pending:
+                stuck = True
+                for key, (decl, values) in run.emissions.items():
+                    learned.setdefault(key, values[0])
+                continue
             if run.coherent():
                 solutions.append(assumption)
+        if stuck and not solutions:
+            return None, tried, learned
         if len(solutions) != 1:
             raise NotCoherent(self.instant, solutions)
-        return _Run(self.instant, inputs, solutions[0], self.memory.copy()), tried
+        return _Run(self.instant, inputs, solutions[0], self.memory.copy(), final), tried, learned

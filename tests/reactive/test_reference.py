@@ -63,8 +63,8 @@ def trace(reactor, script) -> list[tuple]:
         except NotCoherent as error:  # which signals were guessed is no part of the result
             out.append(("not logically correct", len(error.solutions)))
             break
-        except (OrccadError, ReferenceError_) as error:
-            out.append(("run-time error", type(error).__name__))
+        except (OrccadError, ReferenceError_):
+            out.append(("run-time error",))
             break
         out.append((reaction.outputs, reaction.values, reaction.status))
     return out

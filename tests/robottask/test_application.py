@@ -7,6 +7,8 @@ import sys
 
 import pytest
 
+from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
+
 from orccad_app.diagnostics import OrccadError
 from orccad_app.pipeline import load
 from tests.robottask.conftest import COMPOSED, Trace, arm_task, mission_automaton
@@ -89,11 +91,11 @@ def test_composed_view_labels_tell_the_active_task_and_phase(orc):
                  arm_task("B").replace("robot arm : arm3dof;", "") + """
 mission M { run A(); run B(); }""")
     t = Trace(mission_automaton(source, COMPOSED), ["@0"])
-    assert ("phase", "A", 0, 1) in t.reactor.labels
+    assert PhaseLabel("A", 0, Phase.SYNCHRONIZING) in t.reactor.labels
     t.reactor.react({"Go": None}, 0)
-    assert ("phase", "A", 0, 3) in t.reactor.labels
+    assert PhaseLabel("A", 0, Phase.ACTIVE) in t.reactor.labels
     t.reactor.react(set(), 2_000_000_000)
-    assert ("rt", "B", 1) in t.reactor.labels and ("rt", "A", 0) not in t.reactor.labels
+    assert RtLabel("B", 1) in t.reactor.labels and RtLabel("A", 0) not in t.reactor.labels
 
 
 def test_parameterized_task_reused_with_different_arguments(orc):
@@ -102,7 +104,7 @@ def test_parameterized_task_reused_with_different_arguments(orc):
     source = orc(arm_task("T", params="kp: float = 400.0") + """
 mission M { run T(kp = 600.0); run T(); run T(kp = 800.0); }""")
     instances = check_tasks(source.program, default_host())
-    gains = sorted(i.params["kp"] for (name, loc), i in instances.items() if loc is not None)
+    gains = sorted(i.params["kp"] for i in instances.by_run.values())
     assert gains == [400.0, 600.0, 800.0]
     t = Trace(mission_automaton(source), ["", "T.good_end", "T.good_end", "T.good_end"])
     assert [("T.start" in o) for o in t.outputs] == [True, True, True, False]

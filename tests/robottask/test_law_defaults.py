@@ -56,7 +56,7 @@ def test_tcs_shows_the_law_default_modules_and_connections(track):
 def test_the_default_modules_are_marked_as_the_law_s(track):
     source = load(track)
     instances = check_tasks(source.program, default_host())
-    inst = instances[("Track", None)]
+    inst = instances.defaults["Track"]
     assert {name: spec.origin for name, spec in inst.modules.items()} == {
         "traj": ModuleOrigin.LAW_DEFAULT, "ctrl": ModuleOrigin.LAW_DEFAULT,
         "tracking_error": ModuleOrigin.OBSERVER}

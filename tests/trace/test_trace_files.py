@@ -12,8 +12,9 @@ from mcap.reader import make_reader
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive import Observer
-from orccad_app.executive.mission_plan import plan_mission
-from orccad_app.executive.mission_run import Injection, MissionRun
+from orccad_app.mission.plan import plan_mission
+from orccad_app.mission.injection import Injection
+from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 from orccad_app.trace import TraceRecorder, open_trace
 

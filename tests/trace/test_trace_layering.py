@@ -7,7 +7,7 @@ import sys
 
 
 def test_trace_and_mission_run_import_without_textual():
-    code = ("import sys, orccad_app.trace, orccad_app.executive.mission_run; "
+    code = ("import sys, orccad_app.trace, orccad_app.mission.run; "
             "print([m for m in sys.modules if m.startswith(('textual', 'orccad_app.tui'))])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip()

@@ -7,7 +7,7 @@ from pathlib import Path
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
 from orccad_app.verify.checker import check_formula, check_mission
-from orccad_app.verify.composition import compose
+from orccad_app.robottask.composition import compose
 from orccad_app.verify.formula import from_ast
 from orccad_app.verify.model import build_model
 

@@ -11,6 +11,7 @@ import pytest
 from orccad_app.pipeline import load
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify.checker import check_mission
 from orccad_app.verify.formula import from_ast
 from orccad_app.verify.lasso import holds_on_lasso
@@ -52,7 +53,7 @@ def _letters(program, mission, text, automaton):
                                  (".raised", "raised")):
                 if name.endswith(suffix):
                     atoms.add((kind, name[: -len(suffix)]))
-        atoms |= {("active", label[1]) for label in reactor.labels if label[0] == "rt"}
+        atoms |= {("active", label.task) for label in reactor.labels if isinstance(label, RtLabel)}
         if status == "running" and reaction.status != "running":
             atoms.add(("status", reaction.status))
         status = reaction.status

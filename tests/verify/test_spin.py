@@ -71,5 +71,5 @@ def test_spin_agrees(spin, source, mission):
 
 
 def _automaton(source, mission):
-    from orccad_app.verify.composition import compose
+    from orccad_app.robottask.composition import compose
     return compose(source.program, mission).automaton

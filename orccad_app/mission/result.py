@@ -1,0 +1,142 @@
+"""What a mission run produced: status, Robot-Task runs, exceptions, executive statistics."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from orccad_app.executive.simulation import RunStats
+
+__all__ = ["RobotTaskRecord", "ExceptionRecord", "RunResult", "ErrorSamples", "STATUSES"]
+
+STATUSES = ("done", "failed", "aborted", "timeout")
+"""Final statuses: the mission ended normally, by an uncaught type-2 exception (or a run-time
+failure: deadlock, diverging plant, failing module), by a type-3 exception (or Ctrl-C), or was
+still running at ``--until``."""
+
+
+class ErrorSamples:
+    """Running sums of a task error's samples: RMS over samples and components, max."""
+
+    __slots__ = ("sum_sq", "count", "max_abs")
+
+    def __init__(self) -> None:
+        self.sum_sq = 0.0
+        self.count = 0
+        self.max_abs = 0.0
+
+    def add(self, error: Any) -> None:
+        """One sample (a vector of components) [rad or m]."""
+        values = np.asarray(error, dtype=float).ravel()
+        if not values.size:
+            return
+        self.sum_sq += float(values @ values)
+        self.count += values.size
+        peak = float(abs(values).max())
+        if peak > self.max_abs or peak != peak:  # NaN propagates
+            self.max_abs = peak
+
+    def summary(self) -> dict[str, float] | None:
+        """``{"rms": …, "max": …}``, ``None`` without samples."""
+        if not self.count:
+            return None
+        return {"rms": math.sqrt(self.sum_sq / self.count), "max": self.max_abs}
+
+
+@dataclass
+class RobotTaskRecord:
+    """One run of a Robot-Task (a site entered, then left).
+
+    :param name: the Robot-Task.
+    :param site: its ``run`` site.
+    :param start_ns: when it started [ns].
+    :param end_ns: when it ended [ns], ``None`` if still running at the end.
+    :param outcome: ``good_end``, the exception that ended it, ``killed`` (an enclosing
+        preemption) or ``running``.
+    :param errors: the task error's samples (the ``e`` output of its control law).
+    """
+
+    name: str
+    site: int
+    start_ns: int
+    end_ns: int | None = None
+    outcome: str = "running"
+    errors: ErrorSamples = field(default_factory=ErrorSamples)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON form (``tracking_error`` is ``null`` without a control law)."""
+        return {"name": self.name, "start_s": self.start_ns / 1e9,
+                "end_s": None if self.end_ns is None else self.end_ns / 1e9,
+                "outcome": self.outcome, "tracking_error": self.errors.summary()}
+
+
+@dataclass(frozen=True)
+class ExceptionRecord:
+    """An exception raised during the run.
+
+    :param time_ns: when [ns].
+    :param name: the exception (``TrackingLost``, ``Timeout``, ``at_rest_timeout``).
+    :param type: 1 (adjust), 2 (abort the task) or 3 (fatal), RR-1801 §3.4.2.
+    :param task: the Robot-Task that raised it, ``None`` for the mission's own (``within``).
+    """
+
+    time_ns: int
+    name: str
+    type: int
+    task: str | None
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type,
+                "task": self.task}
+
+
+@dataclass
+class RunResult:
+    """The outcome of :meth:`~orccad_app.mission.run.MissionRun.run`.
+
+    :param mission: the mission's name.
+    :param status: one of :data:`STATUSES`.
+    :param reason: why it is not ``done`` (exception name, diagnostic), else ``None``.
+    :param sim_time_ns: simulated time reached [ns].
+    :param wall_time_s: wall-clock duration of the run [s].
+    :param robot_tasks: Robot-Task runs in start order.
+    :param exceptions: exceptions in time order.
+    :param stats: the executive's :class:`~orccad_app.executive.simulation.RunStats`.
+    :param modules: TCS Module-Tasks by name (timing attributes for the report).
+    :param outputs: mission output signals emitted, ``(t_ns, name, value)``.
+    :param lateness_s: paced runs: per instant, lateness behind the wall clock [s].
+    :param seed: the run's seed.
+    :param interrupted: the run was stopped by Ctrl-C (status ``aborted``).
+    """
+
+    mission: str
+    status: str
+    reason: str | None
+    sim_time_ns: int
+    wall_time_s: float
+    robot_tasks: list[RobotTaskRecord]
+    exceptions: list[ExceptionRecord]
+    stats: RunStats
+    modules: dict[str, Any]
+    outputs: list[tuple[int, str, Any]] = field(default_factory=list)
+    lateness_s: list[float] | None = None
+    seed: int = 0
+    interrupted: bool = False
+
+    @property
+    def exit_status(self) -> int:
+        """0 when ``done``, else 1."""
+        return 0 if self.status == "done" else 1
+
+    def rms_error(self, task: str | None = None) -> float | None:
+        """RMS tracking error over the runs of ``task`` (default: every run) [rad]."""
+        total = ErrorSamples()
+        for record in self.robot_tasks:
+            if task is None or record.name == task:
+                total.sum_sq += record.errors.sum_sq
+                total.count += record.errors.count
+        summary = total.summary()
+        return None if summary is None else summary["rms"]

@@ -1,0 +1,395 @@
+"""A mission in the loop: the application automaton and the RTAs drive the executive.
+
+:class:`MissionRun` couples a :class:`~orccad_app.mission.plan.MissionPlan` (the
+composed automaton, one TCS for every ``run`` site, the plants) to a
+:class:`~orccad_app.executive.simulation.Simulation` (docs/design.md, *Reactions*):
+
+**When the automaton reacts.** Observers' events (a written event port ``X.module.event`` is the
+automaton input ``X.E``), injected inputs (``--inject SIG@T``) and timers are signals. The
+automaton reacts, in zero time, at every instant where one of them can matter:
+
+- at every instant with an observer event or an injection (all of the instant's signals in one
+  reaction, after the jobs finishing then have written their outputs);
+- on a periodic *tick* (default: the gcd of the module periods, 1 ms for the arm missions),
+  because timers (``await 2 s``, a task's ``duration``, watchdogs, ``within``) are data tests
+  on the clock: a deadline is seen at the first tick at or after it — exactly at it when it is a
+  multiple of the tick. A reaction costs about a microsecond, so ticking is cheaper than
+  finding the next deadline in the automaton's data tests, and it is always correct.
+
+Reactions are events of class ``CONTROL``: a reaction at ``t`` sees the outputs of jobs that
+finished at ``t`` and its activations release at ``t``.
+
+**What a reaction does.** The labels of the new state say which Robot-Task instance runs and in
+which :class:`~orccad_app.robottask.labels.Phase` (its
+:class:`~orccad_app.robottask.labels.PhaseLabel`): phase 1 runs no module, phase 2 the
+measuring modules (measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
+release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
+running restarts its modules; every run of a Robot-Task starts with fresh module instances
+(nominal parameters, no state, even when the same plan is run again). An output whose role
+(:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
+applies E's update to the running module (``set_param``); one whose role is a raised exception
+records it. The run stops when the mission
+terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
+failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
+
+**Plant extensions and faults.** A robot type whose ``plant_extension()`` returns a
+:class:`~orccad_app.control.plant_extension.PlantExtension` gets it attached to its plant
+(extra physics, sensor ports, named faults). ``--inject ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``,
+``auv.battery=5%@60``: a trailing ``%`` is dropped, the fault's unit applies) applies the fault
+``FAULT`` of robot ``ROBOT``'s plant at ``T`` seconds instead of raising a signal.
+
+**Observers.** Executive observers are passed to the simulation; those that also define the
+mission's callbacks (:class:`~orccad_app.mission.observer.MissionObserver`) get those too
+(traces).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Iterable
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.bus import Bus
+from orccad_app.executive.deadlock import DeadlockError
+from orccad_app.executive.kernel import EventClass
+from orccad_app.executive.observer import Observer
+from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
+from orccad_app.executive.processor import Processor
+from orccad_app.executive.simulation import Simulation
+from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.mission.injection import Injection
+from orccad_app.mission.observer import MISSION_HOOKS
+from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.reactive.runtime import Reactor
+from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
+from orccad_app.robottask.signals import RoleKind
+
+__all__ = ["MissionRun", "DEFAULT_UNTIL_NS", "run_horizon_s"]
+
+_CONTROL = EventClass.CONTROL
+DEFAULT_UNTIL_NS = 60_000_000_000
+"""Default simulated-time limit of a run [ns] (60 s)."""
+_INTERRUPTED = "interrupted (Ctrl-C)"
+_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
+
+
+class _Link(Observer):
+    """Forwards the executive's signals and ``e`` writes to the mission run."""
+
+    def __init__(self, run: MissionRun) -> None:
+        self._run = run
+
+    def on_signal(self, t_ns: int, name: str, value: Any) -> None:
+        self._run.signal(name, value)
+
+    def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port == "e":
+            self._run.task_error(module, value)
+
+
+class MissionRun:
+    """One run of a planned mission. See the module docstring.
+
+    :param plan: the mission's plan (:func:`~orccad_app.mission.plan.plan_mission`).
+    :param seed: the run's seed (execution times drawn in ``[bcet, wcet]``, sensor noise).
+    :param until_ns: the simulated-time limit [ns].
+    :param injections: inputs raised at given instants.
+    :param processors: processor descriptions (scheduler, context switch); others default.
+    :param bus: the bus between processors.
+    :param observers: executive observers (traces), optionally with the mission hooks.
+    :param realtime: ``None`` (as fast as possible) or the pacing factor (sim s / wall s).
+    :param tick_ns: the automaton's periodic reaction [ns] (default ``plan.tick_ns``).
+    """
+
+    def __init__(self, plan: MissionPlan, *, seed: int = 0,
+                 until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
+                 processors: Iterable[Processor] = (), bus: Bus | None = None,
+                 observers: Iterable[Any] = (), realtime: float | None = None,
+                 tick_ns: int | None = None) -> None:
+        if not isinstance(until_ns, int) or until_ns <= 0:
+            raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
+        self.plan = plan
+        self.seed = seed
+        self.until_ns = until_ns
+        self.realtime = realtime
+        self.tick_ns = tick_ns or plan.tick_ns
+        self.reactor = Reactor(plan.automaton)
+        observers = list(observers)
+        self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
+                       for hook in MISSION_HOOKS}
+        plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
+        self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
+                              plants=plants, observers=[_Link(self), *observers])
+        self.kernel = self.sim.kernel
+        self._signals = plan.signals
+        self._roles = plan.roles
+        self._error_site = {s.error_module: s.number for s in plan.sites if s.error_module}
+        self._outputs = {s.name for s in plan.automaton.outputs if plan.roles.get(s.name) is None}
+        self._pending: dict[str, Any] = {}
+        self._queued = False  # a reaction event is in the kernel's queue
+        self._reacted_at = -1
+        self._state: int | None = None
+        self._phase: dict[int, Phase] = {}
+        self._active: dict[int, set[str]] = {s.number: set() for s in plan.sites}
+        self._running: dict[int, RobotTaskRecord] = {}
+        self.records: list[RobotTaskRecord] = []
+        self.exceptions: list[ExceptionRecord] = []
+        self.outputs: list[tuple[int, str, Any]] = []
+        self._stopped_by: str | None = None
+        self._schedule_inputs(injections)
+
+    def add_observer(self, observer: Any) -> None:
+        """Observe the run from now on (executive callbacks and the mission hooks it has)."""
+        self.sim.add_observer(observer)
+        for hook in MISSION_HOOKS:
+            if hasattr(observer, hook):
+                self._hooks[hook].append(getattr(observer, hook))
+
+    def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
+        inputs = {s.name for s in self.plan.automaton.inputs}
+        for injection in injections:
+            if injection.fault:
+                self._schedule_fault(injection)
+                continue
+            if injection.name not in inputs:
+                known = ", ".join(sorted(inputs)) or "none"
+                raise OrccadError(f"--inject {injection.name}: not an input of mission "
+                                  f"'{self.plan.name}' (inputs: {known})")
+            if injection.time_ns >= self.until_ns:
+                raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
+                                  f"after --until ({self.until_ns / 1e9:g} s)")
+            self.kernel.schedule(injection.time_ns, _CONTROL, self._inject, injection)
+        self.kernel.schedule(0, _CONTROL, self._tick)
+
+    def _schedule_fault(self, injection: Injection) -> None:
+        robot, fault = injection.robot_fault
+        plant = self.sim.plants.get(robot)
+        if plant is None:
+            raise OrccadError(f"--inject {injection.name}: no robot '{robot}' in mission "
+                              f"'{self.plan.name}' (robots: {', '.join(self.sim.plants)})")
+        faults = plant.extension.faults if plant.extension is not None else {}
+        if fault not in faults:
+            raise OrccadError(f"--inject {injection.name}: robot '{robot}' has no fault "
+                              f"'{fault}' (faults: {', '.join(faults) or 'none'})")
+        if injection.time_ns >= self.until_ns:
+            raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
+                              f"after --until ({self.until_ns / 1e9:g} s)")
+        self.kernel.schedule(injection.time_ns, _CONTROL,
+                             lambda _: plant.inject(fault, injection.value))
+
+    # -- signals into the automaton ----------------------------------------------------------
+
+    def signal(self, name: str, value: Any) -> None:
+        """An executive signal: forwarded to the automaton when it is one of its inputs."""
+        target = self._signals.get(name)
+        if target is not None:
+            self._post(target, None)
+
+    def _post(self, name: str, value: Any) -> None:
+        self._pending[name] = value
+        now = self.kernel.now
+        if not self._queued:
+            self._queued = True
+            self.kernel.schedule(now, _CONTROL, self._queued_reaction)
+
+    def inject(self, name: str, value: Any = None) -> None:
+        """Raise the automaton input ``name`` now (from an observer's callback, i.e. on the
+        executive's thread): it reacts in the current instant, after the current event."""
+        if name not in {s.name for s in self.plan.automaton.inputs}:
+            raise OrccadError(f"{name}: not an input of mission '{self.plan.name}'")
+        self._post(name, value)
+
+    def abort(self, reason: str = "stopped by the user") -> None:
+        """End the run after the current event with status ``aborted`` (from a callback)."""
+        self._stopped_by = reason
+        self.kernel.stop()
+
+    @property
+    def phases(self) -> dict[int, Phase]:
+        """Site number -> phase of every running Robot-Task (a copy)."""
+        return dict(self._phase)
+
+    def _inject(self, injection: Injection) -> None:
+        self._post(injection.name, injection.value)
+
+    def _queued_reaction(self, _: object) -> None:
+        self._queued = False
+        self._react(None)
+
+    def _tick(self, _: object) -> None:
+        self.kernel.schedule(self.kernel.now + self.tick_ns, _CONTROL, self._tick)
+        self._react(None)
+
+    def task_error(self, module: str, value: Any) -> None:
+        """A control law wrote its task error ``e``: a tracking-error sample of its run."""
+        record = self._running.get(self._error_site.get(module, -1))
+        if record is not None:
+            record.errors.add(value)
+
+    # -- reactions ---------------------------------------------------------------------------
+
+    def _react(self, _: object) -> None:
+        now = self.kernel.now
+        pending = self._pending
+        if not pending and self._reacted_at == now:
+            return
+        self._pending = {}
+        self._reacted_at = now
+        if any(value is not None for value in pending.values()):
+            inputs: Any = pending
+        else:
+            inputs = set(pending)
+        reactor = self.reactor
+        reaction = reactor.react(inputs, now)
+        for hook in self._hooks["on_reaction"]:
+            hook(now, tuple(pending), reaction.outputs, reaction.status)
+        if not reaction.outputs and reactor.state == self._state and not reactor.finished:
+            return  # a tick that changed nothing (the common case)
+        emitted = set(reaction.outputs)
+        for name in reaction.outputs:
+            if name in self._outputs:
+                self.outputs.append((now, name, reaction.values.get(name)))
+        raised = self._exceptions(now, reaction.outputs)
+        if self.reactor.state != self._state:
+            self._state = self.reactor.state
+            phases = self._phases()
+        else:
+            phases = self._phase
+        self._update_sites(now, emitted, raised, phases)
+        if self.reactor.finished:
+            self.kernel.stop()
+
+    def _phases(self) -> dict[int, Phase]:
+        phases: dict[int, Phase] = {}
+        for label in self.reactor.labels:
+            if isinstance(label, PhaseLabel):
+                phases[label.site] = max(phases.get(label.site, label.phase), label.phase)
+            elif isinstance(label, RtLabel):
+                phases.setdefault(label.site, Phase.SYNCHRONIZING)
+        return phases
+
+    def _running_site(self, task: str) -> SiteModules | None:
+        for site in self.plan.sites:
+            if site.task == task and self._phase.get(site.number, 0) > 0:
+                return site
+        return None
+
+    def _exceptions(self, now: int, outputs: tuple[str, ...]) -> dict[str, str | None]:
+        """Record the exceptions of this reaction; return raised name -> task."""
+        raised: dict[str, str | None] = {}
+        for name in outputs:
+            role = self._roles.get(name)
+            if role is None or role.name is None:
+                continue
+            if role.kind is RoleKind.ADJUST and role.task is not None:
+                site = self._running_site(role.task)
+                update = site.adjustments.get(role.name) if site is not None else None
+                if update is not None:
+                    self.sim.set_param(update.module, update.param, update.value, at_ns=now)
+                self._record(ExceptionRecord(now, role.name, 1, role.task))
+            elif role.kind is RoleKind.RAISED:
+                kind, task = self._origin(role.name)
+                raised[role.name] = task
+                self._record(ExceptionRecord(now, role.name, kind, task))
+        return raised
+
+    def _origin(self, exception: str) -> tuple[int, str | None]:
+        """The type of ``exception`` and the running task that raised it (``None`` and type 2
+        for the mission's own ``Timeout``)."""
+        raisers = {r.task: r.type for r in self._roles.raisers.get(exception, ())}
+        for site in self.plan.sites:
+            if self._phase.get(site.number, 0) > 0 and site.task in raisers:
+                return raisers[site.task], site.task
+        return 2, None
+
+    def _record(self, record: ExceptionRecord) -> None:
+        self.exceptions.append(record)
+        for hook in self._hooks["on_exception"]:
+            hook(record)
+
+    def _update_sites(self, now: int, emitted: set[str], raised: dict[str, str | None],
+                      phases: dict[int, Phase]) -> None:
+        for site in self.plan.sites:
+            number = site.number
+            old = self._phase.get(number, 0)
+            new = phases.get(number, 0)
+            restart = old > 0 and new > 0 and site.start_signal in emitted
+            if old > 0 and (new == 0 or restart):
+                self._end_task(now, site, _outcome(site, emitted, raised))
+            if new > 0 and (old == 0 or restart):
+                self._start_task(now, site)
+            active = self._active[number]
+            wanted = site.wanted(new)
+            stop = [m for m in site.modules if m in active and (restart or m not in wanted)]
+            if stop:
+                self.sim.kill(stop, at_ns=now)
+                active.difference_update(stop)
+            start = [m for m in wanted if m not in active]
+            if start:
+                self.sim.activate(start, at_ns=now)
+                active.update(start)
+        self._phase = phases
+
+    def _start_task(self, now: int, site: SiteModules) -> None:
+        for name, compute in site.fresh_computes().items():  # nominal parameters, no state
+            self.sim.replace_compute(name, compute)
+        record = RobotTaskRecord(site.task, site.number, now)
+        self._running[site.number] = record
+        self.records.append(record)
+        for hook in self._hooks["on_task_start"]:
+            hook(now, site.task, site.number)
+
+    def _end_task(self, now: int, site: SiteModules, outcome: str) -> None:
+        record = self._running.pop(site.number)
+        record.end_ns = now
+        record.outcome = outcome
+        for hook in self._hooks["on_task_end"]:
+            hook(now, site.task, site.number, outcome)
+
+    # -- running -----------------------------------------------------------------------------
+
+    def run(self) -> RunResult:
+        """Run until the mission ends, ``until_ns``, a run-time failure or Ctrl-C."""
+        wall_start = time.perf_counter()
+        status, reason = None, None
+        try:
+            self.sim.run(self.until_ns, realtime=self.realtime)
+        except _RUN_FAILURES as error:
+            status, reason = "failed", error.message
+        except KeyboardInterrupt:
+            status, reason = "aborted", _INTERRUPTED
+        wall = time.perf_counter() - wall_start
+        if status is None and self._stopped_by is not None and not self.reactor.finished:
+            status, reason = "aborted", self._stopped_by
+        if status is None:
+            status, reason = self._final_status()
+        stats = self.sim.stats()
+        return RunResult(self.plan.name, status, reason, self.kernel.now, wall, self.records,
+                         self.exceptions, stats, self.plan.tcs.modules, self.outputs,
+                         self.sim.lateness_s if self.realtime else None, self.seed,
+                         interrupted=reason == _INTERRUPTED)
+
+    def _final_status(self) -> tuple[str, str | None]:
+        reactor = self.reactor
+        if reactor.finished:
+            return reactor.status, reactor.reason
+        if reactor.status in ("failed", "aborted"):
+            return reactor.status, reactor.reason
+        return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
+
+
+def run_horizon_s(plan: MissionPlan, default_s: float) -> float:
+    """The default simulated-time limit of ``plan`` [s] (:meth:`MissionPlan.run_horizon_s`)."""
+    return plan.run_horizon_s(default_s)
+
+
+def _outcome(site: SiteModules, emitted: set[str], raised: dict[str, str | None]) -> str:
+    if site.good_end_signal in emitted:
+        return "good_end"
+    for exception, origin in raised.items():
+        if origin == site.task:
+            return exception
+    if "Timeout" in raised:
+        return "Timeout"
+    return "killed"

@@ -1,0 +1,31 @@
+"""The ``slow`` marker, applied here to the longest tests (a pytest plugin, loaded by
+pyproject's ``addopts``).
+
+The list is kept in one place, measured with ``python -m pytest --durations=25``: every test
+that took about 5 s or more on the CI machine. The default run (and CI) runs them all;
+``python -m pytest -m "not slow"`` is the quick run for development.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+#: ``file::function`` of the slow tests (every parameter of a parametrized test).
+SLOW = frozenset({
+    "tests/reactive/test_reference.py::test_compiled_automaton_agrees_with_the_reference_interpreter",
+    "tests/verify/test_spin.py::test_spin_agrees",
+    "tests/tui/test_tui_app.py::test_an_arm_run_goes_live_to_its_report_and_exports_its_trace",
+    "tests/tui/test_tui_app.py::test_pause_and_speed_keys_drive_the_pacing",
+    "tests/tui/test_tui_app.py::test_the_log_filter_keeps_matching_lines",
+    "tests/tui/test_tui_app.py::test_a_key_raises_a_declared_input_during_the_run_and_the_mission_recovers",
+    "tests/lang/test_parser.py::test_grammar_sentences_parse_or_fail_cleanly",
+    "tests/executive/test_mission_run.py::test_type1_exception_retunes_the_running_module",
+    "tests/verify/test_counterexample.py::test_check_exits_1_and_its_script_replays_to_the_violation",
+    "tests/tui/test_tui_live.py::test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused",
+})
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.nodeid.split("[", 1)[0] in SLOW:
+            item.add_marker(pytest.mark.slow)
