@@ -248,6 +248,20 @@ class Simulation:
                 hook(sim.kernel.now, module, name, value)
         self.at(at_ns, change)
 
+    def reset_ports(self, modules: Iterable[str], at_ns: int | None = None) -> None:
+        """At ``at_ns`` (default now), bring every channel from or to one of ``modules`` back
+        to its state before any write (:meth:`Channel.reset
+        <orccad_app.executive.channel.Channel.reset>`): fresh ports for a new run."""
+        names = {runtime.name for runtime in self._runtimes(modules)}
+        channels = [channel for channel in self.channels.values()
+                    if channel.connection.producer_module in names
+                    or channel.connection.consumer_module in names]
+
+        def reset(sim: Simulation) -> None:
+            for channel in channels:
+                channel.reset()
+        self.at(at_ns, reset)
+
     def replace_compute(self, module: str, compute: Any) -> None:
         """Give ``module`` a new compute object, now (used by the next job that starts; call
         it before re-activating a Module-Task that must start afresh)."""
