@@ -19,6 +19,7 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
+from orccad_app.reactive.labels import MissionLabel
 
 __all__ = ["lower_mission", "mission_interface", "Lowerer", "Scope", "not_yet"]
 
@@ -326,7 +327,7 @@ class Lowerer:
             body = self.block(target.body, inner)
         finally:
             self._inlining = stack
-        return ir.Mark(("mission", target.name, site), body, s.loc)
+        return ir.Mark(MissionLabel(target.name, site), body, s.loc)
 
     def _bind(self, target: ast.Mission, s: ast.RunMission, scope: Scope) -> dict:
         """The caller's signal for each of the sub-mission's (renamed, else same name)."""
