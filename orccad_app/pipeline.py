@@ -102,7 +102,7 @@ def _plugins(host: PluginHost | None) -> PluginHost:
 
 
 #: Largest source file or script read [bytes] (a budget: see docs/limits.md).
-MAX_SOURCE_BYTES = 1_000_000
+MAX_SOURCE_BYTES = 512_000
 
 
 def read_source(path: str | bytes, name: str | None = None) -> str:
@@ -122,7 +122,7 @@ def read_source(path: str | bytes, name: str | None = None) -> str:
         except OSError as error:
             raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
     if len(data) > MAX_SOURCE_BYTES:
-        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES:_} bytes an input "
+        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES} bytes an input "
                           "may have")
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]

@@ -19,17 +19,13 @@ import argparse
 import os
 import sys
 
+from orccad_app.commands.arguments import positive_int, seconds
+
 __all__ = ["register", "run", "add_common"]
 
 
 def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text!r}")
-    return value
+    return positive_int(text)  # one check for every command (commands/arguments.py)
 
 
 def _probability(text: str) -> float:
@@ -37,19 +33,13 @@ def _probability(text: str) -> float:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not 0 < value < 1:
+    if not 0 < value < 1:  # NaN fails this test too
         raise argparse.ArgumentTypeError(f"expected a number in (0, 1), got {text!r}")
     return value
 
 
 def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seconds, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a duration > 0 s, got {text!r}")
-    return value
+    return seconds(text)  # finite, in (0, one year]: docs/limits.md
 
 
 def add_common(parser: argparse.ArgumentParser) -> None:

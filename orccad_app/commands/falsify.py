@@ -16,19 +16,14 @@ from __future__ import annotations
 
 import argparse
 
+from orccad_app.commands.arguments import non_negative_int
 from orccad_app.commands.campaign import _positive_int, add_common
 
 __all__ = ["register", "run"]
 
 
 def _natural(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
+    return non_negative_int(text)  # one check for every command (commands/arguments.py)
 
 
 def register(sub) -> None:

@@ -30,6 +30,7 @@ from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.lang.limits import MAX_DURATION_NS, MIN_PERIOD_NS
 from orccad_app.mission.plan import MissionPlan, plan_composition
 
 __all__ = ["ParamOverride", "NoiseOverride", "TimingOverride", "TimingField", "PlanOverrides",
@@ -168,9 +169,12 @@ def parse_timing(text: str) -> TimingOverride:
     if isinstance(value, bool) or not value >= 0:
         raise OrccadError(f"--timing {text}: the time must be a number >= 0 ms")
     field = TimingField(field_name)
+    if float(value) * 1e6 > MAX_DURATION_NS:
+        raise OrccadError(f"--timing {text}: at most one year (the longest duration)")
     value_ns = int(round(float(value) * 1e6))
-    if field is TimingField.PERIOD and value_ns <= 0:
-        raise OrccadError(f"--timing {text}: a period must be > 0 ms")
+    if field is TimingField.PERIOD and value_ns < MIN_PERIOD_NS:
+        raise OrccadError(f"--timing {text}: a period must be at least 1 us (0.001 ms), as "
+                          "in the language")
     return TimingOverride(task, module, field, value_ns)
 
 

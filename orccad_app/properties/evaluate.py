@@ -32,6 +32,8 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.mission.plan import MissionPlan
+from orccad_app.mission.run import MissionRun
 from orccad_app.properties.recorder import PropertyRecorder
 from orccad_app.verify.checker import applicable
 from orccad_app.verify.formula import atoms, from_ast
@@ -96,11 +98,11 @@ class _Signal:
     task_errors: dict[str, int]
 
 
-def _robot_types(plan: Any) -> dict[str, Any]:
+def _robot_types(plan: MissionPlan) -> dict[str, Any]:
     return {site.instance.robot_name: site.instance.context.robot for site in plan.sites}
 
 
-def _check_task_error(prop: ast.Property, robot: str, dim: int, plan: Any) -> None:
+def _check_task_error(prop: ast.Property, robot: str, dim: int, plan: MissionPlan) -> None:
     """``robot.e`` was typed as a vector of the robot's joints: every control law on the
     robot must write an error of that size (a Cartesian task may not)."""
     for site in plan.sites:
@@ -121,7 +123,8 @@ class PropertyMonitor:
     :meth:`results` after.
     """
 
-    def __init__(self, program: ast.Program, mission: ast.Mission, mission_run: Any) -> None:
+    def __init__(self, program: ast.Program, mission: ast.Mission,
+                 mission_run: MissionRun) -> None:
         self.mission = mission
         plan = mission_run.plan
         self.period_ns = int(plan.tick_ns)
@@ -143,7 +146,8 @@ class PropertyMonitor:
         if props:
             mission_run.add_observer(self.recorder)
 
-    def _signal_property(self, prop: ast.Property, plan: Any, mission_run: Any) -> _Signal:
+    def _signal_property(self, prop: ast.Property, plan: MissionPlan,
+                         mission_run: MissionRun) -> _Signal:
         robot_types = _robot_types(plan)
         ports = port_signals(prop.formula, robot_types)
         for robot, _ in ports:

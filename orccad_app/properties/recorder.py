@@ -23,6 +23,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from orccad_app.mission.observer import MissionObserver
+from orccad_app.mission.run import MissionRun
 from orccad_app.robottask.labels import RtLabel
 
 __all__ = ["PropertyRecorder"]
@@ -41,7 +42,7 @@ class PropertyRecorder(MissionObserver):
         whose ``e`` is read (among ``ports``).
     """
 
-    def __init__(self, mission_run: Any, keys: Iterable[tuple],
+    def __init__(self, mission_run: MissionRun, keys: Iterable[tuple],
                  ports: Iterable[tuple[str, str]], period_ns: int,
                  task_errors: dict[str, int] | None = None) -> None:
         self._run = mission_run

@@ -72,6 +72,7 @@ def test_the_replay_command_reproduces_the_run_bit_for_bit(leak_spec, tmp_path):
     here["properties"] = results_dict(monitor.results())
     for data in (report, here):
         data.pop("wall_time_s")
+    assert {p["name"] for p in report.pop("properties")} >= {"leak_surfaces"}  # orccad run's
     assert report == here
     for verdict in report["properties"]:  # the campaign's row holds the same verdicts
         found = record.properties[verdict["name"]]
@@ -164,9 +165,14 @@ def test_dask_local_cluster_gives_the_same_rows_as_the_pool(leak_spec, tmp_path)
             distributed.Client(cluster) as client:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
         result = _campaign(leak_spec, tmp_path / "d.db", 4).run(backend=DaskBackend(client))
+        command = orccad("campaign", AUV, "--spec", str(leak_spec), "--runs", "4",
+                         "--cluster", cluster.scheduler_address, "--db",
+                         str(tmp_path / "cli.db"), "--json")
     assert result.backend == "dask"
+    assert command.returncode == 0, command.stderr
+    assert json.loads(command.stdout)["backend"] == "dask"
     _campaign(leak_spec, tmp_path / "p.db", 4).run(backend=PoolBackend(2))
-    assert _rows(tmp_path / "d.db") == _rows(tmp_path / "p.db")
+    assert _rows(tmp_path / "d.db") == _rows(tmp_path / "p.db") == _rows(tmp_path / "cli.db")
 
 
 @pytest.mark.slow

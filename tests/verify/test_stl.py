@@ -124,3 +124,9 @@ def _verdict(text: str, word, ended: bool) -> Verdict:
 ])
 def test_ltl_verdicts(text, word, ended, expected):
     assert _verdict(text, word, ended) is expected
+
+
+def test_the_model_checker_refuses_a_signal_formula_rather_than_dropping_its_bounds():
+    for text in ("always[0, 1] done", "always (done -> r.x < 1.0)"):
+        with pytest.raises(OrccadError, match="judged on runs, not by the model checker"):
+            from_ast(parse(f"property p: {text};").properties[0].formula)
