@@ -447,3 +447,12 @@ def test_a_very_long_line_is_shown_as_a_window_around_the_error(tmp_path, capsys
     head, shown, caret = err.splitlines()[:3]
     assert status == 2 and "undeclared signal 'C'" in head
     assert len(shown) < 200 and shown[caret.index("^")] == "C"
+
+
+def test_trace_values_are_strict_json():
+    import numpy as np
+
+    from orccad_app.trace.recorder import to_json
+
+    assert strict(to_json([1.0, float("nan"), np.array([np.inf, 2.0])])) == [1.0, None,
+                                                                           [None, 2.0]]
