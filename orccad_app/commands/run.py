@@ -157,7 +157,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict)
+                                  report_dict, sensor_ports)
 
     _file_after_injections(args)
     injections = [_injection(text) for text in args.inject]
@@ -178,7 +178,7 @@ def run(args: argparse.Namespace) -> int:
     monitor = PropertyMonitor(source.program, mission, mission_run)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)})
+                                         "seed": str(args.seed)}, sensor_ports(plan))
         mission_run.add_observer(TraceRecorder(writer))
     try:
         try:

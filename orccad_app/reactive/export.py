@@ -100,7 +100,8 @@ def to_summary(automaton: Automaton) -> str:
 def mission_labels(automaton: Automaton, state: int) -> list[str]:
     """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
     labels = automaton.labels[state] if automaton.labels else ()
-    return sorted(f"{label[1]}#{label[2]}" for label in labels if label[0] == "mission")
+    return sorted(f"{label[1]}#{label[2]}" for label in labels
+                  if isinstance(label, tuple) and label[0] == "mission")  # not Rt/PhaseLabel
 
 
 def _missions_in(automaton: Automaton, state: int) -> str:
