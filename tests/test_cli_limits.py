@@ -184,7 +184,7 @@ def test_cli_state_budget_default_is_the_compilers():
     ("await 366 * 1 s;", None),  # an expression is not a literal: fine
     ("emit N(" + "9" * 5000 + ");", "integer literal out of range"),
     ("emit N(9223372036854775808);", "integer literal out of range"),
-    ("emit F(1e400);", "is out of range (finite numbers only"),
+    ("emit F(1e400);", "is out of range: not finite"),
     ("emit F(1e-400);", "too small: it would be read as 0"),
 ])
 def test_literals_out_of_range_are_located_errors(tmp_path, capsys, statement, message):
