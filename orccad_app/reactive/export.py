@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton, Transition, transitions
 from orccad_app.reactive.expr import format_expr
 
@@ -100,7 +101,8 @@ def to_summary(automaton: Automaton) -> str:
 def mission_labels(automaton: Automaton, state: int) -> list[str]:
     """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
     labels = automaton.labels[state] if automaton.labels else ()
-    return sorted(f"{label[1]}#{label[2]}" for label in labels if label[0] == "mission")
+    return sorted(f"{label.mission}#{label.site}" for label in labels
+                  if isinstance(label, ir.MissionLabel))
 
 
 def _missions_in(automaton: Automaton, state: int) -> str:

@@ -38,7 +38,7 @@ __all__ = [
     "SigRef", "PreRef", "SigNot", "SigAnd", "SigOr", "DataTest", "Test",
     "Nothing", "Pause", "Emit", "Present", "Seq", "Loop", "Par", "Trap", "Exit",
     "Suspend", "Local", "Assign", "Mark", "Stmt", "Program",
-    "INPUT", "OUTPUT", "LOCAL", "Relation", "NO_VALUE",
+    "INPUT", "OUTPUT", "LOCAL", "Relation", "NO_VALUE", "MissionLabel",
 ]
 
 INPUT, OUTPUT, LOCAL = "input", "output", "local"
@@ -297,6 +297,18 @@ class Assign:
     var: VarDecl
     expr: Expr
     loc: SourceLocation = NOWHERE
+
+
+@dataclass(frozen=True, order=True)
+class MissionLabel:
+    """The region of a sub-mission run (``run mission M``) at one call site.
+
+    :param mission: the sub-mission's name.
+    :param site: the call's number in the calling mission (from 1, source order).
+    """
+
+    mission: str
+    site: int
 
 
 @dataclass(frozen=True, slots=True, eq=False)

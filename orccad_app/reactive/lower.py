@@ -321,7 +321,7 @@ class Lowerer:
             body = self.block(target.body, inner)
         finally:
             self._inlining = stack
-        return ir.Mark(("mission", target.name, site), body, s.loc)
+        return ir.Mark(ir.MissionLabel(target.name, site), body, s.loc)
 
     def _bind(self, target: ast.Mission, s: ast.RunMission, scope: Scope) -> dict:
         """The caller's signal for each of the sub-mission's (renamed, else same name)."""

@@ -207,7 +207,7 @@ def statements(draw, ctx: _Ctx, compound: bool = False):
         return ref.Abort(stmt(), draw(_test(ctx)), draw(st.booleans()), draw(st.booleans()),
                          handler)
     if kind == "mission":
-        return ir.Mark(("mission", "Sub", len(ctx.traps)), stmt())
+        return ir.Mark(ir.MissionLabel("Sub", len(ctx.traps)), stmt())
     if kind == "race":
         return ref.Race((stmt(), stmt()))
     if kind == "every":

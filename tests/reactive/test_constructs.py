@@ -198,9 +198,10 @@ def test_sub_missions_are_inlined_with_their_signals_renamed():
 
 def test_sub_mission_regions_label_the_states():
     automaton = _compiled(LIBRARY, "Main")
-    labels = set().union(*automaton.labels)
-    assert {label[:2] for label in labels if label[0] == "mission"} == {("mission", "Home")}
-    assert len({label for label in labels if label[0] == "mission"}) == 2  # two sites
+    from orccad_app.reactive.ir import MissionLabel
+    labels = {label for label in set().union(*automaton.labels)
+              if isinstance(label, MissionLabel)}
+    assert labels == {MissionLabel("Home", 1), MissionLabel("Home", 2)}
 
 
 @pytest.mark.parametrize("call, message", [
