@@ -25,7 +25,7 @@ def run_with_trace(injections: tuple[str, ...], path: Path):
     """Run the mission with a CSV trace at ``path``; return the run result."""
     from orccad_app.mission.plan import plan_mission
     from orccad_app.mission.injection import parse_injection
-from orccad_app.mission.run import MissionRun
+    from orccad_app.mission.run import MissionRun
     from orccad_app.pipeline import load, select_mission
     from orccad_app.trace import TraceRecorder, open_trace
 

@@ -124,3 +124,6 @@ property AuvSurvey.failed_only_at_surface:
     always (failed -> (not once started(Dive) or once ended(Surface)));
 property AuvSurvey.surface_alone:
     always not (active(Surface) and (active(Dive) or active(GoTo) or active(Survey)));
+// Signal properties (docs/signal-properties.md): judged on runs and campaigns, not proved.
+property AuvSurvey.safe_depth: always (auv.depth < 30.0);
+property AuvSurvey.clear_of_seabed: always (auv.altitude > 2.0);

@@ -1,8 +1,7 @@
 """``python -m orccad_app``: the ``orccad`` command, for environments without the script."""
 
-import sys
 
-from orccad_app.cli import main
+from orccad_app.cli import entry_point
 
 if __name__ == "__main__":
-    sys.exit(main())
+    entry_point()

@@ -2,23 +2,36 @@
 
 Each sub-command lives in ``orccad_app/commands/<name>.py`` and exposes
 ``register(subparsers) -> None`` which adds its parser and sets ``func`` to a callable
-``(args) -> int``. Exit status: 0 success, 1 a checked property or the mission failed,
-2 bad input (usage, parse or semantic error). Errors never reach the user as a traceback.
+``(args) -> int``. A command module imports only the standard library at module level (the
+heavy layers are imported inside ``func``), so ``orccad --help`` starts fast.
+
+Exit status (see ``docs/limits.md``): 0 success, 1 a checked property or the mission failed,
+2 bad input (usage, parse or semantic error, unreadable or unwritable file), 3 an internal
+error (a bug: a one-line message, the traceback with ``--debug`` or ``ORCCAD_DEBUG=1``),
+130 interrupted (Ctrl-C). Errors never reach the user as a traceback by default.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
+import os
 import sys
 
-from orccad_app import __version__
-from orccad_app.diagnostics import OrccadError
-
-__all__ = ["main", "COMMANDS"]
+__all__ = ["main", "build_parser", "COMMANDS", "EXIT_INTERNAL", "EXIT_INTERRUPTED",
+           "DEBUG_ENV"]
 
 #: Sub-command modules under ``orccad_app.commands``, in the order ``--help`` lists them.
-COMMANDS: tuple[str, ...] = ("compile", "check", "react", "rta", "tcs", "run", "tui", "plugins")
+COMMANDS: tuple[str, ...] = ("compile", "check", "react", "rta", "tcs", "run", "campaign",
+                             "falsify", "tui", "plugins")
+
+#: Exit status of an internal error (a bug in orccad or in a plugin).
+EXIT_INTERNAL = 3
+#: Exit status after Ctrl-C (128 + SIGINT, as shells do).
+EXIT_INTERRUPTED = 130
+#: Environment variable that, set to a non-empty value other than ``0``, shows tracebacks.
+DEBUG_ENV = "ORCCAD_DEBUG"
+
+_REPORT = "please report it with the command that caused it"
 
 
 class _ArgumentParser(argparse.ArgumentParser):
@@ -29,35 +42,116 @@ class _ArgumentParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
+def _version() -> str:
+    from orccad_app import __version__
+    return __version__
+
+
 def build_parser() -> argparse.ArgumentParser:
+    import importlib
+
     parser = _ArgumentParser(
         prog="orccad",
         description="Design reactive, real-time robot controllers.",
-    )
-    parser.add_argument("--version", action="version", version=f"orccad {__version__}")
+        epilog="Exit status: 0 ok, 1 a property or the mission failed, 2 bad input, "
+               f"3 internal error, 130 interrupted. {DEBUG_ENV}=1 or --debug shows the "
+               "traceback of an internal error.")
+    parser.add_argument("--version", action="version", version=f"orccad {_version()}")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the Python traceback of an internal error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_ArgumentParser)
     for name in COMMANDS:
         importlib.import_module(f"orccad_app.commands.{name}").register(sub)
+    for command in sub.choices.values():  # `orccad run F --debug` works too
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                             help="show the Python traceback of an internal error")
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if getattr(args, "func", None) is None:
-        parser.print_help(sys.stderr)
-        return 2
+def _debugging(args: argparse.Namespace | None) -> bool:
+    return bool(getattr(args, "debug", False)) or os.environ.get(DEBUG_ENV, "") not in ("", "0")
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's final flush cannot fail again."""
     try:
-        return int(args.func(args) or 0)
-    except OrccadError as error:
-        print(error.format(), file=sys.stderr)
-        return error.exit_status
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # pragma: no cover - no real stdout
+        pass
+
+
+def _flush_stdout() -> None:
+    """Flush stdout now, inside the guard: a full disk is reported, not lost at exit."""
+    if sys.stdout is not None:
+        sys.stdout.flush()
+
+
+def _internal_error(error: BaseException, args: argparse.Namespace | None) -> int:
+    if _debugging(args):
+        import traceback
+        traceback.print_exception(type(error), error, error.__traceback__, file=sys.stderr)
+    detail = f"{type(error).__name__}: {error}".replace("\n", " ")
+    if len(detail) > 200:
+        detail = detail[:197] + "..."
+    hint = "" if _debugging(args) else f" (--debug or {DEBUG_ENV}=1 shows the traceback)"
+    print(f"orccad: internal error ({detail}); this is a bug, {_REPORT}{hint}",
+          file=sys.stderr)
+    return EXIT_INTERNAL
+
+
+def _dispatch(args: argparse.Namespace) -> int:
+    try:
+        status = args.func(args)
+    except SystemExit as exit_:  # a plugin or library called sys.exit: not ours to end with
+        raise RuntimeError(f"sys.exit({exit_.code!r}) called during '{args.command}' "
+                           "(by a plugin or a library)") from exit_
+    _flush_stdout()
+    return int(status or 0)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run ``orccad`` with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    args = None
+    try:
+        from orccad_app.diagnostics import OrccadError
+
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if getattr(args, "func", None) is None:
+            parser.print_help(sys.stderr)
+            return 2
+        try:
+            return _dispatch(args)
+        except OrccadError as error:
+            _flush_stdout()
+            print(error.format(), file=sys.stderr)
+            return error.exit_status
     except KeyboardInterrupt:
         print("orccad: interrupted", file=sys.stderr)
-        return 130
-    except BrokenPipeError:  # pragma: no cover - e.g. `orccad compile … | head`
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:  # e.g. `orccad compile … | head`: the reader has gone
+        _silence_stdout()
         return 0
+    except OSError as error:  # a full disk, a closed or unwritable output
+        _silence_stdout()
+        where = f"{error.filename}: " if error.filename else "cannot write output: "
+        print(f"orccad: error: {where}{error.strerror or error}", file=sys.stderr)
+        return 2
+    except RecursionError as error:
+        return _internal_error(error, args)
+    except Exception as error:  # noqa: BLE001 - the one top-level guard
+        return _internal_error(error, args)
+
+
+def entry_point() -> None:  # pragma: no cover - the console script
+    """The ``orccad`` console script: ``sys.exit(main())``, Ctrl-C included."""
+    try:
+        status = main()
+    except KeyboardInterrupt:
+        status = EXIT_INTERRUPTED
+    sys.exit(status)
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    entry_point()

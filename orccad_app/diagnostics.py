@@ -73,22 +73,55 @@ class OrccadError(Exception):
 
 def format_diagnostic(severity: str, message: str, location: SourceLocation | None,
                       source: str | None = None) -> str:
-    """Render ``file:line:col: severity: message`` plus the source line and a caret."""
+    """Render ``file:line:col: severity: message`` plus the source line and a caret.
+
+    Lines are counted at ``\\n`` only (as the parser counts them: a form feed or U+2028 does
+    not start a line); tabs are expanded to 4 columns in the shown line and under it, so the
+    caret stays under the character it points at.
+    """
     if location is None or location.line <= 0:
         return f"orccad: {severity}: {message}"
     head = f"{location}: {severity}: {message}"
     if source is None:
-        try:
-            with open(location.file, encoding="utf-8") as handle:
-                source = handle.read()
-        except OSError:
+        source = _read(location.file)
+        if source is None:
             return head
-    lines = source.splitlines()
+    lines = source.split("\n")
     if location.line > len(lines):
         return head
-    text = lines[location.line - 1].expandtabs(4)
-    width = 1
+    line = lines[location.line - 1].rstrip("\r")
+    start = max(location.col - 1, 0)
+    end = start + 1
     if location.end_line == location.line and location.end_col and location.end_col > location.col:
-        width = location.end_col - location.col
-    caret = " " * (location.col - 1) + "^" + "~" * (width - 1)
+        end = location.end_col - 1
+    if len(line) > _SHOWN_WIDTH:  # a very long line: show a window around the column
+        first = max(0, min(start - _SHOWN_WIDTH // 3, len(line) - _SHOWN_WIDTH))
+        line, start, end = line[first:first + _SHOWN_WIDTH], start - first, end - first
+        end = min(end, len(line))
+    text = _shown(line)
+    before = len(_shown(line[:start]))
+    width = max(len(_shown(line[:end])) - before, 1)
+    caret = " " * before + "^" + "~" * (width - 1)
     return f"{head}\n    {text}\n    {caret}"
+
+
+#: Widest excerpt of a source line shown under a diagnostic [characters].
+_SHOWN_WIDTH = 160
+
+
+def _shown(text: str) -> str:
+    """``text`` as printed under a diagnostic: tabs expanded, other control characters (form
+    feed, U+2028, ...) shown as one space each so that columns stay aligned."""
+    return "".join(c if c.isprintable() or c == "\t" else " " for c in text).expandtabs(4)
+
+
+def _read(path: str) -> str | None:
+    """The text of ``path`` for a diagnostic (undecodable bytes replaced), or None."""
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(2_000_000)
+    except OSError:
+        return None
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    return data.decode("utf-8", "replace")

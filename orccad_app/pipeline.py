@@ -6,10 +6,11 @@ chains them and picks the mission a command is about.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
@@ -18,9 +19,13 @@ from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
 from orccad_app.robottask.composition import Composition, compose
-from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
-__all__ = ["Source", "load", "select_mission", "compile_mission", "compose_mission",
+if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a file has tasks
+    from orccad_app.plugin_host.host import PluginHost
+    from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
+
+__all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
+           "require_missions", "compile_mission", "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
 
@@ -32,14 +37,25 @@ class Source:
     :param text: its text.
     :param program: its checked AST.
     :param warnings: the checker's warnings.
-    :param instances: the checked Robot-Task instances (one per ``run`` site).
+    :param tasks: the checked Robot-Task instances (one per ``run`` site), ``None`` for a file
+        without Robot-Tasks (see :attr:`instances`).
+    :param host: the plugin host the file was checked against (``None`` when it needed none).
     """
 
     path: str
     text: str
     program: ast.Program
     warnings: tuple = ()
-    instances: TaskInstances = field(default_factory=lambda: TaskInstances({}, {}))
+    tasks: TaskInstances | None = None
+    host: PluginHost | None = None
+
+    @property
+    def instances(self) -> TaskInstances:
+        """The checked Robot-Task instances (empty for a file without Robot-Tasks)."""
+        if self.tasks is None:
+            from orccad_app.robottask.model import TaskInstances
+            return TaskInstances({}, {})
+        return self.tasks
 
     def instance(self, run: ast.Run) -> RobotTaskInstance:
         """The checked Robot-Task instance of the ``run`` statement ``run``."""
@@ -52,23 +68,72 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path) -> Source:
-    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations."""
+def load(path: str | Path, host: PluginHost | None = None) -> Source:
+    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations.
+
+    The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
+    declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
+    their failures printed once on stderr."""
     path = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise OrccadError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise OrccadError(f"{path}: cannot read: {error}") from None
+    text = read_source(path)
     program = parse(text, path)
     result = check(program)
-    instances = TaskInstances({}, {})
+    instances = None
     if program.robottasks:
-        from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
-        instances = check_tasks(program, default_host())
-    return Source(path, text, program, result.warnings, instances)
+        host = _plugins(host)
+        instances = check_tasks(program, host)
+    if any(ast.is_signal_formula(p.formula) for p in program.properties):
+        from orccad_app.lang.signal_types import check_signal_properties
+        host = _plugins(host)
+        check_signal_properties(program, host)
+    return Source(path, text, program, result.warnings, instances, host)
+
+
+def _plugins(host: PluginHost | None) -> PluginHost:
+    """``host``, or the installed plugins loaded now (their failures printed once on stderr):
+    only files that need the registries load them."""
+    if host is not None:
+        return host
+    from orccad_app.plugin_host.host import PluginHost
+    loaded = PluginHost.load()
+    loaded.warn_failures()
+    return loaded
+
+
+#: Largest source file or script read [bytes] (a budget: see docs/limits.md).
+MAX_SOURCE_BYTES = 512_000
+
+
+def read_source(path: str | bytes, name: str | None = None) -> str:
+    """The text of the file ``path`` (or of the bytes ``path``, called ``name``): UTF-8, an
+    optional byte-order mark dropped; errors are located :class:`OrccadError`."""
+    if isinstance(path, bytes):
+        data, name = path, name or "<input>"
+    else:
+        name = str(path)
+        try:
+            with open(path, "rb") as handle:
+                data = handle.read(MAX_SOURCE_BYTES + 1)
+        except FileNotFoundError:
+            raise OrccadError(f"{path}: no such file") from None
+        except IsADirectoryError:
+            raise OrccadError(f"{path}: is a folder, not a file") from None
+        except OSError as error:
+            raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if len(data) > MAX_SOURCE_BYTES:
+        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES} bytes an input "
+                          "may have")
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        start = data.rfind(b"\n", 0, error.start) + 1
+        col = len(data[start:error.start].decode("utf-8", "replace")) + 1
+        raise OrccadError(f"not UTF-8 text: byte 0x{data[error.start]:02x} cannot be decoded "
+                          "(save the file as UTF-8)", SourceLocation(name, line, col)) from None
 
 
 def select_mission(source: Source, name: str | None) -> ast.Mission:
@@ -80,12 +145,21 @@ def select_mission(source: Source, name: str | None) -> ast.Mission:
             known = ", ".join(m.name for m in missions) or "none"
             raise OrccadError(f"{source.path}: no mission named '{name}' (missions: {known})")
         return mission
-    if not missions:
-        raise OrccadError(f"{source.path}: the file declares no mission")
+    require_missions(source)
     if len(missions) > 1:
         names = ", ".join(m.name for m in missions)
         raise OrccadError(f"{source.path}: several missions ({names}); choose one with --mission")
     return missions[0]
+
+
+def require_missions(source: Source) -> tuple[ast.Mission, ...]:
+    """The file's missions; a located error when it declares none."""
+    if source.program.missions:
+        return tuple(source.program.missions)
+    loc = source.program.loc
+    where = (SourceLocation(source.path, loc.line, loc.col) if loc.line > 0
+             else SourceLocation(source.path, 1, 1))
+    raise OrccadError("the file declares no mission (write 'mission NAME { ... }')", where)
 
 
 def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSED,

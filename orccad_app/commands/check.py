@@ -5,7 +5,8 @@ then proves the built-in properties and every ``property`` that applies to it (s
 ``docs/verification.md``). A failed property prints a counterexample as an input script for
 ``orccad react --composed``. ``--observe`` prints the automaton reduced to some signals
 (observational equivalence) instead. Exit status: 0 all hold, 1 a property fails, 2 bad
-input.
+input. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
+and campaigns judge them; they do not change the exit status.
 """
 
 from __future__ import annotations
@@ -14,10 +15,8 @@ import argparse
 import shlex
 import sys
 
-from orccad_app.commands.compile import emit_text, positive_int
-from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import load, select_mission
-from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
+from orccad_app.commands.arguments import (add_file, add_max_states, add_mission, emit_text,
+                                           refuse_overwriting)
 
 __all__ = ["register"]
 
@@ -27,8 +26,8 @@ def register(sub) -> None:
                             description="Check every property of a mission, and the built-in "
                                         "ones, on its composed automaton; print a "
                                         "counterexample script for each that fails.")
-    parser.add_argument("file", help="the .orc file")
-    parser.add_argument("--mission", "-m", help="the mission (default: every mission)")
+    add_file(parser)
+    add_mission(parser, "the mission (default: every mission)")
     parser.add_argument("--observe", metavar="S1,S2,…",
                         help="print the automaton reduced to these signals (hidden moves "
                              "abstracted, minimized by observational equivalence)")
@@ -36,26 +35,26 @@ def register(sub) -> None:
                         help="write the first counterexample script to this file")
     parser.add_argument("--promela", metavar="OUT",
                         help="write the model and its properties in Promela (for SPIN)")
-    parser.add_argument("--max-states", type=positive_int, default=DEFAULT_MAX_STATES,
-                        help=f"state budget of the compiler (default {DEFAULT_MAX_STATES})")
+    add_max_states(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from orccad_app.pipeline import load, require_missions, select_mission
     from orccad_app.verify.checker import check_mission
 
+    refuse_overwriting(args.counterexample, args.file)
+    refuse_overwriting(args.promela, args.file)
     source = load(args.file)
     source.print_warnings()
-    if not source.program.missions and args.mission is None:
-        print(f"{source.path}: no mission to check (the static checks pass)")
-        return 0
     missions = ([select_mission(source, args.mission)] if args.mission
-                else list(source.program.missions))
+                else list(require_missions(source)))
     if args.observe is not None:
         return _observe(source, missions, args)
-    failed, written = 0, False
+    failed, written, unproved = 0, False, 0
     for mission in missions:
         report = check_mission(source.program, mission, max_states=args.max_states)
+        unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
         _print_report(source, report, len(missions) > 1)
@@ -67,8 +66,10 @@ def run(args: argparse.Namespace) -> int:
                               args.counterexample)
                     written = True
     total = len(missions)
+    left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
+            if unproved else "")
     print(f"{'all properties hold' if not failed else f'{failed} failed'} "
-          f"({total} mission{'s' if total > 1 else ''})")
+          f"({total} mission{'s' if total > 1 else ''}{left})")
     return 1 if failed else 0
 
 
@@ -89,6 +90,8 @@ def _script_text(source, mission, outcome) -> str:
 def _print_report(source, report, several: bool) -> None:
     model, automaton = report.model, report.composition.automaton
     data = "counters exact" if model.exact else "data abstracted"
+    if model.abstracted_because:
+        data += f": {model.abstracted_because}"
     print(f"mission {report.composition.name}: automaton {automaton.state_count} states, "
           f"model {len(model.states)} states / {model.step_count} steps ({data})")
     for outcome in report.outcomes:
@@ -98,6 +101,9 @@ def _print_report(source, report, several: bool) -> None:
         if not outcome.holds and outcome.script is not None:
             for line in _script_text(source, report.composition.mission, outcome).splitlines():
                 print(f"        | {line}")
+    for prop in report.signal_properties:
+        print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
+              "judged on runs and campaigns")
 
 
 def _write_promela(source, mission, report, path: str) -> None:
@@ -105,7 +111,8 @@ def _write_promela(source, mission, report, path: str) -> None:
     from orccad_app.verify.promela import to_promela
 
     text = to_promela(report.model.automaton, tracked=report.model.tracked,
-                      properties=applicable(source.program.properties, mission),
+                      properties=[p for p in applicable(source.program.properties, mission)
+                                  if p not in report.signal_properties],
                       assumptions=applicable(source.program.assumptions, mission))
     emit_text(text.rstrip("\n"), path)
 
@@ -117,6 +124,7 @@ def _observe(source, missions, args) -> int:
 
     names = [n.strip() for n in args.observe.split(",") if n.strip()]
     if not names:
+        from orccad_app.diagnostics import OrccadError
         raise OrccadError("--observe needs at least one signal name")
     for mission in missions:
         model = build_model(compose(source.program, mission, max_states=args.max_states))

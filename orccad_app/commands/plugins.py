@@ -10,11 +10,11 @@ and the listing still shows what the others provide.
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 from typing import Any
 
-from orccad_app.plugins import DISABLE_ENV, PluginHost, default_host
+#: The environment variable naming plugins to disable (``plugin_host.host.DISABLE_ENV``; a test
+#: keeps them equal: importing the host here would load numpy for every command).
+DISABLE_ENV = "ORCCAD_DISABLE_PLUGINS"
 
 __all__ = ["register", "run", "describe"]
 
@@ -51,8 +51,6 @@ def _params(params: Any) -> list[dict[str, Any]]:
 def _plain(value: Any) -> Any:
     if hasattr(value, "tolist"):
         return value.tolist()
-    if isinstance(value, float) and value in (float("inf"), float("-inf")):
-        return str(value)
     return value
 
 
@@ -79,7 +77,7 @@ def _item(category: str, item: Any) -> dict[str, Any]:
     return info
 
 
-def describe(host: PluginHost) -> dict[str, Any]:
+def describe(host: Any) -> dict[str, Any]:
     """Everything ``orccad plugins --json`` prints."""
     document: dict[str, Any] = {"plugins": [vars(info) for info in host.plugins.values()]}
     for category, _ in SECTIONS:
@@ -129,12 +127,14 @@ def _details(entry: dict[str, Any]) -> list[str]:
 
 def run(args: argparse.Namespace) -> int:
     """Print the listing; failed plugins are warnings on stderr (exit status stays 0)."""
-    host = default_host()
+    from orccad_app.jsonout import dumps
+    from orccad_app.plugin_host import PluginHost
+
+    host = PluginHost.load()
+    host.warn_failures()
     document = describe(host)
-    for failure in host.failures:
-        print(f"orccad: warning: {failure.format()}", file=sys.stderr)
     if args.json:
-        print(json.dumps(document, indent=2, default=str))
+        print(dumps(document, indent=2))
     else:
         print(_text(document, args.verbose))
     return 0

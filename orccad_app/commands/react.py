@@ -10,17 +10,9 @@ or ``aborted``.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-from pathlib import Path
 
-from orccad_app.commands.compile import positive_int
-from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import ABSTRACT, COMPOSED, compile_mission, load, select_mission
-from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
-from orccad_app.diagnostics import SourceLocation
-from orccad_app.reactive.runtime import Reactor, RelationViolation
-from orccad_app.reactive.script import parse_script
+from orccad_app.commands.arguments import add_file, add_max_states, add_mission
 
 __all__ = ["register"]
 
@@ -29,28 +21,35 @@ def register(sub) -> None:
     parser = sub.add_parser("react", help="run a mission's automaton on an input script",
                             description="Run the application automaton alone, instant by "
                                         "instant, on an input script.")
-    parser.add_argument("file", help="the .orc file")
-    parser.add_argument("--mission", "-m", help="the mission (default: the file's only one)")
-    parser.add_argument("--inputs", "-i", help="the input script (default: standard input)")
+    add_file(parser)
+    add_mission(parser)
+    parser.add_argument("--inputs", "-i", metavar="SCRIPT",
+                        help="the input script (default: standard input)")
     parser.add_argument("--jsonl", action="store_true", help="one JSON object per instant")
     parser.add_argument("--composed", action="store_true",
                         help="run the composed model (the Robot-Tasks' RTAs inlined: inputs are "
                              "their observers' events) instead of the application's view")
-    parser.add_argument("--max-states", type=positive_int, default=DEFAULT_MAX_STATES,
-                        help=f"state budget (default {DEFAULT_MAX_STATES})")
+    add_max_states(parser)
     parser.set_defaults(func=run)
 
 
 def _read_script(path: str | None) -> tuple[str, str]:
-    if path is None:
-        return sys.stdin.read(), "<stdin>"
-    try:
-        return Path(path).read_text(encoding="utf-8"), path
-    except OSError as error:
-        raise OrccadError(f"{path}: cannot read: {error}") from None
+    from orccad_app.pipeline import MAX_SOURCE_BYTES, read_source
+
+    if path is None:  # read at most the budget: a larger input is refused, not swallowed
+        stream = getattr(sys.stdin, "buffer", sys.stdin)
+        data = stream.read(MAX_SOURCE_BYTES + 1)
+        return (read_source(data, "<stdin>") if isinstance(data, bytes) else data), "<stdin>"
+    return read_source(path), path
 
 
 def run(args: argparse.Namespace) -> int:
+    from orccad_app.jsonout import dumps
+    from orccad_app.pipeline import ABSTRACT, COMPOSED, compile_mission, load, select_mission
+    from orccad_app.diagnostics import OrccadError, SourceLocation
+    from orccad_app.reactive.runtime import Reactor, RelationViolation
+    from orccad_app.reactive.script import parse_script
+
     source = load(args.file)
     source.print_warnings()
     view = COMPOSED if args.composed else ABSTRACT
@@ -59,6 +58,9 @@ def run(args: argparse.Namespace) -> int:
     text, name = _read_script(args.inputs)
     instants = parse_script(text, name, automaton.inputs)
     timed = any(i.time_ns is not None for i in instants)
+    clock_width = max((len(_clock(i.time_ns or 0)) for i in instants), default=0)
+    input_width = max((len(_inputs(i.inputs)) for i in instants), default=0)
+    input_width = max(input_width, 20)
     reactor = Reactor(automaton)
     for number, instant in enumerate(instants, start=1):
         try:
@@ -73,15 +75,34 @@ def run(args: argparse.Namespace) -> int:
                 record["reason"] = reaction.reason
             if timed:
                 record["time_s"] = reactor.store.clock_ns / 1e9
-            print(json.dumps(record))
+            print(dumps(record))
         else:
-            clock = f"@{reactor.store.clock_ns / 1e9:g} " if timed else ""
+            clock = f"{_clock(reactor.store.clock_ns):<{clock_width}} " if timed else ""
             outputs = " ".join(_with_value(o, reaction.values) for o in reaction.outputs)
-            inputs = " ".join(instant.inputs) or "-"
             status = reaction.status + (f" {reaction.reason}" if reaction.reason else "")
-            print(f"{number:>4}  {clock}{inputs:<20} -> {outputs or '-':<20} [{status}]")
+            print(f"{number:>4}  {clock}{_inputs(instant.inputs):<{input_width}} -> "
+                  f"{outputs or '-':<20} [{status}]")
     return 1 if reactor.status in ("failed", "aborted") else 0
 
 
+def _clock(clock_ns: int) -> str:
+    return f"@{clock_ns / 1e9:g}"
+
+
+def _inputs(inputs: dict) -> str:
+    return " ".join(_with_value(name, inputs) for name in inputs) or "-"
+
+
 def _with_value(name: str, values: dict) -> str:
-    return f"{name}({values[name]})" if name in values else name
+    """``S``, or ``S(value)`` written as a script writes it (strings quoted)."""
+    value = values.get(name) if isinstance(values, dict) else None
+    if value is None:
+        return name
+    if isinstance(value, str):
+        import json
+        return f"{name}({json.dumps(value, ensure_ascii=False)})"
+    if isinstance(value, bool):
+        return f"{name}({'true' if value else 'false'})"
+    if isinstance(value, tuple):
+        return f"{name}([{', '.join(map(str, value))}])"
+    return f"{name}({value})"

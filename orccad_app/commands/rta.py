@@ -1,4 +1,4 @@
-"""``orccad rta FILE --task T [--format summary|json|dot] [-o OUT]``: a Robot-Task's RTA.
+"""``orccad rta FILE --task T [--format F] [-o OUT] [--max-states N]``: a Robot-Task's RTA.
 
 Prints the behaviour automaton generated for the Robot-Task (RR-1801 §3.4.3), stand-alone:
 started in its first instant, ending ``done`` at its good end, ``failed`` on a type-2
@@ -9,12 +9,8 @@ from __future__ import annotations
 
 import argparse
 
-from orccad_app.commands.compile import FORMATS, emit_text
-from orccad_app.diagnostics import OrccadError
-from orccad_app.pipeline import load
-from orccad_app.reactive.compiler import compile_program
-from orccad_app.reactive.lower import mission_interface
-from orccad_app.robottask.rta import rta_program
+from orccad_app.commands.arguments import (EXPORT_FORMATS, add_file, add_format, add_max_states,
+                                           add_output, emit_text, refuse_overwriting)
 
 __all__ = ["register"]
 
@@ -23,14 +19,23 @@ def register(sub) -> None:
     parser = sub.add_parser("rta", help="the generated behaviour automaton of a Robot-Task",
                             description="Print the behaviour automaton (RTA) generated for "
                                         "one Robot-Task.")
-    parser.add_argument("file", help="the .orc file")
+    add_file(parser)
     parser.add_argument("--task", "-t", required=True, help="the Robot-Task")
-    parser.add_argument("--format", "-f", choices=sorted(FORMATS), default="summary")
-    parser.add_argument("-o", "--output", help="write to this file instead of stdout")
+    add_format(parser, EXPORT_FORMATS, "summary")
+    add_output(parser)
+    add_max_states(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from orccad_app.commands.compile import exporter
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.pipeline import load
+    from orccad_app.reactive.compiler import compile_program
+    from orccad_app.reactive.lower import mission_interface
+    from orccad_app.robottask.rta import rta_program
+
+    refuse_overwriting(args.output, args.file)
     source = load(args.file)
     source.print_warnings()
     task = source.program.robottask(args.task)
@@ -40,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
                           f"(Robot-Tasks: {known})")
     file_level = mission_interface(source.program, None)
     declared = {s.name: s for group in file_level for s in group}
-    automaton = compile_program(rta_program(task, declared))
-    emit_text(FORMATS[args.format](automaton), args.output)
+    automaton = compile_program(rta_program(task, declared), max_states=args.max_states)
+    emit_text(exporter(args.format)(automaton), args.output)
     return 0
 

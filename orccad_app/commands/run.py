@@ -3,13 +3,17 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
 Robot-Tasks on simulated processors and the robot's plant (:mod:`orccad_app.mission.run`).
-Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`). Exit status: 0
-when the mission ends ``done``; 1 when it ends ``failed``, ``aborted`` or ``timeout`` (a
+Prints a report (``--json``: one object, see :mod:`orccad_app.trace.report`) with the verdict
+of every ``property`` of the mission on this run (key ``properties``, see
+:mod:`orccad_app.properties`). Exit status: 0 when the mission ends ``done`` and no property
+is false on the run; 1 when it ends ``failed``, ``aborted`` or ``timeout``, or a property is
+false (a
 deadlock, a diverging plant or a failing module is ``failed``; the report and trace are still
 written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is printed).
 """
@@ -17,30 +21,13 @@ written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is pr
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
+from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
+                                           factor, non_negative_int, refuse_overwriting,
+                                           seconds)
+
 __all__ = ["register", "run"]
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seconds, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a duration > 0 s, got {text!r}")
-    return value
-
-
-def _non_negative(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
 
 
 def register(sub) -> None:
@@ -48,29 +35,110 @@ def register(sub) -> None:
                             description="Run the mission in the timed executive (Module-Tasks "
                                         "on simulated processors, MuJoCo plant) and print a "
                                         "report.")
-    parser.add_argument("file", help="the .orc file")
-    parser.add_argument("--mission", "-m", help="the mission (default: the file's only one)")
-    parser.add_argument("--until", type=_seconds, default=None, metavar="S",
+    parser.add_argument("file", nargs="?", metavar="FILE",
+                        help="the .orc file (may also come after --inject specs)")
+    add_mission(parser)
+    parser.add_argument("--until", type=seconds, default=None, metavar="S",
                         help="simulated-time limit [s] (default 60, or the robot type's "
-                             "longer run_horizon_s); status 'timeout' if the mission is "
-                             "still running then")
-    parser.add_argument("--seed", type=_non_negative, default=0, metavar="N",
+                             "longer run_horizon_s; at most one year); status 'timeout' if "
+                             "the mission is still running then")
+    parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
                         help="seed of execution times and sensor noise (default 0)")
     parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
-                             "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120)")
-    parser.add_argument("--realtime", type=_seconds, nargs="?", const=1.0, metavar="FACTOR",
-                        help="pace simulated time to the wall clock (× FACTOR, default 1) and "
-                             "report lateness")
+                             "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
+                             "several specs may follow one flag, or repeat the flag")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
+                             "or a sensor's noise (auv.depth.noise_std=0.05); repeat the flag "
+                             "for several")
+    parser.add_argument("--timing", action="append", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms at every run of "
+                             "its Robot-Task (Survey.pilot.wcet_ms=2.5); repeat the flag for "
+                             "several")
+    parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
+                        help="pace simulated time to the wall clock (× FACTOR in "
+                             "[0.001, 1000], default 1) and report lateness")
     parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
-    parser.add_argument("--context-switch-us", type=_non_negative, default=0, metavar="US",
-                        help="context-switch overhead [µs] (default 0)")
-    parser.add_argument("--bus-us", type=_non_negative, default=0, metavar="US",
+    parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
+                        metavar="US", help="context-switch overhead [µs] (default 0)")
+    parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
     parser.set_defaults(func=run)
+
+
+def _file_after_injections(args: argparse.Namespace) -> str:
+    """The .orc file: the positional argument, or the word after the --inject specs that is
+    not one (``orccad run --inject A@1 FILE``: a spec always holds '@')."""
+    if args.file is None and args.inject and "@" not in args.inject[-1]:
+        args.file = args.inject.pop()
+    if args.file is None:
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError("orccad run: the .orc file is missing (orccad run FILE ...)")
+    return args.file
+
+
+def _injection(text: str):
+    """``--inject`` text → :class:`Injection`, its time checked finite and within a year."""
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.mission.injection import parse_injection
+
+    when = text.rpartition("@")[2]
+    try:
+        time_s = float(when)
+    except ValueError:
+        time_s = 0.0  # parse_injection names the problem
+    if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
+        raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds in "
+                          f"[0, {MAX_SECONDS:.0f}] (one year)")
+    return parse_injection(text)
+
+
+def _check_values(injections, inputs) -> None:
+    """Each injected value fits its input: none for a pure input, one of the declared type
+    (finite, integers within 64 bits) for a valued one; fault values finite."""
+    import math
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.lang.limits import MAX_INT, MIN_INT
+
+    declared = {s.name: s for s in inputs}
+    for injection in injections:
+        value, name = injection.value, injection.name
+        if isinstance(value, float) and not math.isfinite(value):
+            raise OrccadError(f"--inject {name}: the value must be a finite number, got {value}")
+        if isinstance(value, int) and not isinstance(value, bool) and \
+                not MIN_INT <= value <= MAX_INT:
+            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
+        signal = declared.get(name)
+        if injection.fault or signal is None:
+            continue  # unknown names are reported by the run, with the known inputs
+        if signal.type is None and value is not None:
+            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
+                              f"(write {name}@T)")
+        if signal.type is not None and value is None:
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
+                              f"{name}(value)@T")
+        if signal.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
+            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
+        if signal.type in ("float", "duration") and (isinstance(value, bool)
+                                                     or not isinstance(value, (int, float))):
+            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}, got {value!r}")
+        if signal.type == "bool" and not isinstance(value, bool):
+            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
+                              f"got {value!r}")
+
+
+def _warn_first_instant(injections) -> None:
+    for injection in injections:
+        if injection.time_ns == 0 and not injection.fault:
+            print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
+                  "first instant, where only 'immediate' tests see it (await, abort ... when "
+                  "and each look from the next instant on)", file=sys.stderr)
 
 
 def _processors(plan, args: argparse.Namespace) -> list:
@@ -82,37 +150,58 @@ def _processors(plan, args: argparse.Namespace) -> list:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
-    from orccad_app.mission.injection import parse_injection
-    from orccad_app.mission.plan import plan_mission
+    from orccad_app.jsonout import dumps
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
+    from orccad_app.properties import PropertyMonitor, results_dict
+    from orccad_app.properties.report import format_properties
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict)
+                                  report_dict, sensor_ports)
 
-    injections = [parse_injection(text) for text in args.inject]
+    _file_after_injections(args)
+    injections = [_injection(text) for text in args.inject]
+    _warn_first_instant(injections)
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
+    refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_with_overrides(source, mission, overrides)
+    _check_values(injections, plan.automaton.inputs)
     writer = None
-    until_s = args.until if args.until is not None else run_horizon_s(plan, 60.0)
+    until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
+                  MAX_SECONDS)
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
+    monitor = PropertyMonitor(source.program, mission, mission_run)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)})
+                                         "seed": str(args.seed)}, sensor_ports(plan))
         mission_run.add_observer(TraceRecorder(writer))
     try:
-        result = mission_run.run()
-    finally:
-        if writer is not None:
-            writer.close()
+        try:
+            result = mission_run.run()
+        finally:
+            if writer is not None:
+                writer.close()
+    except OSError as error:  # the trace's disk is full or gone
+        if not args.trace:
+            raise
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError(f"{args.trace}: cannot write the trace: "
+                          f"{error.strerror or error}") from None
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    verdicts = monitor.results()
     if args.json:
-        print(json.dumps(report_dict(result, injected), indent=2))
+        report = report_dict(result, injected)
+        report["properties"] = results_dict(verdicts)
+        print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
+        if verdicts:
+            print("\n".join(format_properties(verdicts)))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
@@ -120,4 +209,8 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
-    return result.exit_status
+    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    if violated and not args.json:
+        print(f"orccad: propert{'ies' if len(violated) > 1 else 'y'} violated on this run: "
+              f"{', '.join(violated)}", file=sys.stderr)
+    return max(result.exit_status, 1 if violated else 0)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import argparse
 
+from orccad_app.commands.arguments import FACTOR_RANGE, add_mission, non_negative_int
+
 __all__ = ["register", "run"]
 
 
@@ -20,8 +22,10 @@ def _speed(text: str) -> float | None:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a factor or 'max', got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a factor > 0, got {text!r}")
+    low, high = FACTOR_RANGE
+    if not low <= value <= high:  # NaN and infinities fail this test too
+        raise argparse.ArgumentTypeError(f"expected a factor in [{low:g}, {high:g}] or 'max', "
+                                         f"got {text!r}")
     return value
 
 
@@ -31,12 +35,13 @@ def register(sub) -> None:
                                         "run them live and steer them with their inputs.")
     parser.add_argument("file", nargs="?", help="a .orc file or a folder (missions/ is "
                                                 "always listed)")
-    parser.add_argument("--mission", "-m", help="the mission to run (with --run)")
+    add_mission(parser, "the mission to run (with --run)")
     parser.add_argument("--run", action="store_true", help="start running FILE at once")
     parser.add_argument("--speed", type=_speed, default=1.0, metavar="F|max",
                         help="initial speed: simulated seconds per wall second, or 'max' "
                              "(default 1)")
-    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the runs")
+    parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
+                        help="seed of the runs (default 0)")
     parser.set_defaults(func=run)
 
 

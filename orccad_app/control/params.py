@@ -102,7 +102,8 @@ class ParamSpec:
 
     ``default`` is :data:`REQUIRED` when the user must give a value, ``None`` when the
     parameter is optional without a value. ``minimum`` bounds reals element-wise
-    (``exclusive`` makes it strict, e.g. gains ``> 0``); ``choices`` restricts strings.
+    (``exclusive`` makes it strict, e.g. gains ``> 0``), ``maximum`` from above (inclusive);
+    ``choices`` restricts strings.
     """
 
     name: str
@@ -112,6 +113,7 @@ class ParamSpec:
     minimum: float | None = None
     exclusive: bool = False
     choices: tuple[str, ...] | None = None
+    maximum: float | None = None
 
     def __post_init__(self) -> None:
         if self.type not in PARAM_TYPES:
@@ -179,9 +181,15 @@ class ParamSpec:
         return array
 
     def _check_range(self, value: Any, owner: str) -> None:
-        if self.minimum is None or not (_is_real(value) or isinstance(value, np.ndarray)):
+        if not (_is_real(value) or isinstance(value, np.ndarray)):
             return
         data = np.asarray(value, dtype=float)
+        if self.maximum is not None and np.any(data > self.maximum):
+            shown = value.tolist() if isinstance(value, np.ndarray) else value
+            raise InvalidParameter(
+                f"{owner}: {self.name} must be <= {self.maximum:g}, got {shown!r}")
+        if self.minimum is None:
+            return
         bad = data <= self.minimum if self.exclusive else data < self.minimum
         if np.any(bad):
             relation = ">" if self.exclusive else ">="

@@ -44,8 +44,11 @@ from orccad_app.diagnostics import NOWHERE, SourceLocation
 from orccad_app.lang.ast_expr import (VALUE_TYPES, Arg, Binary, Bool, Call, DurationLit, Expr,
                                       LastValue, Name, Number, PreSignal, PreValue, String,
                                       Unary, Vector, node)
-from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, Formula, FPredicate,
-                                         FSignal, FStatus, FUnary, Property)
+from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, FCompare, Formula,
+                                         FPredicate, FSignal, FStatus, FUnary, Interval,
+                                         Property, SArith, SCall, SignalExpr, SNeg, SNumber,
+                                         SPort, SIGNAL_FUNCTIONS, formula_nodes,
+                                         is_signal_formula)
 from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust, Connect,
                                            ExceptionDecl, ExceptionType, MeasurePostcondition,
                                            MeasurePrecondition, Module, Param, PortRef,
@@ -69,6 +72,8 @@ __all__ = [
     "Race", "LocalSignals", "VarDecl", "Assign", "RunMission", "Rename", "Fail", "Stmt",
     # missions, properties, root
     "Mission", "FSignal", "FPredicate", "FStatus", "FBool", "FUnary", "FBinary", "Formula",
+    "FCompare", "Interval", "SPort", "SNumber", "SCall", "SNeg", "SArith", "SignalExpr",
+    "is_signal_formula", "SIGNAL_FUNCTIONS", "formula_nodes",
     "Property", "Assumption", "Program", "SourceFile", "TopItem", "VALUE_TYPES",
 ]
 

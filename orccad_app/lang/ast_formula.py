@@ -8,8 +8,13 @@ from typing import Union
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 from orccad_app.lang.ast_expr import node
 
-__all__ = ["FSignal", "FPredicate", "FStatus", "FBool", "FUnary", "FBinary", "Formula",
-           "Property", "Assumption"]
+__all__ = ["FSignal", "FPredicate", "FStatus", "FBool", "FUnary", "FBinary", "FCompare",
+           "Interval", "SPort", "SNumber", "SCall", "SNeg", "SArith", "SignalExpr", "Formula",
+           "Property", "Assumption", "is_signal_formula", "formula_nodes", "SIGNAL_FUNCTIONS"]
+
+#: Functions of signal expressions: name -> (arity, takes a vector).
+SIGNAL_FUNCTIONS: dict[str, tuple[int, bool]] = {"norm": (1, True), "abs": (1, False),
+                                                  "sqrt": (1, False)}
 
 # --------------------------------------------------------------------------- temporal logic
 
@@ -47,25 +52,121 @@ class FBool:
 
 
 @node
-class FUnary:
-    """``op f``; op in not, next, always, eventually, never, previously, once, historically."""
+class Interval:
+    """The time bounds ``[low, high]`` of a bounded operator [s], relative to the instant."""
 
-    op: str
-    operand: Formula
+    low_s: float
+    high_s: float
     loc: SourceLocation = NOWHERE
 
 
 @node
+class FUnary:
+    """``op f``; op in not, next, always, eventually, never, previously, once, historically.
+
+    ``bounds``: ``always[a, b] f`` (Signal Temporal Logic; always, eventually, never, once,
+    historically), ``None`` for the unbounded operator."""
+
+    op: str
+    operand: Formula
+    loc: SourceLocation = NOWHERE
+    bounds: Interval | None = None
+
+
+@node
 class FBinary:
-    """``f op g``; op in ``and``, ``or``, ``->``, ``<->``, ``until``, ``since``."""
+    """``f op g``; op in ``and``, ``or``, ``->``, ``<->``, ``until``, ``since``
+    (``bounds``: ``f until[a, b] g``, ``f since[a, b] g``)."""
 
     op: str
     left: Formula
     right: Formula
     loc: SourceLocation = NOWHERE
+    bounds: Interval | None = None
 
 
-Formula = Union[FSignal, FPredicate, FStatus, FBool, FUnary, FBinary]
+# --------------------------------------------------------------------------- signal atoms
+
+@node
+class SPort:
+    """``robot.port`` or a component ``robot.port[i]`` (0-based): a port value of a robot."""
+
+    robot: str
+    port: str
+    index: int | None = None
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class SNumber:
+    """A numeric constant in a signal expression."""
+
+    value: float
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class SCall:
+    """``norm(v)``, ``abs(x)``, ``sqrt(x)`` (:data:`SIGNAL_FUNCTIONS`)."""
+
+    func: str
+    args: tuple[SignalExpr, ...]
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class SNeg:
+    """``-x``."""
+
+    operand: SignalExpr
+    loc: SourceLocation = NOWHERE
+
+
+@node
+class SArith:
+    """``x op y``; op in ``+ - * /``."""
+
+    op: str
+    left: SignalExpr
+    right: SignalExpr
+    loc: SourceLocation = NOWHERE
+
+
+SignalExpr = Union[SPort, SNumber, SCall, SNeg, SArith]
+
+
+@node
+class FCompare:
+    """A signal atom ``x op y``; op in ``< <= > >=``: its robustness is the margin in the
+    signals' unit (``y - x`` for ``<``)."""
+
+    op: str
+    left: SignalExpr
+    right: SignalExpr
+    loc: SourceLocation = NOWHERE
+
+
+Formula = Union[FSignal, FPredicate, FStatus, FBool, FUnary, FBinary, FCompare]
+
+
+def formula_nodes(formula: Formula):
+    """Every formula node of ``formula`` (not the signal expressions), root first."""
+    stack = [formula]
+    while stack:
+        item = stack.pop()
+        yield item
+        if isinstance(item, FUnary):
+            stack.append(item.operand)
+        elif isinstance(item, FBinary):
+            stack += [item.right, item.left]
+
+
+def is_signal_formula(formula: Formula) -> bool:
+    """A Signal Temporal Logic formula: it compares signal values or bounds an operator in
+    time. Such a property is monitored on runs, not proved by ``orccad check``."""
+    return any(isinstance(f, FCompare) or (isinstance(f, (FUnary, FBinary))
+                                           and f.bounds is not None)
+               for f in formula_nodes(formula))
 
 
 @node

@@ -101,9 +101,14 @@ def check_robottask(task: ast.RobotTask, robots: dict[str, ast.Robot],
 
 def check_formula(formula: ast.Formula, where: str, signals: set[str],
                   tasks: dict[str, ast.RobotTask] | None, exceptions: set[str],
-                  problems: Problems) -> None:
-    """Atoms of a property or assumption: signals of the mission, known RTs/exceptions."""
-    if isinstance(formula, ast.FSignal):
+                  problems: Problems, robots: set[str] | None = None) -> None:
+    """Atoms of a property or assumption: signals of the mission, known RTs/exceptions,
+    declared robots and known functions in signal atoms (their ports are typed against the
+    robot types by :mod:`orccad_app.lang.signal_types`)."""
+    if isinstance(formula, ast.FCompare):
+        for expr in (formula.left, formula.right):
+            _check_signal_expr(expr, where, robots, problems)
+    elif isinstance(formula, ast.FSignal):
         if formula.name not in signals:
             problems.error(f"unknown signal '{formula.name}' in {where}", formula.loc)
     elif isinstance(formula, ast.FPredicate):
@@ -114,7 +119,31 @@ def check_formula(formula: ast.Formula, where: str, signals: set[str],
         elif tasks is not None and arg not in tasks:
             problems.error(f"unknown Robot-Task '{arg}' in {where}", formula.loc)
     elif isinstance(formula, ast.FUnary):
-        check_formula(formula.operand, where, signals, tasks, exceptions, problems)
+        check_formula(formula.operand, where, signals, tasks, exceptions, problems, robots)
     elif isinstance(formula, ast.FBinary):
         for side in (formula.left, formula.right):
-            check_formula(side, where, signals, tasks, exceptions, problems)
+            check_formula(side, where, signals, tasks, exceptions, problems, robots)
+
+
+def _check_signal_expr(expr: ast.SignalExpr, where: str, robots: set[str] | None,
+                       problems: Problems) -> None:
+    if isinstance(expr, ast.SPort):
+        if robots is not None and expr.robot not in robots:
+            known = ", ".join(sorted(robots)) or "none declared"
+            problems.error(f"unknown robot '{expr.robot}' in {where} (robots: {known})",
+                           expr.loc)
+    elif isinstance(expr, ast.SCall):
+        arity = ast.SIGNAL_FUNCTIONS.get(expr.func)
+        if arity is None:
+            problems.error(f"unknown function '{expr.func}' in {where} (functions: "
+                           f"{', '.join(ast.SIGNAL_FUNCTIONS)})", expr.loc)
+        elif len(expr.args) != arity[0]:
+            problems.error(f"{expr.func}() takes {arity[0]} argument, got {len(expr.args)}",
+                           expr.loc)
+        for arg in expr.args:
+            _check_signal_expr(arg, where, robots, problems)
+    elif isinstance(expr, ast.SNeg):
+        _check_signal_expr(expr.operand, where, robots, problems)
+    elif isinstance(expr, ast.SArith):
+        for side in (expr.left, expr.right):
+            _check_signal_expr(side, where, robots, problems)

@@ -144,7 +144,11 @@ def _formulas(program: ast.Program, interfaces: dict[str, MissionInterface],
         signals = set.intersection(*[{s.name for s in i.inputs + i.outputs}
                                      for i in targets]) if targets else set()
         check_formula(item.formula, f"{kind} '{item.name}'", signals, tasks, exceptions,
-                      problems)
+                      problems, {robot.name for robot in program.robots})
+        if kind == "assumption" and ast.is_signal_formula(item.formula):
+            problems.error(f"assumption '{item.name}' is a signal formula: assumptions "
+                           "constrain the model checker's runs and must be plain LTL "
+                           "(no signal comparison, no time bounds)", item.loc)
 
 
 def _run(program: ast.Program, tasks: Iterable[ast.RobotTask]) -> tuple[Problems,

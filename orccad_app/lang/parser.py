@@ -13,8 +13,11 @@ located at ``file:line:col`` (see :mod:`.syntax_errors`); no lark exception esca
 from __future__ import annotations
 
 import functools
+import hashlib
 import importlib.resources
+import os
 import re
+from pathlib import Path
 
 from lark import Lark, Token, Tree
 from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken, VisitError
@@ -22,10 +25,11 @@ from lark.lexer import PatternStr
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.limits import check_tree, ensure_recursion_headroom
 from orccad_app.lang.syntax_errors import syntax_error
 from orccad_app.lang.transform import ToAst
 
-__all__ = ["parse", "keywords", "grammar_text"]
+__all__ = ["parse", "keywords", "grammar_text", "grammar_lark"]
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
@@ -36,19 +40,53 @@ def grammar_text() -> str:
         encoding="utf-8")
 
 
+def _cache_file(grammar: str) -> str | bool:
+    """Where lark keeps the parse tables between runs: a private per-user cache file named
+    after the grammar and lark's version (building the tables costs ~0.3 s per start-up);
+    ``False`` (no cache) when the user's cache folder cannot be created."""
+    import lark
+
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "orccad"
+    try:
+        base.mkdir(mode=0o700, parents=True, exist_ok=True)
+    except OSError:
+        return False
+    key = hashlib.sha256(f"{lark.__version__}\n{grammar}".encode()).hexdigest()[:24]
+    return str(base / f"plan-lark-{key}.cache")
+
+
+_OPTIONS = dict(parser="lalr", lexer="contextual", propagate_positions=True,
+                maybe_placeholders=True)
+
+
+def grammar_lark() -> Lark:
+    """A freshly built parser, not from the disk cache: it keeps its grammar object, which
+    grammar-driven tools need (``hypothesis.extra.lark.from_lark``)."""
+    return Lark(grammar_text(), strict=True, **_OPTIONS)
+
+
 @functools.lru_cache(maxsize=1)
 def _lark() -> Lark:
-    """The compiled parser (built once per process)."""
-    options = dict(parser="lalr", lexer="contextual", propagate_positions=True,
-                   maybe_placeholders=True)
+    """The compiled parser (built once per process, its tables cached on disk)."""
+    grammar = grammar_text()
+    options = _OPTIONS
+    cache = _cache_file(grammar)
+    if cache:
+        try:
+            return Lark(grammar, strict=True, cache=cache, **options)
+        except Exception:  # noqa: BLE001 - a corrupt or unreadable cache: build afresh
+            try:
+                os.unlink(cache)
+            except OSError:
+                pass
     try:
-        return Lark(grammar_text(), strict=True, **options)
+        return Lark(grammar, strict=True, **options)
     except LarkError as error:
         if "interegular" not in str(error):
             raise
         # strict mode's terminal-collision check needs the optional `interegular` package;
         # the grammar is verified in strict mode by the test suite, so run without it.
-        return Lark(grammar_text(), **options)  # pragma: no cover
+        return Lark(grammar, **options)  # pragma: no cover
 
 
 @functools.lru_cache(maxsize=1)
@@ -103,13 +141,13 @@ def parse(text: str, filename: str = "<input>") -> ast.Program:
 
     Raises :class:`OrccadError` (with a location) on any lexical or syntax error, a
     reserved keyword used as a name, an unknown protocol, a duplicate Robot-Task item, a
-    duration that is not whole nanoseconds, or nesting too deep for Python's stack.
+    duration that is not whole nanoseconds, a literal or a nesting outside the language's
+    limits (:mod:`.limits`). A leading byte-order mark is ignored.
     """
-    try:
-        return _parse(text, filename)
-    except RecursionError:
-        raise OrccadError("program too deeply nested",
-                          SourceLocation(filename, 1, 1)) from None
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    ensure_recursion_headroom()
+    return _parse(text, filename)
 
 
 def _parse(text: str, filename: str) -> ast.Program:
@@ -122,6 +160,7 @@ def _parse(text: str, filename: str) -> ast.Program:
     problem = _reserved_name(tree, filename)
     if problem is not None:
         raise problem
+    check_tree(tree, filename)
     try:
         return ToAst(filename).transform(tree)
     except VisitError as error:

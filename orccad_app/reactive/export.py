@@ -30,7 +30,10 @@ def _action_text(action) -> str:
     if action.kind == "assign":
         return f"{action.target.name} := {format_expr(action.expr)}"
     if action.target.name in ("_failed", "_aborted"):  # the mission's status and its reason
-        return f"{action.target.name[1:]} {getattr(action.expr, 'value', '?')}"
+        expr = action.expr
+        if getattr(expr, "op", None) == "last":  # a later emission in the instant wins
+            expr = expr.right
+        return f"{action.target.name[1:]} {getattr(expr, 'value', None) or format_expr(expr)}"
     return f"emit {action.target.name}({format_expr(action.expr)})"
 
 

@@ -6,19 +6,44 @@ automaton: variables, last signal values and the clock of the instant in integer
 
 from __future__ import annotations
 
+import math
 import operator
 from typing import Any, Callable
 
+from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 
 __all__ = ["Store", "compile_expr", "format_expr", "format_test", "Unset"]
 
 _BINARY: dict[str, Callable[[Any, Any], Any]] = {
-    "+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
+    "+": operator.add, "-": operator.sub, "*": operator.mul,
     "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
     "==": operator.eq, "!=": operator.ne, "min": min, "max": max,
     "last": lambda first, second: second,
 }
+
+
+def _divide(left: Any, right: Any) -> Any:
+    """``/``: integer division truncating toward zero when both sides are integers (as in
+    Esterel and C: ``7 / 2`` is 3, ``-7 / 2`` is -3), else real division."""
+    if type(left) is int and type(right) is int:
+        quotient = abs(left) // abs(right)  # ZeroDivisionError for 0: a run-time error
+        return quotient if (left < 0) == (right < 0) else -quotient
+    return operator.truediv(left, right)
+
+
+_BINARY["/"] = _divide
+
+
+def _checked(value: Any) -> Any:
+    """An arithmetic result, checked: integers stay within 64 bits, reals finite
+    (``docs/limits.md``); else :class:`OverflowError`, reported as a located run-time error."""
+    kind = type(value)
+    if kind is int and not MIN_INT <= value <= MAX_INT:
+        raise OverflowError(f"integer overflow (the result is outside [{MIN_INT}, {MAX_INT}])")
+    if kind is float and not math.isfinite(value):
+        raise OverflowError(f"the result is not a finite number ({value})")
+    return value
 
 
 class Unset(LookupError):
@@ -88,7 +113,7 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
     if kind is ir.Unary:
         inner = compile_expr(expr.operand)
         if expr.op == "-":
-            return lambda store: -inner(store)
+            return lambda store: _checked(-inner(store))
         return lambda store: not inner(store)
     left, right = compile_expr(expr.left), compile_expr(expr.right)
     if expr.op == "and":
@@ -96,7 +121,12 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
     if expr.op == "or":
         return lambda store: bool(left(store)) or bool(right(store))
     op = _BINARY[expr.op]
+    if expr.op in _ARITHMETIC:
+        return lambda store: _checked(op(left(store), right(store)))
     return lambda store: op(left(store), right(store))
+
+
+_ARITHMETIC = frozenset({"+", "-", "*", "/"})
 
 
 _PRECEDENCE = {"or": 1, "and": 2, "<": 3, "<=": 3, ">": 3, ">=": 3, "==": 3, "!=": 3,

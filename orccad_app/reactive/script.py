@@ -2,8 +2,10 @@
 
 A line lists the input signals present in that instant, separated by spaces; a valued signal
 is written ``S(3.5)`` (``S(true)``, ``S("text")``). An empty line is an instant with no input.
-Text after ``#`` is a comment; a line holding only a comment is not an instant. A line may
-start with ``@T``, T in seconds (absolute, non-decreasing), to set that instant's clock::
+Text after ``#`` (outside a string) is a comment; a line holding only a comment is not an
+instant. A line may start with ``@T``, T in seconds (absolute, non-decreasing, at most one
+year), to set that instant's clock. Values are checked as the language checks literals:
+numbers finite, integers within 64 bits (see ``docs/limits.md``)::
 
     A           # instant 1: A present
     @0.5 B R    # instant 2, at t = 0.5 s
@@ -13,16 +15,36 @@ start with ``@T``, T in seconds (absolute, non-decreasing), to set that instant'
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang.limits import MAX_DURATION_NS, MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 
 __all__ = ["Instant", "parse_script", "parse_value"]
 
-_TOKEN = re.compile(r"\s*(?:(@[^\s#]*)|([A-Za-z_][A-Za-z0-9_.]*)(\(([^)]*)\))?|(\S))")
+_STRING = r'"(?:[^"\\]|\\.)*"'
+_TOKEN = re.compile(r"\s*(?:(@\S*)|([A-Za-z_][A-Za-z0-9_.]*)(\(((?:" + _STRING
+                    + r'|[^)"])*)\))?|(\S))')
+_COMMENT = re.compile(_STRING + r"|(#)")
+
+
+def _strip_comment(raw: str) -> str:
+    """``raw`` without its comment: the first ``#`` outside a string and what follows."""
+    for match in _COMMENT.finditer(raw):
+        if match.group(1):
+            return raw[:match.start(1)]
+    return raw
+
+
+def _number(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
 
 
 @dataclass(frozen=True)
@@ -48,15 +70,24 @@ def parse_value(text: str, signal: ir.SignalDecl, loc: SourceLocation) -> Any:
                 raise ValueError
             return text[1:-1]
         if kind == "int":
-            return int(text)
+            if len(text) > 24:
+                raise ValueError(text)
+            value = int(text)
+            if not MIN_INT <= value <= MAX_INT:
+                raise ValueError(text)
+            return value
         if kind in ("float", "duration"):
-            return float(text)
+            return _number(text)
         if kind == "vector":
             inner = text.strip("[]")
-            return tuple(float(x) for x in inner.split(",") if x.strip())
-        return float(text)
+            return tuple(_number(x) for x in inner.split(",") if x.strip())
+        return _number(text)
     except ValueError:
-        raise OrccadError(f"'{text}' is not a {kind} value for {signal.name}", loc) from None
+        limits = {"int": f" (a whole number in [{MIN_INT}, {MAX_INT}])",
+                  "float": " (a finite number)", "vector": " (finite numbers)",
+                  "duration": " (a finite number)"}.get(kind, "")
+        raise OrccadError(f"'{text}' is not a {kind} value for {signal.name}{limits}",
+                          loc) from None
 
 
 def _time(token: str, loc: SourceLocation, previous: int | None) -> int:
@@ -66,6 +97,9 @@ def _time(token: str, loc: SourceLocation, previous: int | None) -> int:
         raise OrccadError(f"'{token}' is not a time: write @T with T in seconds", loc) from None
     if seconds < 0:
         raise OrccadError(f"time {token} is negative", loc)
+    if not seconds * 1e9 <= MAX_DURATION_NS:  # NaN and infinities fail this test too
+        raise OrccadError(f"time {token} is out of range: T must be a finite number of "
+                          f"seconds, at most {MAX_DURATION_NS // 10**9} (one year)", loc)
     time_ns = round(seconds * 1e9)
     if previous is not None and time_ns < previous:
         raise OrccadError(f"time {token} goes backwards (times are absolute and must not "
@@ -79,7 +113,7 @@ def parse_script(text: str, filename: str, inputs: tuple[ir.SignalDecl, ...]) ->
     instants: list[Instant] = []
     clock: int | None = None
     for number, raw in enumerate(text.splitlines(), start=1):
-        line = raw.split("#", 1)[0]
+        line = _strip_comment(raw)
         if not line.strip() and raw.strip():
             continue  # a comment-only line
         present: dict[str, Any] = {}

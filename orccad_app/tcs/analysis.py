@@ -1,4 +1,7 @@
-"""Schedulability analysis of a TCS: utilization and fixed-priority response times.
+"""Utilization and fixed-priority response times of *independent* Module-Tasks.
+
+(The schedulability of a whole TCS as the executive runs it — protocol blocking, EDF, the bus
+— is :func:`orccad_app.tcs.schedulability.analyse_timing`.)
 
 **Response-time analysis** (Joseph & Pandya; Audsley et al.) for the fixed-priority preemptive
 scheduler of :mod:`orccad_app.executive.scheduler`, per processor:

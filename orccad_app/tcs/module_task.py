@@ -21,9 +21,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.tcs.phasing import Activation
 from orccad_app.tcs.port import PortDirection, Port
 
-__all__ = ["ModuleTask", "PhysicalResource"]
+__all__ = ["ModuleTask", "PhysicalResource", "Activation"]
 
 
 def _check_ports(owner: str, ports: tuple[Port, ...]) -> dict[str, Port]:
@@ -82,9 +83,13 @@ class ModuleTask(_HasPorts):
     :param priority: fixed priority, 1 is the highest.
     :param bcet_ns: best-case execution time [ns]; when given, each job's duration is drawn
         uniformly in ``[bcet_ns, wcet_ns]`` from the run's seed; else every job takes ``wcet_ns``.
-    :param deadline_ns: relative deadline [ns]; defaults to the period.
+    :param deadline_ns: relative deadline [ns]; 0 (the default): the period.
     :param offset_ns: delay of the first release after activation [ns].
     :param kind: the module kind (plugin name), informative.
+    :param activation: :attr:`Activation.PERIODIC` (released every ``period_ns``) or
+        :attr:`Activation.SPORADIC` (released by an event, interrupt-driven: then ``period_ns``
+        is its minimum inter-arrival time, see :attr:`min_interarrival_ns`). The
+        schedulability analysis handles both; the executive releases periodic ones.
     :param location: where the plan language declared it, for diagnostics.
     """
 
@@ -96,10 +101,11 @@ class ModuleTask(_HasPorts):
     processor: str = "cpu0"
     priority: int = 1
     bcet_ns: int | None = None
-    deadline_ns: int | None = None
+    deadline_ns: int = 0
     offset_ns: int = 0
     kind: str = ""
     location: SourceLocation | None = None
+    activation: Activation = Activation.PERIODIC
     _by_name: dict[str, Port] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -109,6 +115,11 @@ class ModuleTask(_HasPorts):
         self.ports = tuple(self.ports)
         self._by_name = _check_ports(self.name, self.ports)
         self._check_times()
+        try:
+            self.activation = Activation(self.activation)
+        except ValueError:
+            raise OrccadError(f"module-task '{self.name}': activation must be 'periodic' or "
+                              f"'sporadic', got {self.activation!r}") from None
         if not isinstance(self.priority, int) or self.priority < 1:
             raise OrccadError(f"module-task '{self.name}': priority must be an integer >= 1 "
                               f"(1 is the highest), got {self.priority!r}")
@@ -131,9 +142,15 @@ class ModuleTask(_HasPorts):
             if self.bcet_ns > self.wcet_ns:
                 raise OrccadError(f"module-task '{self.name}': bcet_ns {self.bcet_ns} exceeds "
                                   f"wcet_ns {self.wcet_ns}")
-        if self.deadline_ns is None:
+        if not self.deadline_ns:  # 0 (or None): the period
             self.deadline_ns = self.period_ns
         positive_int("deadline_ns", self.deadline_ns, True)
+
+    @property
+    def min_interarrival_ns(self) -> int:
+        """The shortest time between two releases [ns]: the period of a periodic Module-Task,
+        the minimum inter-arrival time of a sporadic one."""
+        return self.period_ns
 
     @property
     def utilization(self) -> float:

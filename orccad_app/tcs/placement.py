@@ -18,7 +18,10 @@ The heuristic (optimal placement is NP-hard, RR-1801 §2.2.3):
 3. *improvement*: move single Module-Tasks to another processor while a move strictly lowers
    the inter-processor traffic and respects the bound.
 
-It is deterministic. It raises :class:`OrccadError` when a Module-Task fits nowhere.
+It is deterministic. It raises :class:`OrccadError` when a Module-Task fits nowhere, and at
+once when the problem exceeds the size budget (:data:`MAX_PROCESSORS` processors,
+:data:`MAX_MODULE_TASKS` Module-Tasks: the heuristic is cubic in the Module-Tasks and linear in
+the processors per move).
 """
 
 from __future__ import annotations
@@ -31,7 +34,27 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.timebase import NS_PER_S
 
-__all__ = ["Placement", "traffic_graph", "suggest_placement"]
+__all__ = ["Placement", "traffic_graph", "suggest_placement", "check_placement_size",
+           "MAX_PROCESSORS", "MAX_MODULE_TASKS"]
+
+MAX_PROCESSORS = 256
+"""Largest number of processors a placement is computed for (``orccad tcs --processors``
+refuses more)."""
+
+MAX_MODULE_TASKS = 500
+"""Largest number of Module-Tasks a placement is computed for."""
+
+
+def check_placement_size(processors: int, module_tasks: int = 0) -> None:
+    """Raise :class:`OrccadError` when a placement of ``module_tasks`` on ``processors`` is
+    beyond the size budget."""
+    if processors > MAX_PROCESSORS:
+        raise OrccadError(f"placement on {processors} processors: beyond the budget of "
+                          f"{MAX_PROCESSORS} processors (a placement never uses more "
+                          f"processors than Module-Tasks)")
+    if module_tasks > MAX_MODULE_TASKS:
+        raise OrccadError(f"placement of {module_tasks} Module-Tasks: beyond the budget of "
+                          f"{MAX_MODULE_TASKS}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,6 +140,7 @@ def suggest_placement(tcs: TCS, processors: list[str] | int, bound: float = 1.0)
     names = [f"cpu{i}" for i in range(processors)] if isinstance(processors, int) else processors
     if not names:
         raise OrccadError("placement needs at least one processor")
+    check_placement_size(len(names), len(tcs.module_tasks))
     graph = traffic_graph(tcs)
     util = {task.name: task.utilization for task in tcs.module_tasks}
     loads = {name: 0.0 for name in names}

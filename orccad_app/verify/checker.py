@@ -49,6 +49,8 @@ class MissionReport:
     composition: Composition
     model: Model
     outcomes: list[PropertyOutcome] = field(default_factory=list)
+    signal_properties: list[ast.Property] = field(default_factory=list)
+    """Signal (STL) properties: not proved here, judged on runs and campaigns."""
 
     @property
     def holds(self) -> bool:
@@ -144,5 +146,8 @@ def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool 
         report.outcomes += [_check_builtin(model, name) for name in BUILTINS]
     assumptions = [from_ast(a.formula) for a in applicable(program.assumptions, mission)]
     for prop in applicable(program.properties, mission):
+        if ast.is_signal_formula(prop.formula):
+            report.signal_properties.append(prop)
+            continue
         report.outcomes.append(_check_property(model, prop, assumptions))
     return report

@@ -25,6 +25,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, Action, DataBranch,
                                           InputTest, Leaf, Node)
@@ -77,6 +78,7 @@ class Model:
     steps: list[list[Step]] = field(default_factory=list)
     fairness: list[str] = field(default_factory=list)         # names of the fairness sets
     exact: bool = True                                         # counters tracked exactly
+    abstracted_because: str | None = None                      # why not, when not exact
 
     @property
     def automaton(self):
@@ -207,7 +209,11 @@ class _Builder:
                 if value is not data.TOP and bool(value) != event[2]:
                     return None
             elif event[0] == "act" and event[1].kind == "assign" and event[1].target in env:
-                env[event[1].target] = data.evaluate(event[1].expr, env)
+                value = data.evaluate(event[1].expr, env)
+                if type(value) is int and not MIN_INT <= value <= MAX_INT:
+                    raise _OverBudget(f"'{event[1].target.name}' leaves the 64-bit integers "
+                                      f"[{MIN_INT}, {MAX_INT}]")
+                env[event[1].target] = value
         return tuple(env[v] for v in tracked)
 
     def _fair(self, q: int, path: Path, leaf: Leaf, emitted: frozenset[str]) -> int:
@@ -232,15 +238,17 @@ def build_model(composition: Composition, *, budget: int = MODEL_BUDGET) -> Mode
     """Explore the model of ``composition``: counters exactly when the state space stays
     under ``budget`` states, else every data value abstracted."""
     tracked = data.tracked_variables(composition.automaton)
+    reason = None
     if tracked:
         try:
             return _Builder(composition, tracked, budget).build()
-        except _OverBudget:
-            pass
+        except _OverBudget as over:
+            reason = str(over) if over.args else f"more than {budget} states with exact counters"
     try:
         model = _Builder(composition, (), budget).build()
     except _OverBudget:  # pragma: no cover - at most twice the automaton's states
         raise OrccadError(f"mission {composition.name}: the model has more than {budget} "
                           "states", composition.mission.loc) from None
     model.exact = not tracked
+    model.abstracted_because = reason
     return model

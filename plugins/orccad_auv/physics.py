@@ -42,7 +42,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from orccad_app.control.plant_extension import PlantExtension
+from orccad_app.plugin_api import PlantExtension
 
 __all__ = ["AuvPhysics", "SENSOR_DIMS", "G_MPS2"]
 
@@ -94,6 +94,10 @@ class AuvPhysics(PlantExtension):
         self.body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "hull")
         seabed = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, "seabed")
         self.seabed_z_m = float(model.geom_pos[seabed][2])
+        mass = self.params.get("mass_kg")
+        if mass is not None:  # the type parameter: scale the hull's mass and inertia
+            model.body_inertia[self.body] *= float(mass) / float(model.body_mass[self.body])
+            model.body_mass[self.body] = float(mass)
         self.mass_kg = float(model.body_mass[self.body])
         self.gain = model.actuator_gear[:, 2].copy()
 

@@ -21,10 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
-from orccad_app.control import ParamSpec, PortSpec, RobotType
-from orccad_app.control.constraints import ActuatorConstraint
-from orccad_app.control.params import resolve_params
-from orccad_app.control.robot import RobotPort
+from orccad_app.plugin_api import (
+    ActuatorConstraint,
+    ParamSpec,
+    PortSpec,
+    RobotPort,
+    RobotType,
+    resolve_params,
+)
 
 from orccad_auv.physics import SENSOR_DIMS, AuvPhysics
 
@@ -37,21 +41,29 @@ THRUSTER_ARM_M = 0.6
 """Distance of the tunnel thrusters from the centre of gravity along the hull [m]."""
 
 AUV_PARAMS = (
-    ParamSpec("battery_wh", "float", 40.0, "battery capacity [Wh]", 0.0, True),
-    ParamSpec("volume_m3", "float", 0.0942, "displaced volume V [m³]", 0.0, True),
-    ParamSpec("water_density", "float", 1025.0, "sea water density rho [kg/m³]", 0.0, True),
-    ParamSpec("cb_height_m", "float", 0.05, "centre of buoyancy above the CG [m]", 0.0),
-    ParamSpec("hull_radius_m", "float", 0.15, "hull radius [m]", 0.0, True),
-    ParamSpec("hotel_w", "float", 20.0, "hotel load (electronics) [W]", 0.0),
+    ParamSpec("battery_wh", "float", 40.0, "battery capacity [Wh]", 0.0, True, maximum=10000.0),
+    ParamSpec("volume_m3", "float", 0.0942, "displaced volume V [m³]", 0.0, True, maximum=1.0),
+    ParamSpec("water_density", "float", 1025.0, "sea water density rho [kg/m³]", 900.0,
+              maximum=1100.0),
+    ParamSpec("cb_height_m", "float", 0.05, "centre of buoyancy above the CG [m]", 0.0,
+              maximum=0.15),
+    ParamSpec("hull_radius_m", "float", 0.15, "hull radius [m]", 0.0, True, maximum=1.0),
+    ParamSpec("mass_kg", "float", None,
+              "dry mass [kg] (default: the MJCF hull's 96 kg; the inertia scales with it)",
+              50.0, maximum=150.0),
+    ParamSpec("hotel_w", "float", 20.0, "hotel load (electronics) [W]", 0.0, maximum=1000.0),
     ParamSpec("thrust_coeff", "float", 0.5,
               "thruster power per N^1.5 [W/N^1.5] (ideal T^1.5/sqrt(2 rho A) of a 10 cm "
-              "propeller is 0.25, at 50 % efficiency 0.5)", 0.0),
-    ParamSpec("leak_rate_kg_s", "float", 0.01, "water intake of a leak [kg/s]", 0.0),
+              "propeller is 0.25, at 50 % efficiency 0.5)", 0.0, maximum=10.0),
+    ParamSpec("leak_rate_kg_s", "float", 0.01, "water intake of a leak [kg/s]", 0.0,
+              maximum=10.0),
     ParamSpec("surface_damping", "float", 300.0,
-              "heave damping while piercing the surface [N·s/m]", 0.0),
+              "heave damping while piercing the surface [N·s/m]", 0.0, maximum=10000.0),
     ParamSpec("gps_depth_m", "float", 0.4, "GPS antenna out of the water above [m]", 0.0,
-              True),
+              True, maximum=5.0),
 )
+"""Type parameters with their ranges (``robot auv : auv(cb_height_m = 0.08);``, or
+``orccad run --set auv.cb_height_m=0.08``)."""
 
 _UNITS = {"depth": "[m]", "attitude": "[rad]", "velocity": "[m/s, rad/s]", "position": "[m]",
           "altitude": "[m]", "battery": "[%]", "leak": "[0/1]", "gps": "[0/1]"}

@@ -11,7 +11,7 @@ from lark import Lark
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
-from orccad_app.lang.parser import _lark, grammar_text, keywords, parse
+from orccad_app.lang.parser import grammar_lark, grammar_text, keywords, parse
 from tests.lang import examples
 
 
@@ -334,7 +334,7 @@ def test_deep_nesting_is_an_error_not_a_crash():
         assert error.location is not None
 
 
-_GENERATED = from_lark(_lark(), explicit={
+_GENERATED = from_lark(grammar_lark(), explicit={
     "DURATION": st.sampled_from(["2 s", "1.5 ms", "250 us", "10ns", "1e-3 s"])})
 
 

@@ -35,8 +35,8 @@ def test_a_coherent_schedulable_tcs_is_ok():
 def test_cycles_of_blocking_protocols_and_misses_are_reported():
     report = analyse(_tcs("syn/syn", wcet_b=ms(12)))
     assert not report.ok
-    assert report.response_times["b"].response_ns is None
-    assert "b                    prio  2  R =      — ms  D =     10 ms  MISSES its deadline" \
+    assert report.timing.tasks["b"].response_ns is None
+    assert "b                    prio  2  R =      — ms  D =     10 ms  MAY MISS its deadline" \
         in to_text(report)
     assert report.cycles and all(set(c.modules) == {"a", "b"} for c in report.cycles)
     assert report.placement is None and "fits on no processor" in report.placement_error

@@ -1,0 +1,200 @@
+"""A campaign from spec to statistics: draw, dispatch, record, stop, summarize.
+
+:class:`Campaign` draws run ``i``'s setting (:func:`~orccad_app.campaign.setting.draw_setting`),
+dispatches it to the backend (pool or Dask), records each finished run in the database at once
+and retries a crashed one once. It keeps at most two runs per worker in flight and stops
+submitting when
+
+- every run ``0 … runs−1`` is recorded (``--runs``), or
+- with ``--epsilon``, every estimate's Clopper–Pearson half-width is at most ``ε`` on the
+  runs ``0 … n−1`` recorded so far (the *prefix*, so the result does not depend on which
+  worker was faster), or the Chernoff–Hoeffding cap is reached, or
+- with ``--hypothesis``, the SPRT has decided on the prefix.
+
+Statistics are computed on that prefix; runs finished beyond it stay in the database.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+from typing import Any, Callable
+
+from orccad_app.campaign.adapter import CompiledMission, RunRecord
+from orccad_app.campaign.executor import Job, make_backend
+from orccad_app.campaign.setting import RunSetting, draw_setting, replay_command
+from orccad_app.campaign.spec import CampaignSpec
+from orccad_app.campaign.stats import (Hypothesis, Sprt, chernoff_runs, estimates,
+                                       precise_enough, summarize)
+from orccad_app.campaign.store import CampaignStore
+from orccad_app.campaign.validate import check_spec
+
+__all__ = ["CampaignOptions", "CampaignResult", "Campaign"]
+
+
+@dataclass
+class CampaignOptions:
+    """How to run a campaign (the command's options)."""
+
+    runs: int | None = None
+    workers: int | None = None
+    cluster: Any = None
+    db: str = "campaign.db"
+    resume: bool = False
+    epsilon: float | None = None
+    confidence: float = 0.95
+    hypothesis: str | None = None
+    delta: float = 0.01
+    until_s: float | None = None
+
+
+@dataclass
+class CampaignResult:
+    """What a campaign concluded (see :meth:`Campaign.run`)."""
+
+    file: str
+    mission: str
+    records: list[RunRecord]
+    estimates: dict[str, dict[str, Any]]
+    summary: dict[str, Any]
+    stopped_by: str
+    confidence: float
+    replays: dict[int, str] = field(default_factory=dict)
+    sprt: dict[str, Any] | None = None
+    interrupted: bool = False
+    backend: str = "pool"
+    wall_time_s: float = 0.0
+    db: str = ""
+
+
+class Campaign:
+    """One campaign (see the module docstring)."""
+
+    def __init__(self, file: str, spec: CampaignSpec, options: CampaignOptions,
+                 mission: str | None = None) -> None:
+        self.file = file
+        self.spec = spec
+        self.options = options
+        self.compiled = CompiledMission(file, mission or spec.mission)
+        self.until_s = (options.until_s or spec.until_s or self.compiled.default_until_s())
+        check_spec(self.compiled, spec, self.until_s)
+        self.hypothesis = Hypothesis.parse(options.hypothesis) if options.hypothesis else None
+        self.limit = self._limit()
+        self.stop_n = 0
+        self.store = CampaignStore(options.db)
+        self.store.start({"file": file, "mission": self.compiled.name,
+                          "digest": self.compiled.digest, "spec": spec.text,
+                          "until_s": repr(self.until_s)}, options.resume)
+
+    def _limit(self) -> int:
+        options = self.options
+        if options.runs is not None:
+            return options.runs
+        if options.epsilon is not None:
+            return chernoff_runs(options.epsilon, options.confidence)
+        return self.spec.runs
+
+    def setting(self, index: int) -> RunSetting:
+        return draw_setting(self.spec, index, self.until_s)
+
+    def replay(self, setting: RunSetting) -> str:
+        return replay_command(self.file, self.compiled.name, setting)
+
+    def job(self, index: int, attempt: int = 1) -> Job:
+        return Job(self.file, self.compiled.name, self.compiled.digest, self.setting(index),
+                   self.spec.signals, self.spec.checks, attempt)
+
+    # -- running -------------------------------------------------------------------------
+
+    def run(self, progress: Callable[[int, int, list[RunRecord]], None] | None = None,
+            backend: Any = None) -> CampaignResult:
+        """Run (or resume) the campaign; ``progress(done, limit, prefix)`` after each run."""
+        start = time.perf_counter()
+        records = {r.index: r for r in self.store.records()}
+        backend = backend or make_backend(self.options.workers, self.options.cluster)
+        self.backend = backend
+        interrupted = False
+        try:
+            stopped = self._loop(backend, records, progress)
+        except KeyboardInterrupt:
+            interrupted, stopped = True, "interrupted"
+        finally:
+            backend.close(cancel=interrupted)
+        if stopped in ("runs", "interrupted"):
+            used = [records[i] for i in sorted(records) if i < self.limit]
+        else:
+            used = _prefix(records)[:self.stop_n]
+        return self._result(used, stopped, interrupted, time.perf_counter() - start)
+
+    def _loop(self, backend: Any, records: dict[int, RunRecord],
+              progress: Callable | None) -> str:
+        queue = [i for i in range(self.limit) if i not in records]
+        flying: dict[Any, Job] = {}
+        cap = 2 * max(1, getattr(backend, "workers", 1))
+        stopped = self._stop(records)
+        while (queue and stopped is None) or flying:
+            while queue and stopped is None and len(flying) < cap:
+                job = self.job(queue.pop(0))
+                flying[backend.submit(job)] = job
+            for future in backend.wait(flying):
+                job = flying.pop(future)
+                record = backend.result(future, job)
+                if record.status == "crashed" and job.attempt == 1:
+                    retry = replace(job, attempt=2)
+                    flying[backend.submit(retry)] = retry
+                    continue
+                if job.attempt == 2 and record.status != "crashed":
+                    record.error = "retried once after a crash"
+                records[record.index] = record
+                self.store.add(record, self.replay(record.setting))
+            if backend.broken:
+                backend.restart()
+            if stopped is None:
+                stopped = self._stop(records)
+            if progress is not None:
+                progress(len(records), self.limit, _prefix(records))
+        return stopped or "runs"
+
+    def _stop(self, records: dict[int, RunRecord]) -> str | None:
+        """Why to stop submitting, if the prefix already answers."""
+        if self.hypothesis is None and self.options.epsilon is None:
+            return None
+        prefix = _prefix(records)
+        self.stop_n = len(prefix)
+        if self.hypothesis is not None and self._sprt(prefix).decision is not None:
+            return "hypothesis"
+        if (self.options.epsilon is not None
+                and precise_enough(prefix, self.options.epsilon, self.options.confidence)):
+            return "epsilon"
+        return None
+
+    def _sprt(self, prefix: list[RunRecord]) -> Sprt:
+        alpha = 1.0 - self.options.confidence
+        test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
+        for record in prefix:
+            if test.add(record) is not None:
+                break
+        return test
+
+    def _result(self, used: list[RunRecord], stopped: str, interrupted: bool,
+                wall: float) -> CampaignResult:
+        summary = summarize(used)
+        wanted = {w["run"] for worst in summary["closest_to_violation"].values() for w in worst}
+        wanted |= {r.index for r in used if r.status != "done"}
+        replays = {r.index: self.replay(r.setting) for r in used if r.index in wanted}
+        sprt = self._sprt(used).as_dict() if self.hypothesis is not None else None
+        if stopped == "runs" and self.options.epsilon is not None and self.options.runs is None:
+            stopped = "chernoff bound"
+        return CampaignResult(self.file, self.compiled.name, used,
+                              estimates(used, self.options.confidence), summary, stopped,
+                              self.options.confidence, replays, sprt, interrupted,
+                              getattr(self.backend, "name", "pool"), wall, self.store.path)
+
+
+def _prefix(records: dict[int, RunRecord]) -> list[RunRecord]:
+    prefix = []
+    index = 0
+    while index in records:
+        prefix.append(records[index])
+        index += 1
+    return prefix

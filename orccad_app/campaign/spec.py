@@ -1,0 +1,337 @@
+"""The campaign spec: a TOML file declaring what varies from run to run (docs/campaigns.md).
+
+::
+
+    mission = "AuvSurvey"           # optional: the file's only mission by default
+    runs = 200                      # default number of runs (--runs overrides)
+    seed = 1                        # the campaign's seed: every run's setting is drawn from it
+    until_s = 400                   # simulated-time limit of each run [s]
+    seeds = "UI(0, 1000000)"        # the runs' seeds (default: UI(0, 2**31 - 1))
+    signals = ["auv.depth"]         # sensor ports whose extrema each run records
+
+    [params]                        # robot type parameters and sensor noise (--set)
+    "auv.cb_height_m" = "U(0.03, 0.07)"
+    "auv.depth.noise_std" = "U(0.01, 0.05)"
+
+    [timing]                        # Module-Task period / WCET / BCET [ms] (--timing)
+    "Survey.pilot.wcet_ms" = "U(0.5, 5)"
+
+    [[inject]]                      # an input or a plant fault at a random time (--inject)
+    event = "auv.leak=1@U(20, 170)"
+    probability = 0.3               # Bernoulli occurrence (default 1)
+
+    [[check]]                       # a bound on a run metric: verdict and robustness
+    name = "shallow"
+    metric = "max(auv.depth)"
+    below = 30.0
+
+:func:`load_spec` reads and checks the file's form; an error names ``FILE:LINE:COL`` of the
+offending key and exits 2. Names are checked against the mission later
+(:func:`orccad_app.campaign.adapter.check_spec`).
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from orccad_app.campaign.distributions import (Distribution, DistributionError, Kind,
+                                               parse_distribution)
+from orccad_app.diagnostics import OrccadError, SourceLocation
+
+__all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "InjectEntry", "Check", "load_spec",
+           "parse_spec", "SpecLocator", "DEFAULT_SEEDS"]
+
+DEFAULT_SEEDS = parse_distribution(f"UI(0, {2 ** 31 - 1})")
+_TOP = ("mission", "runs", "seed", "until_s", "seeds", "signals", "params", "timing",
+        "inject", "check")
+_EVENT = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:=(.*?)|\((.*)\))?\s*@(.+)$", re.S)
+_METRIC = re.compile(r"^(?:(max|min)\(([A-Za-z_][\w.]*(?:\[\d+\])?)\)|sim_time_s|"
+                     r"completion_time_s|deadline_misses|"
+                     r"([A-Za-z_]\w*)\.tracking_error\.(max|rms))$")
+
+
+@dataclass(frozen=True)
+class ParamEntry:
+    """``"ROBOT.PARAM" = DIST`` or ``"ROBOT.PORT.noise_std" = DIST`` of ``[params]``."""
+
+    target: str
+    dist: Distribution
+    key: tuple
+
+
+@dataclass(frozen=True)
+class TimingEntry:
+    """``"TASK.MODULE.FIELD" = DIST`` of ``[timing]`` [ms]."""
+
+    target: str
+    dist: Distribution
+    key: tuple
+
+
+@dataclass(frozen=True)
+class InjectEntry:
+    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s]."""
+
+    name: str
+    fault: bool
+    value: Distribution | None
+    time: Distribution
+    probability: float
+    key: tuple
+
+
+@dataclass(frozen=True)
+class Check:
+    """One ``[[check]]``: ``metric < below`` and/or ``metric > above``; robustness is the
+    margin in the metric's unit (negative: violated)."""
+
+    name: str
+    metric: str
+    below: float | None
+    above: float | None
+    key: tuple
+
+
+@dataclass(frozen=True)
+class CampaignSpec:
+    """A checked spec (see the module docstring)."""
+
+    path: str
+    text: str
+    mission: str | None = None
+    runs: int = 100
+    seed: int = 0
+    until_s: float | None = None
+    seeds: Distribution = DEFAULT_SEEDS
+    signals: tuple[str, ...] = ()
+    params: tuple[ParamEntry, ...] = ()
+    timings: tuple[TimingEntry, ...] = ()
+    injections: tuple[InjectEntry, ...] = ()
+    checks: tuple[Check, ...] = ()
+    locator: SpecLocator | None = field(default=None, compare=False)
+
+    def error(self, message: str, key: tuple = ()) -> OrccadError:
+        """An error located at ``key`` (a path of TOML keys) in the spec file."""
+        location = self.locator.locate(key) if self.locator is not None else None
+        return OrccadError(message, location)
+
+
+class SpecLocator:
+    """Finds the line of a TOML key path (``("inject", 1, "event")``) by scanning the text."""
+
+    _HEADER = re.compile(r"^\s*(\[\[?)\s*([\w.\"-]+)\s*\]\]?")
+    _KEY = re.compile(r"^\s*(\"[^\"]*\"|'[^']*'|[\w.-]+)\s*=")
+
+    def __init__(self, path: str, text: str) -> None:
+        self.path = path
+        self.keys: dict[tuple, tuple[int, int]] = {}
+        table: tuple = ()
+        counts: dict[str, int] = {}
+        for number, line in enumerate(text.splitlines(), start=1):
+            header = self._HEADER.match(line)
+            if header:
+                name = header.group(2).strip("\"'")
+                if header.group(1) == "[[":
+                    counts[name] = counts.get(name, -1) + 1
+                    table = (name, counts[name])
+                else:
+                    table = (name,)
+                self.keys.setdefault(table, (number, line.index(name) + 1))
+                continue
+            key = self._KEY.match(line)
+            if key:
+                name = key.group(1).strip("\"'")
+                self.keys.setdefault((*table, name), (number, line.index(key.group(1)) + 1))
+
+    def locate(self, key: tuple) -> SourceLocation:
+        """The location of ``key`` or of its closest enclosing table."""
+        while key and key not in self.keys:
+            key = key[:-1]
+        line, col = self.keys.get(key, (1, 1))
+        return SourceLocation(self.path, line, col)
+
+
+def load_spec(path: str | Path) -> CampaignSpec:
+    """Read and check the spec file ``path``; raise a located :class:`OrccadError`."""
+    path = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as error:
+        raise OrccadError(f"cannot read campaign spec {path}: {error.strerror}") from None
+    return parse_spec(text, path)
+
+
+def parse_spec(text: str, path: str = "<spec>") -> CampaignSpec:
+    """Parse the TOML ``text`` of a spec (see :func:`load_spec`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        found = re.search(r"\(at line (\d+), column (\d+)\)", str(error))
+        message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(error))
+        if found:
+            where = SourceLocation(path, int(found.group(1)), int(found.group(2)))
+        else:  # "(at end of document)"
+            where = SourceLocation(path, max(1, len(text.splitlines())), 1)
+        raise OrccadError(f"bad TOML: {message}", where) from None
+    spec = CampaignSpec(path, text, locator=SpecLocator(path, text))
+    return _Reader(spec, data).read()
+
+
+class _Reader:
+    def __init__(self, spec: CampaignSpec, data: dict[str, Any]) -> None:
+        self.spec = spec
+        self.data = data
+
+    def fail(self, message: str, *key: Any) -> OrccadError:
+        return self.spec.error(message, key)
+
+    def read(self) -> CampaignSpec:
+        data = self.data
+        for key in data:
+            if key not in _TOP:
+                raise self.fail(f"unknown key '{key}' (keys: {', '.join(_TOP)})", key)
+        values: dict[str, Any] = {}
+        if "mission" in data:
+            values["mission"] = self.string(data["mission"], "mission")
+        if "runs" in data:
+            values["runs"] = self.integer(data["runs"], 1, "runs")
+        if "seed" in data:
+            values["seed"] = self.integer(data["seed"], 0, "seed")
+        if "until_s" in data:
+            until = data["until_s"]
+            if isinstance(until, bool) or not isinstance(until, (int, float)) or not until > 0:
+                raise self.fail(f"until_s must be a number > 0, got {until!r}", "until_s")
+            values["until_s"] = float(until)
+        if "seeds" in data:
+            seeds = self.dist(data["seeds"], "seeds")
+            if not seeds.integral or seeds.bounds[0] < 0:
+                raise self.fail("seeds must draw integers >= 0 (UI(a, b) or choice of "
+                                "integers)", "seeds")
+            values["seeds"] = seeds
+        values["signals"] = self.signals(data.get("signals", []))
+        values["params"] = tuple(ParamEntry(k, self.dist(v, "params", k), ("params", k))
+                                 for k, v in self.table("params").items())
+        values["timings"] = tuple(TimingEntry(k, self.dist(v, "timing", k), ("timing", k))
+                                  for k, v in self.table("timing").items())
+        values["injections"] = tuple(self.inject(i, item)
+                                     for i, item in enumerate(self.array("inject")))
+        values["checks"] = tuple(self.check(i, item)
+                                 for i, item in enumerate(self.array("check")))
+        names = [c.name for c in values["checks"]]
+        for index, name in enumerate(names):
+            if names.index(name) != index:
+                raise self.fail(f"two checks are named '{name}'", "check", index, "name")
+        return CampaignSpec(**{**self.spec.__dict__, **values})
+
+    def string(self, value: Any, *key: Any) -> str:
+        if not isinstance(value, str) or not value.strip():
+            raise self.fail(f"{key[-1]} must be a non-empty string, got {value!r}", *key)
+        return value.strip()
+
+    def integer(self, value: Any, minimum: int, *key: Any) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+            raise self.fail(f"{key[-1]} must be an integer >= {minimum}, got {value!r}", *key)
+        return value
+
+    def dist(self, value: Any, *key: Any) -> Distribution:
+        try:
+            return parse_distribution(value)
+        except DistributionError as error:
+            raise self.fail(str(error), *key) from None
+
+    def table(self, name: str) -> dict[str, Any]:
+        value = self.data.get(name, {})
+        if not isinstance(value, dict):
+            raise self.fail(f"'{name}' must be a table ([{name}])", name)
+        return value
+
+    def array(self, name: str) -> list[dict[str, Any]]:
+        value = self.data.get(name, [])
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            raise self.fail(f"'{name}' must be an array of tables ([[{name}]])", name)
+        return value
+
+    def signals(self, value: Any) -> tuple[str, ...]:
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise self.fail("signals must be a list of ROBOT.PORT strings", "signals")
+        for signal in value:
+            if not re.fullmatch(r"[A-Za-z_]\w*\.[A-Za-z_]\w*(\[\d+\])?", signal):
+                raise self.fail(f"signal {signal!r}: expected ROBOT.PORT or ROBOT.PORT[i]",
+                                "signals")
+        return tuple(value)
+
+    def inject(self, index: int, item: dict[str, Any]) -> InjectEntry:
+        key = ("inject", index)
+        for name in item:
+            if name not in ("event", "probability"):
+                raise self.fail(f"unknown key '{name}' in [[inject]] (keys: event, "
+                                f"probability)", *key, name)
+        if "event" not in item:
+            raise self.fail("[[inject]] needs an event (e.g. event = \"auv.leak=1@U(20, 170)\")",
+                            *key)
+        text = self.string(item["event"], *key, "event")
+        match = _EVENT.match(text)
+        if match is None:
+            raise self.fail(f"bad event {text!r}: expected SIGNAL@TIME, SIGNAL(VALUE)@TIME or "
+                            f"ROBOT.FAULT=VALUE@TIME (TIME and VALUE numbers or "
+                            f"distributions)", *key, "event")
+        name, fault_value, signal_value, when = match.groups()
+        fault = fault_value is not None
+        raw = fault_value if fault else signal_value
+        value = None
+        if raw is not None:
+            raw = raw.strip()
+            value = self.dist(raw[:-1] if raw.endswith("%") else raw, *key, "event")
+        if fault and "." not in name:
+            raise self.fail(f"bad event {text!r}: a plant fault is ROBOT.FAULT=VALUE@TIME",
+                            *key, "event")
+        time = self.dist(when.strip().removesuffix("s") if when.strip().endswith(")s")
+                         else when.strip(), *key, "event")
+        if time.bounds[0] < 0:
+            raise self.fail(f"event {text!r}: times must be >= 0 s", *key, "event")
+        probability = item.get("probability", 1.0)
+        if (isinstance(probability, bool) or not isinstance(probability, (int, float))
+                or not 0 <= probability <= 1):
+            raise self.fail(f"probability must be a number in [0, 1], got {probability!r}",
+                            *key, "probability")
+        return InjectEntry(name, fault, value, time, float(probability), key)
+
+    def check(self, index: int, item: dict[str, Any]) -> Check:
+        key = ("check", index)
+        for name in item:
+            if name not in ("name", "metric", "below", "above"):
+                raise self.fail(f"unknown key '{name}' in [[check]] (keys: name, metric, "
+                                f"below, above)", *key, name)
+        name = self.string(item.get("name"), *key, "name")
+        if not re.fullmatch(r"[A-Za-z_]\w*", name):
+            raise self.fail(f"check name {name!r} must be an identifier", *key, "name")
+        metric = self.string(item.get("metric"), *key, "metric")
+        if not _METRIC.match(metric):
+            raise self.fail(f"unknown metric {metric!r}: expected max(ROBOT.PORT), "
+                            f"min(ROBOT.PORT), sim_time_s, completion_time_s, deadline_misses "
+                            f"or TASK.tracking_error.max|rms", *key, "metric")
+        bounds = {}
+        for side in ("below", "above"):
+            value = item.get(side)
+            if value is not None and (isinstance(value, bool)
+                                      or not isinstance(value, (int, float))):
+                raise self.fail(f"{side} must be a number, got {value!r}", *key, side)
+            bounds[side] = None if value is None else float(value)
+        if bounds["below"] is None and bounds["above"] is None:
+            raise self.fail("a check needs 'below' and/or 'above'", *key)
+        return Check(name, metric, bounds["below"], bounds["above"], key)
+
+
+def metric_signal(metric: str) -> str | None:
+    """The signal ``ROBOT.PORT[i]`` a ``max(…)``/``min(…)`` metric reads, else ``None``."""
+    match = _METRIC.match(metric)
+    return match.group(2) if match and match.group(2) else None
+
+
+def is_constant(dist: Distribution) -> bool:
+    """The distribution always gives the same value."""
+    return dist.kind is Kind.CONSTANT

@@ -1,0 +1,138 @@
+"""The campaign database: one SQLite file, one row per run, written as runs finish.
+
+Schema (docs/campaigns.md gives example queries)::
+
+    campaign(key TEXT PRIMARY KEY, value TEXT)      -- file, mission, digest, spec, ...
+    runs(run INTEGER PRIMARY KEY,                   -- the run's index (its setting's draw)
+         seed INTEGER, status TEXT, outcome TEXT, reason TEXT,
+         sim_time_s REAL, completion_time_s REAL, wall_time_s REAL,
+         attempts INTEGER, error TEXT,              -- 2: retried once after a crash
+         setting TEXT,                              -- JSON (RunSetting.as_dict)
+         replay TEXT)                               -- the orccad run command
+    params(run INTEGER, name TEXT, value REAL)      -- the drawn values (RunSetting.values)
+    metrics(run INTEGER, name TEXT, value REAL)     -- max(auv.depth), sim_time_s, ...
+    properties(run INTEGER, name TEXT, holds INTEGER, robustness REAL)
+
+``status`` is ``done``, ``failed``, ``aborted``, ``timeout`` or ``crashed`` (an internal
+error twice: ``error`` holds the traceback's last line). Each run is committed when it ends,
+so an interrupted campaign keeps every finished run and ``--resume`` runs the others.
+"""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+from pathlib import Path
+from typing import Any, Iterator
+
+from orccad_app.campaign.adapter import PropertyResult, RunRecord
+from orccad_app.campaign.setting import RunSetting
+from orccad_app.diagnostics import OrccadError
+
+__all__ = ["CampaignStore", "SCHEMA"]
+
+SCHEMA = """
+CREATE TABLE IF NOT EXISTS campaign (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS runs (
+    run INTEGER PRIMARY KEY, seed INTEGER NOT NULL, status TEXT NOT NULL,
+    outcome TEXT NOT NULL, reason TEXT, sim_time_s REAL, completion_time_s REAL,
+    wall_time_s REAL, attempts INTEGER NOT NULL, error TEXT, setting TEXT NOT NULL,
+    replay TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS params (run INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
+    PRIMARY KEY (run, name));
+CREATE TABLE IF NOT EXISTS metrics (run INTEGER NOT NULL, name TEXT NOT NULL, value REAL,
+    PRIMARY KEY (run, name));
+CREATE TABLE IF NOT EXISTS properties (run INTEGER NOT NULL, name TEXT NOT NULL,
+    holds INTEGER, robustness REAL, PRIMARY KEY (run, name));
+"""
+
+
+class CampaignStore:
+    """The database of one campaign (see the module docstring)."""
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = str(path)
+        try:
+            self.db = sqlite3.connect(self.path)
+            self.db.execute("PRAGMA journal_mode=WAL")
+            self.db.executescript(SCHEMA)
+        except sqlite3.DatabaseError as error:
+            raise OrccadError(f"{self.path}: not a campaign database ({error})") from None
+
+    def close(self) -> None:
+        self.db.close()
+
+    # -- identity ------------------------------------------------------------------------
+
+    def meta(self) -> dict[str, str]:
+        return dict(self.db.execute("SELECT key, value FROM campaign"))
+
+    def start(self, meta: dict[str, str], resume: bool) -> None:
+        """Bind the database to a campaign: a new one is stamped with ``meta``; an existing
+        one must hold the same campaign (``--resume``), else it is refused."""
+        old = self.meta()
+        if not old or (not resume and self.count() == 0):  # new, or never got a run
+            with self.db:
+                self.db.execute("DELETE FROM campaign")
+                self.db.executemany("INSERT INTO campaign VALUES (?, ?)", meta.items())
+            return
+        if not resume:
+            raise OrccadError(f"{self.path} already holds a campaign ({self.count()} runs): "
+                              f"--resume it, or choose another --db")
+        for key in ("digest", "spec", "mission", "until_s"):
+            if old.get(key) != meta.get(key):
+                raise OrccadError(f"--resume: {self.path} holds another campaign (its {key} "
+                                  f"differs); choose another --db")
+
+    # -- runs ----------------------------------------------------------------------------
+
+    def done(self) -> set[int]:
+        """Indices of the runs already recorded."""
+        return {row[0] for row in self.db.execute("SELECT run FROM runs")}
+
+    def count(self) -> int:
+        return self.db.execute("SELECT COUNT(*) FROM runs").fetchone()[0]
+
+    def add(self, record: RunRecord, replay: str) -> None:
+        """Record one run (committed at once)."""
+        index = record.index
+        with self.db:
+            self.db.execute(
+                "INSERT OR REPLACE INTO runs VALUES (?,?,?,?,?,?,?,?,?,?,?,?)",
+                (index, record.setting.seed, record.status, record.outcome, record.reason,
+                 record.sim_time_s, record.metrics.get("completion_time_s"),
+                 record.wall_time_s, record.attempts, record.error,
+                 json.dumps(record.setting.as_dict()), replay))
+            self.db.executemany("INSERT OR REPLACE INTO params VALUES (?,?,?)",
+                                [(index, k, v) for k, v in record.setting.values.items()])
+            self.db.executemany("INSERT OR REPLACE INTO metrics VALUES (?,?,?)",
+                                [(index, k, v) for k, v in record.metrics.items()])
+            self.db.executemany(
+                "INSERT OR REPLACE INTO properties VALUES (?,?,?,?)",
+                [(index, k, None if p.holds is None else int(p.holds), p.robustness)
+                 for k, p in record.properties.items()])
+
+    def records(self, limit: int | None = None) -> list[RunRecord]:
+        """The recorded runs with index below ``limit`` (all by default), in index order."""
+        return list(self._iter(limit))
+
+    def _iter(self, limit: int | None) -> Iterator[RunRecord]:
+        bound = -1 if limit is None else limit
+        metrics: dict[int, dict[str, Any]] = {}
+        for run, name, value in self.db.execute("SELECT run, name, value FROM metrics"):
+            metrics.setdefault(run, {})[name] = value
+        props: dict[int, dict[str, PropertyResult]] = {}
+        for run, name, holds, robust in self.db.execute("SELECT * FROM properties"):
+            props.setdefault(run, {})[name] = PropertyResult(
+                None if holds is None else bool(holds), robust)
+        rows = self.db.execute(
+            "SELECT run, status, outcome, reason, sim_time_s, wall_time_s, attempts, error, "
+            "setting FROM runs WHERE ? < 0 OR run < ? ORDER BY run", (bound, bound))
+        for run, status, outcome, reason, sim, wall, attempts, error, setting in rows:
+            yield RunRecord(RunSetting.from_dict(json.loads(setting)), status, reason, outcome,
+                            sim or 0.0, wall or 0.0, metrics.get(run, {}), props.get(run, {}),
+                            attempts, error)
+
+    def replay(self, index: int) -> str | None:
+        row = self.db.execute("SELECT replay FROM runs WHERE run = ?", (index,)).fetchone()
+        return None if row is None else row[0]

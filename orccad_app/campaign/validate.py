@@ -1,0 +1,97 @@
+"""A spec checked against its mission before any run: every name and every bound.
+
+Each ``[params]`` and ``[timing]`` entry is planned at both ends of its distribution's support
+(a parameter's declared range, a BCET above the WCET… are refused here, not at run 137);
+each ``[[inject]]`` is scheduled at both ends of its time and value supports; signals and
+check metrics must name what the mission has. An error points at the spec's line.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from orccad_app.campaign.adapter import CompiledMission
+from orccad_app.campaign.metrics import SignalExtrema
+from orccad_app.campaign.setting import RunSetting, injection_text
+from orccad_app.campaign.spec import CampaignSpec, metric_signal
+from orccad_app.diagnostics import OrccadError
+
+__all__ = ["check_spec"]
+
+
+def _located(spec: CampaignSpec, key: tuple, action: Any) -> Any:
+    try:
+        return action()
+    except OrccadError as error:
+        if error.location is not None and error.location.file == spec.path:
+            raise
+        raise spec.error(error.message, key) from None
+
+
+def _ends(dist: Any) -> list[Any]:
+    choices = dist.choices
+    if choices is not None:
+        return list(choices)
+    low, high = dist.bounds
+    if dist.integral:
+        return [int(low), int(high)]
+    return [float(low), float(high)]
+
+
+def check_spec(compiled: CompiledMission, spec: CampaignSpec, until_s: float) -> None:
+    """Refuse, located in the spec, anything a run of it could not do."""
+    if spec.mission is not None and spec.mission != compiled.name:
+        raise spec.error(f"the spec is for mission '{spec.mission}', not '{compiled.name}'",
+                         ("mission",))
+    _located(spec, (), lambda: compiled.plan(RunSetting(0, 0, until_s)))
+    for entry in spec.params:
+        for value in _ends(entry.dist):
+            setting = RunSetting(0, 0, until_s, sets=(f"{entry.target}={value!r}",))
+            _located(spec, entry.key, lambda s=setting: compiled.plan(s))
+    timings = [(t, _ends(t.dist)) for t in spec.timings]
+    for entry, ends in timings:
+        for value in ends:
+            setting = RunSetting(0, 0, until_s, timings=(f"{entry.target}={value!r}",))
+            _located(spec, entry.key, lambda s=setting: compiled.plan(s))
+    for low_high in (0, -1):  # every timing at its low, then high end, together
+        together = tuple(f"{t.target}={ends[low_high]!r}" for t, ends in timings)
+        if together:
+            _located(spec, timings[0][0].key,
+                     lambda s=RunSetting(0, 0, until_s, timings=together): compiled.plan(s))
+    for entry in spec.injections:
+        _check_injection(compiled, spec, entry, until_s)
+    _check_signals(compiled, spec, until_s)
+
+
+def _check_injection(compiled: CompiledMission, spec: CampaignSpec, entry: Any,
+                     until_s: float) -> None:
+    low, high = entry.time.bounds
+    if high >= until_s:
+        raise spec.error(f"event at up to {high:g} s: not before the horizon until_s = "
+                         f"{until_s:g} s", (*entry.key, "event"))
+    values = [None] if entry.value is None else _ends(entry.value)
+    for value in values:
+        for time_s in (low, high):
+            text = injection_text(entry, value, float(time_s))
+            setting = RunSetting(0, 0, until_s, injections=(text,))
+            _located(spec, (*entry.key, "event"),
+                     lambda s=setting: compiled.mission_run(s))
+
+
+def _check_signals(compiled: CompiledMission, spec: CampaignSpec, until_s: float) -> None:
+    extrema = SignalExtrema(spec.signals)
+    mission_run = compiled.mission_run(RunSetting(0, 0, until_s))
+    _located(spec, ("signals",), lambda: extrema.bind(mission_run.sim))
+    tasks = {site.task for site in mission_run.plan.sites}
+    taken = set(compiled.property_names())
+    for check in spec.checks:
+        signal = metric_signal(check.metric)
+        if signal is not None and signal not in spec.signals:
+            raise spec.error(f"check '{check.name}': metric {check.metric} needs {signal} "
+                             f"in signals", (*check.key, "metric"))
+        if ".tracking_error." in check.metric and check.metric.split(".")[0] not in tasks:
+            raise spec.error(f"check '{check.name}': the mission runs no Robot-Task "
+                             f"'{check.metric.split('.')[0]}'", (*check.key, "metric"))
+        if check.name in taken:
+            raise spec.error(f"check '{check.name}': the mission has a property of that name",
+                             (*check.key, "name"))

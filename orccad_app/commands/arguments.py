@@ -1,0 +1,166 @@
+"""Arguments shared by the sub-commands: the same flags, the same checks, the same messages.
+
+Every number a user types on the command line is checked here, at the boundary: finite, in
+its documented range (``docs/limits.md``), else a usage error (exit status 2) naming the
+flag and the range. Only the standard library is imported, so building the parser is fast.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["positive_int", "non_negative_int", "seconds", "factor", "add_file",
+           "add_mission", "add_output", "add_max_states", "add_format", "emit_text",
+           "refuse_overwriting", "DEFAULT_MAX_STATES", "MAX_SECONDS", "MAX_INT_ARGUMENT",
+           "EXPORT_FORMATS"]
+
+#: The compiler's default state budget (mirrors ``reactive.compiler.DEFAULT_MAX_STATES``,
+#: which a test keeps equal; importing the compiler here would slow every command down).
+DEFAULT_MAX_STATES = 20_000
+#: Longest simulated time a command accepts [s]: one year (as durations in the language).
+MAX_SECONDS = 365 * 24 * 3600.0
+#: Largest whole number accepted for counts and budgets (--max-states, --seed, --site).
+MAX_INT_ARGUMENT = 2**63 - 1
+
+#: Output formats of an automaton (``compile`` and ``rta``), with their help.
+EXPORT_FORMATS: dict[str, str] = {
+    "summary": "states and transitions, readable (default)",
+    "json": "the automaton as one JSON document",
+    "dot": "a Graphviz graph",
+    "scxml": "W3C SCXML state chart",
+    "promela": "a Promela model for SPIN",
+}
+
+
+def _whole(text: str) -> int:
+    try:
+        value = int(text.strip().replace("_", ""), 10)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if abs(value) > MAX_INT_ARGUMENT:
+        raise argparse.ArgumentTypeError(f"'{text}' is out of range (at most "
+                                         f"{MAX_INT_ARGUMENT})")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """A whole number > 0."""
+    value = _whole(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"'{text}' must be positive")
+    return value
+
+
+def non_negative_int(text: str) -> int:
+    """A whole number >= 0."""
+    value = _whole(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    return value
+
+
+def bounded_int(low: int, high: int):
+    """An argparse type: a whole number in ``[low, high]``."""
+    def parse(text: str) -> int:
+        value = _whole(text)
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"expected a whole number in [{low}, {high}], "
+                                             f"got {text!r}")
+        return value
+    parse.__name__ = "integer"
+    return parse
+
+
+def _finite(text: str, what: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r} (not finite)")
+    return value
+
+
+def seconds(text: str) -> float:
+    """A simulated duration [s]: finite, > 0 and at most one year."""
+    value = _finite(text, "seconds")
+    if not 0 < value <= MAX_SECONDS:
+        raise argparse.ArgumentTypeError(f"expected a duration in (0, {MAX_SECONDS:.0f}] s "
+                                         f"(one year), got {text!r}")
+    return value
+
+
+#: Range of pacing and speed factors (simulated s per wall s).
+FACTOR_RANGE = (1e-3, 1e3)
+
+
+def factor(text: str) -> float:
+    """A pacing factor (simulated s per wall s) in ``FACTOR_RANGE``."""
+    value = _finite(text, "a factor")
+    low, high = FACTOR_RANGE
+    if not low <= value <= high:
+        raise argparse.ArgumentTypeError(f"expected a factor in [{low:g}, {high:g}], "
+                                         f"got {text!r}")
+    return value
+
+
+def add_file(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", help="the .orc file")
+
+
+def add_mission(parser: argparse.ArgumentParser, help: str | None = None) -> None:
+    parser.add_argument("--mission", "-m", metavar="M",
+                        help=help or "the mission (default: the file's only one)")
+
+
+def add_output(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("-o", "--output", metavar="OUT",
+                        help="write to this file instead of standard output")
+
+
+def add_max_states(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--max-states", type=positive_int, default=DEFAULT_MAX_STATES,
+                        metavar="N",
+                        help=f"state budget of the compiler (default {DEFAULT_MAX_STATES})")
+
+
+def add_format(parser: argparse.ArgumentParser, formats: dict[str, str], default: str) -> None:
+    listing = "; ".join(f"{name}: {text}" for name, text in formats.items())
+    parser.add_argument("--format", "-f", choices=list(formats), default=default,
+                        help=f"output format ({listing})")
+
+
+def refuse_overwriting(output: str | None, *inputs: str | None) -> None:
+    """Refuse ``-o OUT`` when OUT is one of the command's input files."""
+    if not output:
+        return
+    from orccad_app.diagnostics import OrccadError
+
+    target = Path(output)
+    for source in inputs:
+        if source and _same_file(target, Path(source)):
+            raise OrccadError(f"{output}: refusing to overwrite the input file {source} "
+                              "(choose another -o/--output)")
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def emit_text(text: str, output: str | None) -> None:
+    """Print ``text``, or write it to the file ``output``."""
+    if output:
+        from orccad_app.diagnostics import OrccadError
+        try:
+            Path(output).write_text(text + "\n", encoding="utf-8")
+        except OSError as error:
+            raise OrccadError(f"{output}: cannot write: {error.strerror or error}") from None
+    else:
+        sys.stdout.write(text + "\n")

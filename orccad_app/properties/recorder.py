@@ -1,0 +1,118 @@
+"""What a run shows its properties: the letters of its instants and uniform signal samples.
+
+:class:`PropertyRecorder` observes a mission run (the mission hook ``on_reaction``, called at
+every reaction of the automaton, the periodic ticks included) and keeps:
+
+- **instants** (LTL): one letter per reaction, the set of the monitored atoms true in it
+  (the table of :mod:`orccad_app.verify.letters`): ``S`` when input ``S`` is present or output
+  ``S`` emitted, ``started(X)`` / ``ended(X)`` / ``raised(E)`` when ``X.start`` /
+  ``X.good_end`` / ``E.raised`` is emitted, ``active(X)`` when the state after the reaction is
+  inside an instance of X, ``done`` / ``failed`` / ``aborted`` in the reaction where the
+  mission's status becomes so;
+- **samples** (signal properties), one per period ``period_ns`` (the mission's tick), sample
+  ``k`` standing for ``[k·P, (k+1)·P)``: the monitored ports' true values at ``k·P``
+  (:meth:`~orccad_app.executive.plant.MujocoPlant.observe`: no noise, no sensor fault) and the
+  event atoms true in some reaction of the interval. ``robot.e`` is the last task error written
+  by the control law of a Robot-Task on the robot (zero before the first write).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+import numpy as np
+
+from orccad_app.mission.observer import MissionObserver
+from orccad_app.mission.run import MissionRun
+from orccad_app.robottask.labels import RtLabel
+
+__all__ = ["PropertyRecorder"]
+
+_STATUSES = ("done", "failed", "aborted")
+
+
+class PropertyRecorder(MissionObserver):
+    """Records a run for its properties (see the module docstring).
+
+    :param mission_run: the run (its reactor's state labels, its plants).
+    :param keys: the atom keys the properties mention (``("started", "Dive")``…).
+    :param ports: the ``(robot, port)`` pairs the signal properties read.
+    :param period_ns: the sampling period of signal properties [ns].
+    :param task_errors: robot -> dimension of its task error ``robot.e``, for the robots
+        whose ``e`` is read (among ``ports``).
+    """
+
+    def __init__(self, mission_run: MissionRun, keys: Iterable[tuple],
+                 ports: Iterable[tuple[str, str]], period_ns: int,
+                 task_errors: dict[str, int] | None = None) -> None:
+        self._run = mission_run
+        self.period_ns = period_ns
+        self._task_errors = dict(task_errors or {})
+        self._error_robot = {site.error_module: site.instance.robot_name
+                             for site in mission_run.plan.sites
+                             if site.error_module
+                             and site.instance.robot_name in self._task_errors}
+        self._errors = {robot: np.zeros(dim) for robot, dim in self._task_errors.items()}
+        self._keys = sorted(set(keys))
+        self._ports = sorted(set(ports))
+        self._status = "running"
+        self.letters: list[frozenset] = []
+        """One letter per instant (reaction)."""
+        self.sample_events: list[set] = []
+        """Per sample: the atom keys true in some instant of its interval."""
+        self.port_values: dict[tuple[str, str], list[np.ndarray]] = {p: [] for p in self._ports}
+        """Per port: one value per sample."""
+
+    def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
+                    status: str) -> None:
+        letter = self._letter(set(inputs) | set(outputs), status)
+        self._status = status
+        self.letters.append(letter)
+        index = t_ns // self.period_ns
+        while len(self.sample_events) <= index:
+            self._new_sample()
+        self.sample_events[index].update(letter)
+
+    def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port == "e" and module in self._error_robot:
+            self._errors[self._error_robot[module]] = np.array(value, dtype=float)
+
+    def _new_sample(self) -> None:
+        self.sample_events.append(set())
+        plants = self._run.sim.plants
+        for (robot, port), values in self.port_values.items():
+            if port == "e" and robot in self._task_errors:
+                values.append(self._errors[robot])
+            else:
+                values.append(plants[robot].observe(port))
+
+    def _letter(self, present: set[str], status: str) -> frozenset:
+        labels = None
+        true = []
+        for key in self._keys:
+            kind = key[0]
+            if kind == "sig":
+                hit = key[1] in present
+            elif kind == "started":
+                hit = f"{key[1]}.start" in present
+            elif kind == "ended":
+                hit = f"{key[1]}.good_end" in present
+            elif kind == "raised":
+                hit = f"{key[1]}.raised" in present
+            elif kind == "active":
+                if labels is None:
+                    labels = self._run.reactor.labels
+                hit = any(isinstance(label, RtLabel) and label.task == key[1]
+                          for label in labels)
+            elif kind == "status":
+                hit = status == key[1] and self._status != key[1]
+            else:  # ("true",)
+                hit = True
+            if hit:
+                true.append(key)
+        return frozenset(true)
+
+    @property
+    def ended(self) -> bool:
+        """The mission terminated (its automaton finished)."""
+        return bool(self._run.reactor.finished)

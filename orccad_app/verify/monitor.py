@@ -1,0 +1,124 @@
+"""Runtime verdicts of LTL properties on a finite run: true, false or undecided.
+
+A run is a finite word of instants (letters: the atoms true in each reaction, as in
+:mod:`.letters`). Its verdict on a property, with the checker's own formula
+(:func:`~.formula.from_ast`) and semantics:
+
+- **the mission ended** (``done``, ``failed`` or ``aborted``): after its end a run *stutters*
+  (instants with no output, no active task, no status atom: the model's convention, inputs
+  taken absent), so the infinite word is ``prefix · ∅^ω`` and the reference semantics
+  (:func:`~.lasso.holds_on_lasso`) decides it: ``true`` or ``false``;
+- **the run was cut** (``timeout``, a run-time failure, Ctrl-C): the LTL3 verdict (Bauer,
+  Leucker, Schallhart, *Runtime verification for LTL and TLTL*, TOSEM 2011): ``false`` when
+  no infinite continuation of the prefix satisfies the property, ``true`` when none violates
+  it, ``undecided`` otherwise. Decided on the checker's tableau (:mod:`.tableau`): the prefix
+  is read from the tableau's initial states; a continuation exists when some state reached can
+  reach a strongly connected component whose edges cover every acceptance set, over all
+  letters of the property's atoms.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+from itertools import product
+from typing import Sequence
+
+import networkx as nx
+
+from orccad_app.verify.formula import F, atoms, neg
+from orccad_app.verify.lasso import holds_on_lasso
+from orccad_app.verify.tableau import Tableau
+
+__all__ = ["Verdict", "ltl_verdict", "MAX_MONITOR_ATOMS"]
+
+MAX_MONITOR_ATOMS = 12
+"""Atoms allowed in a property monitored on a cut run (2^n letters are explored)."""
+
+
+class Verdict(str, Enum):
+    """A property's verdict on one run."""
+
+    TRUE = "true"
+    FALSE = "false"
+    UNDECIDED = "undecided"
+
+
+class _Bits:
+    """The alphabet the tableau needs: atom key -> bit."""
+
+    def __init__(self, keys) -> None:
+        self.keys = sorted(keys)
+        self.bit = {key: i for i, key in enumerate(self.keys)}
+
+    def mask(self, letter: frozenset) -> int:
+        return sum(1 << self.bit[key] for key in letter if key in self.bit)
+
+
+def ltl_verdict(formula: F, word: Sequence[frozenset], ended: bool) -> Verdict:
+    """The verdict of ``formula`` on ``word`` (letters: sets of atom keys; see the module
+    docstring); ``ended``: the mission terminated in the word's last instant."""
+    if ended or not word:
+        if not word:
+            word = [frozenset()]
+        holds = holds_on_lasso(formula, list(word), [frozenset()])
+        return Verdict.TRUE if holds else Verdict.FALSE
+    bits = _Bits(atoms(formula))
+    if len(bits.keys) > MAX_MONITOR_ATOMS:
+        return Verdict.UNDECIDED
+    if not _extensible(formula, bits, word):
+        return Verdict.FALSE
+    if not _extensible(neg(formula), bits, word):
+        return Verdict.TRUE
+    return Verdict.UNDECIDED
+
+
+def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
+    """Some infinite continuation of ``word`` satisfies ``formula``."""
+    tableau = Tableau(formula, bits)  # type: ignore[arg-type]
+    states: set[tuple[int, int | None]] = {(0, None)}
+    for letter in word:
+        mask = bits.mask(letter)
+        states = {(yn, guess) for prev, required in states
+                  for guess, yn, _ in tableau.successors(mask, prev, required)}
+        if not states:
+            return False
+    return bool(states & _live_states(tableau, bits, states))
+
+
+def _live_states(tableau: Tableau, bits: _Bits, start: set) -> set:
+    """The states reachable from ``start`` from which an accepting cycle is reachable."""
+    letters = [sum(1 << i for i, on in enumerate(choice) if on)
+               for choice in product((False, True), repeat=len(bits.keys))]
+    graph = nx.DiGraph()
+    accept: dict[tuple, int] = {}
+    frontier = list(start)
+    graph.add_nodes_from(start)
+    while frontier:
+        state = frontier.pop()
+        prev, required = state
+        for letter in letters:
+            for guess, yn, acc in tableau.successors(letter, prev, required):
+                target = (yn, guess)
+                edge = (state, target)
+                accept[edge] = accept.get(edge, 0) | acc
+                if target not in graph:
+                    frontier.append(target)
+                graph.add_edge(state, target)
+    full = (1 << tableau.acceptance_count) - 1
+    good: set = set()
+    for component in nx.strongly_connected_components(graph):
+        covered = 0
+        for u in component:
+            for v in graph.successors(u):
+                if v in component:
+                    covered |= accept[(u, v)]
+        if covered == full and any(v in component for u in component
+                                   for v in graph.successors(u)):
+            good |= component
+    if not good:
+        return set()
+    reverse = graph.reverse(copy=False)
+    live = set(good)
+    for node in good:
+        live |= nx.descendants(reverse, node)
+    return live
