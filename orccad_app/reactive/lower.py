@@ -244,14 +244,9 @@ class Lowerer:
         a hidden local signal that preempts the body, as Esterel v5 expands it."""
         if trigger.immediate:
             raise OrccadError("a counted trigger cannot be 'immediate'", trigger.loc)
-        reached = ir.SignalDecl("_counted", ir.LOCAL, None, trigger.loc)
         test = self.condition(trigger.condition, scope)
-        watcher = d.seq(d.await_count(self.expr(trigger.count, scope), test, loc),
-                        ir.Emit(reached, None, loc), d.halt(loc))
-        done = ir.TrapDecl("_counted_done", loc)
-        preempted = d.abort(body, ir.SigRef(reached, loc), weak=weak, handler=handler, loc=loc)
-        return ir.Local((reached,), ir.Trap(done, ir.Par(
-            (d.seq(preempted, ir.Exit(done, loc)), watcher), loc), loc), loc)
+        return d.abort_count(body, self.expr(trigger.count, scope), test, weak=weak,
+                             handler=handler, loc=loc)
 
     def _abort(self, s: ast.Abort, scope: Scope) -> ir.Stmt:
         handler = None if s.handler is None else self.block(s.handler, scope)
