@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton, Transition, transitions
 from orccad_app.reactive.expr import format_expr
 from orccad_app.reactive.labels import MissionLabel

@@ -38,7 +38,7 @@ __all__ = [
     "SigRef", "PreRef", "SigNot", "SigAnd", "SigOr", "DataTest", "Test",
     "Nothing", "Pause", "Emit", "Present", "Seq", "Loop", "Par", "Trap", "Exit",
     "Suspend", "Local", "Assign", "Mark", "Stmt", "Program",
-    "INPUT", "OUTPUT", "LOCAL", "Relation", "NO_VALUE", "MissionLabel",
+    "INPUT", "OUTPUT", "LOCAL", "Relation", "NO_VALUE",
 ]
 
 INPUT, OUTPUT, LOCAL = "input", "output", "local"
