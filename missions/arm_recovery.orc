@@ -32,7 +32,7 @@ robottask Home(goal: vector = [1.0, 1.0, 1.0]) on arm {
 robottask Park(goal: vector = [0.0, 0.0, 0.0]) on arm {
     duration 2 s;
     task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.5));
-    law pid(kp = 400.0, kv = 40.0);
+    law pid(kp = 400.0, kv = 40.0, ki = 10.0);
 }
 
 robottask TrackPID(q0: vector = [0.5, 0.5, 0.5], kp: float = 400.0) on arm {

@@ -134,7 +134,7 @@ def test_ctrl_c_keeps_the_trace_valid_prints_the_report_and_exits_130(tmp_path):
     assert 0 < report["sim_time_s"] < 4
     with trace.open("rb") as stream:
         topics = {channel.topic for _, channel, _ in make_reader(stream).iter_messages()}
-    assert "/orccad/write" in topics
+    assert "/ports/TrackPID/ctrl/tau" in topics
 
 
 def test_tcs_text_and_dot(capsys):

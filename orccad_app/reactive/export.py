@@ -29,7 +29,10 @@ def _action_text(action) -> str:
     if action.kind == "assign":
         return f"{action.target.name} := {format_expr(action.expr)}"
     if action.target.name in ("_failed", "_aborted"):  # the mission's status and its reason
-        return f"{action.target.name[1:]} {getattr(action.expr, 'value', '?')}"
+        expr = action.expr
+        if getattr(expr, "op", None) == "last":  # a later emission in the instant wins
+            expr = expr.right
+        return f"{action.target.name[1:]} {getattr(expr, 'value', None) or format_expr(expr)}"
     return f"emit {action.target.name}({format_expr(action.expr)})"
 
 
@@ -100,7 +103,8 @@ def to_summary(automaton: Automaton) -> str:
 def mission_labels(automaton: Automaton, state: int) -> list[str]:
     """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
     labels = automaton.labels[state] if automaton.labels else ()
-    return sorted(f"{label[1]}#{label[2]}" for label in labels if label[0] == "mission")
+    return sorted(f"{label[1]}#{label[2]}" for label in labels
+                  if isinstance(label, tuple) and label[0] == "mission")  # not Rt/PhaseLabel
 
 
 def _missions_in(automaton: Automaton, state: int) -> str:

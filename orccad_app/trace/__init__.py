@@ -13,7 +13,13 @@ from orccad_app.trace.report import (
     lateness_summary,
     report_dict,
 )
-from orccad_app.trace.writers import CsvTraceWriter, McapTraceWriter, open_trace
+from orccad_app.trace.writers import (
+    TRACE_FORMATS,
+    CsvTraceWriter,
+    McapTraceWriter,
+    open_trace,
+    sensor_ports,
+)
 
 __all__ = [
     "TraceRecorder",
@@ -23,6 +29,8 @@ __all__ = [
     "CsvTraceWriter",
     "McapTraceWriter",
     "open_trace",
+    "TRACE_FORMATS",
+    "sensor_ports",
     "InjectionRecord",
     "report_dict",
     "format_report",

@@ -11,7 +11,9 @@ from textual.app import App
 from textual.binding import Binding
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.tui.commands import OrccadCommands
 from orccad_app.tui.messages import RunUpdated
+from orccad_app.tui.screens.help import HelpScreen
 from orccad_app.tui.screens.browser import BrowserScreen
 from orccad_app.tui.screens.report import ReportScreen
 from orccad_app.tui.screens.run import RunScreen
@@ -32,7 +34,11 @@ class OrccadApp(App):
 
     CSS_PATH = "orccad.tcss"
     TITLE = "ORCCAD"
-    BINDINGS = [Binding("ctrl+s", "screenshot_svg", "Screenshot", show=False)]
+    HORIZONTAL_BREAKPOINTS = [(0, "-narrow"), (120, "-wide")]
+    BINDINGS = [Binding("question_mark,f1", "help", "Help", tooltip="the keys of this screen"),
+                Binding("f12", "screenshot_svg", "Screenshot", show=False,
+                        tooltip="save an SVG screenshot")]
+    COMMANDS = App.COMMANDS | {OrccadCommands}
 
     def __init__(self, paths: list[str] = (), *, selected: str | None = None,
                  mission: str | None = None, speed: float | None = 1.0, seed: int = 0,
@@ -70,6 +76,22 @@ class OrccadApp(App):
     def show_report(self, session: LiveSession, report: str) -> None:
         """Show the final report of a finished run."""
         self.push_screen(ReportScreen(session, report))
+
+    def action_help(self) -> None:
+        """The keys of the current screen."""
+        if not isinstance(self.screen, HelpScreen):
+            self.push_screen(HelpScreen(self.screen))
+
+    def open_file(self, path: str) -> None:
+        """Back to the mission browser, showing ``path``."""
+        while len(self.screen_stack) > 2 and not isinstance(self.screen, BrowserScreen):
+            if isinstance(self.screen, RunScreen) and not self.screen.finished:
+                self.notify("a run is going: abort it (a) before opening another file",
+                            severity="warning")
+                return
+            self.pop_screen()
+        if isinstance(self.screen, BrowserScreen):
+            self.screen.select(path)
 
     def action_screenshot_svg(self) -> None:
         self.notify(f"saved {self.save_screenshot()}")

@@ -30,11 +30,17 @@ import numpy as np
 
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
+from orccad_app.trace.writers import sensor_ports
 
 __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
 
+_MISSING = object()
+
+SETPOINT_PORTS = ("qd",)
+"""Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
+
 PHASES = {1: "waiting", 2: "measuring", 3: "running"}
-"""Name of each phase of a Robot-Task's RTA (DESIGN.md §3: pre-conditions, then control)."""
+"""Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
 class Pace:
@@ -47,6 +53,8 @@ class Pace:
         self.factor: float | None = None
         self._anchor: tuple[float, int] | None = None
         self.stopped = False
+        self._paused_since: float | None = None
+        self._paused_s = 0.0
         self.set(factor)
 
     def set(self, factor: float | None) -> None:
@@ -54,6 +62,12 @@ class Pace:
         if factor is not None and factor < 0:
             raise ValueError(f"speed factor must be >= 0, got {factor!r}")
         with self._lock:
+            now = time.perf_counter()
+            if factor == 0 and self._paused_since is None:
+                self._paused_since = now
+            elif factor != 0 and self._paused_since is not None:
+                self._paused_s += now - self._paused_since
+                self._paused_since = None
             self.factor = factor
             self._anchor = None
         if factor == 0:
@@ -65,6 +79,17 @@ class Pace:
         """Release a paused run for good (the run is being aborted)."""
         self.stopped = True
         self._resumed.set()
+
+    @property
+    def paused(self) -> bool:
+        return self.factor == 0
+
+    @property
+    def paused_s(self) -> float:
+        """Wall time spent paused so far [s] (the current pause included)."""
+        with self._lock:
+            ongoing = 0.0 if self._paused_since is None else time.perf_counter() - self._paused_since
+            return self._paused_s + ongoing
 
     @property
     def label(self) -> str:
@@ -90,7 +115,8 @@ class Pace:
 @dataclass(frozen=True)
 class LogEntry:
     """One line of the run's log. ``kind``: ``task``, ``input``, ``fault``, ``output``,
-    ``exception``, ``miss``, ``param`` or ``status``."""
+    ``exception``, ``miss``, ``param`` or ``status``. ``task_start`` marks a task start
+    (for the plots' markers)."""
 
     time_ns: int
     kind: str
@@ -110,16 +136,16 @@ class LiveUpdate:
     speed: str
     tasks: list[tuple[str, int, int]] = field(default_factory=list)
     log: list[LogEntry] = field(default_factory=list)
-    samples: dict[str, list[float]] = field(default_factory=dict)
+    samples: dict[str, list[tuple[float, float]]] = field(default_factory=dict)
+    """Series name -> new ``(t [s], value)`` samples."""
     loads: dict[str, float] = field(default_factory=dict)
     misses: dict[str, int] = field(default_factory=dict)
-
-
-def sensor_ports(plan: Any) -> dict[tuple[str, str], str]:
-    """``(module, port)`` of every input fed by a robot sensor -> the sensor (``arm.q``)."""
-    robots = {resource.name for resource in plan.tcs.resources}
-    return {tuple(c.consumer.rsplit(".", 1)): c.producer for c in plan.tcs.connections
-            if c.producer.rsplit(".", 1)[0] in robots}
+    wall_s: float = 0.0
+    """``time.perf_counter()`` when the update was made (actual speed = Δt / Δwall)."""
+    paused_s: float = 0.0
+    """Wall time spent paused so far [s]."""
+    held: tuple[str, ...] = ()
+    """Inputs held (raised at every instant until released)."""
 
 
 def _components(value: Any, limit: int = 6) -> list[float] | None:
@@ -158,6 +184,9 @@ class LiveObserver(Observer):
         self._window = (0, {})  # (start instant, busy per processor at it)
         self._misses: dict[str, int] = {}
         self._flushed_at = 0.0
+        self._held: dict[str, Any] = {}
+        self._held_at = -1
+        self._log_later: deque[tuple[str, Any, str]] = deque()
         self.injected: list[InjectionRecord] = []
         """What the user raised, when it reached the run (for the report)."""
 
@@ -166,6 +195,20 @@ class LiveObserver(Observer):
     def raise_input(self, name: str, value: Any = None) -> None:
         """Queue input ``name`` (raised at the next reaction, on the executive's thread)."""
         self._queue.append((name, value, False))
+
+    def hold(self, name: str, value: Any = None) -> None:
+        """Raise input ``name`` at every instant from the next reaction until :meth:`release`."""
+        self._held[name] = value
+        self._log_later.append((name, value, "held by the user"))
+
+    def release(self, name: str) -> None:
+        """Stop holding input ``name``."""
+        if self._held.pop(name, _MISSING) is not _MISSING:
+            self._log_later.append((name, None, "released by the user"))
+
+    @property
+    def held(self) -> tuple[str, ...]:
+        return tuple(self._held)
 
     def inject_fault(self, name: str, value: Any) -> None:
         """Queue the plant fault ``ROBOT.FAULT`` (applied at the next reaction, as
@@ -190,6 +233,15 @@ class LiveObserver(Observer):
         self._present = present
         while self._queue:
             self._raise(t_ns, *self._queue.popleft())
+        while self._log_later:
+            name, value, what = self._log_later.popleft()
+            shown = name if value is None else f"{name}({value})"
+            self._log.append(LogEntry(t_ns, "input", f"{shown} {what}"))
+        if self._held and self._held_at != t_ns:  # once per instant: the held inputs
+            self._held_at = t_ns
+            for name, value in list(self._held.items()):
+                self.run.inject(name, value)
+                self.injected.append(InjectionRecord(t_ns, name, value, False, "user (held)"))
         self.pace.wait(t_ns)
         if time.perf_counter() - self._flushed_at >= self.flush_s:
             self.flush(t_ns)
@@ -212,7 +264,8 @@ class LiveObserver(Observer):
         tasks = [(self._site_task[site], site, phase)
                  for site, phase in sorted(self.run.phases.items()) if phase > 0]
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
-                            self._log, self._samples, self._loads(t_ns), dict(self._misses))
+                            self._log, self._samples, self._loads(t_ns), dict(self._misses),
+                            time.perf_counter(), self.pace.paused_s, self.held)
         self._log, self._samples = [], {}
         self.post(update)
 
@@ -231,11 +284,12 @@ class LiveObserver(Observer):
         if values is None or t_ns < self._next_sample.get(name, 0):
             return
         self._next_sample[name] = t_ns + self.sample_ns
+        t_s = t_ns / 1e9
         if len(values) == 1:
-            self._samples.setdefault(name, []).append(values[0])
+            self._samples.setdefault(name, []).append((t_s, values[0]))
             return
         for index, value in enumerate(values):
-            self._samples.setdefault(f"{name}[{index}]", []).append(value)
+            self._samples.setdefault(f"{name}[{index}]", []).append((t_s, value))
 
     def on_read(self, t_ns: int, module: str, port: str, value: Any) -> None:
         sensor = self._sensors.get((module, port))
@@ -243,6 +297,9 @@ class LiveObserver(Observer):
             self._sample(t_ns, sensor, _components(value))
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port in SETPOINT_PORTS:  # the reference: the set-point of the measured joints
+            self._sample(t_ns, port, _components(value))
+            return
         if port == "e" and t_ns >= self._next_sample.get("tracking error", 0):
             values = _components(value, limit=1 << 16)
             if values is not None:

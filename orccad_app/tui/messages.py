@@ -44,14 +44,18 @@ class RunFailed(Message):
 
 
 class InputRequested(Message):
-    """The user asked to raise the automaton input ``name`` (with ``value`` when valued), or
-    to inject the plant fault ``name`` (``ROBOT.FAULT``) with ``value`` when ``fault``."""
+    """The user asked to raise the automaton input ``name`` (with ``value`` when valued) —
+    once, or held at every instant (``hold``), or to stop holding it (``release``) — or to
+    inject the plant fault ``name`` (``ROBOT.FAULT``) with ``value`` when ``fault``."""
 
-    def __init__(self, name: str, value: Any = None, fault: bool = False) -> None:
+    def __init__(self, name: str, value: Any = None, fault: bool = False, *,
+                 hold: bool = False, release: bool = False) -> None:
         super().__init__()
         self.name = name
         self.value = value
         self.fault = fault
+        self.hold = hold
+        self.release = release
 
 
 class FileChosen(Message):

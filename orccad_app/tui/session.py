@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import csv
+import os
 import shutil
 import tempfile
 from dataclasses import dataclass, field
@@ -22,7 +23,47 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
-           "LiveSession", "mission_files"]
+           "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
+           "write_atomically"]
+
+VALUE_HINTS = {"int": "an integer, e.g. 3", "float": "a number, e.g. 0.8",
+               "bool": "true or false", "vector": "numbers in brackets, e.g. [0.5, 0.5, 0.5]",
+               "string": "any text", "duration": "seconds, e.g. 2.5"}
+"""What the value of an input of each type looks like (for the prompt and the errors)."""
+
+
+def parse_value(text: str, type_name: str) -> Any:
+    """The value of a valued input of type ``type_name`` typed as ``text``; raises
+    ``ValueError`` saying what is expected (never a silent default)."""
+    text = text.strip()
+    expected = VALUE_HINTS.get(type_name, type_name)
+    if type_name == "string":
+        return text
+    if not text:
+        raise ValueError(f"type a value: {expected}")
+    try:
+        if type_name == "int":
+            return int(text)
+        if type_name in ("float", "duration"):
+            value = float(text)
+            if value != value or value in (float("inf"), float("-inf")):
+                raise ValueError
+            return value
+        if type_name == "bool":
+            lowered = text.lower()
+            if lowered in ("true", "1", "on", "yes"):
+                return True
+            if lowered in ("false", "0", "off", "no"):
+                return False
+            raise ValueError
+        if type_name == "vector":
+            if not (text.startswith("[") and text.endswith("]")):
+                raise ValueError
+            items = [item.strip() for item in text[1:-1].split(",") if item.strip()]
+            return [float(item) for item in items]
+    except ValueError:
+        raise ValueError(f"{text!r} is not {expected}") from None
+    raise ValueError(f"inputs of type {type_name} cannot be raised from the console")
 
 
 @dataclass(frozen=True)
@@ -114,6 +155,32 @@ def inspect_file(path: str) -> FileView:
     return view
 
 
+def inspect_text(path: str, text: str) -> FileView:
+    """:func:`inspect_file` on an edited, unsaved ``text`` of ``path`` (checked from a copy
+    in a temporary folder; the diagnostics keep their lines)."""
+    with tempfile.TemporaryDirectory(prefix="orccad-edit-") as folder:
+        copy = Path(folder) / Path(path).name
+        copy.write_text(text, encoding="utf-8")
+        view = inspect_file(str(copy))
+    view.path, view.source = path, None
+    return view
+
+
+def write_atomically(path: str | Path, write: Callable[[Path], None]) -> None:
+    """Call ``write(tmp)`` on a temporary file next to ``path``, then rename it to ``path``:
+    no reader ever sees a partial file, and a failed write leaves ``path`` as it was."""
+    target = Path(path)
+    handle, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part",
+                                   dir=target.parent if str(target.parent) else ".")
+    os.close(handle)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
 def check_file(view: FileView, mission: str) -> Any:
     """``orccad check``'s report of ``mission`` (a ``MissionReport``)."""
     from orccad_app.pipeline import select_mission
@@ -160,22 +227,33 @@ class _Spool:
         self.path = Path(self._folder.name) / "trace.csv"
         self.writer = CsvTraceWriter(self.path)
 
-    def export(self, path: str, metadata: dict[str, str]) -> None:
+    def export(self, path: str, metadata: dict[str, str],
+               sensors: dict[tuple[str, str], str] | None = None,
+               progress: Callable[[float], None] | None = None) -> None:
+        """Write the trace to ``path`` (``progress`` gets the fraction done)."""
         from orccad_app.trace import TraceRow, open_trace
 
         self.writer.close()
         if Path(path).suffix.lower() == ".csv":
             shutil.copyfile(self.path, path)
+            if progress is not None:
+                progress(1.0)
             return
-        writer = open_trace(path, metadata)
+        with self.path.open(encoding="utf-8") as rows:
+            total = max(1, sum(1 for _ in rows) - 1)
+        writer = open_trace(path, metadata, sensors)
         try:
             with self.path.open(newline="", encoding="utf-8") as rows:
                 reader = csv.reader(rows)
                 next(reader)  # the header
-                for time_ns, event, module, port, job, value in reader:
+                for n, (time_ns, event, module, port, job, value) in enumerate(reader, 1):
                     writer.write(TraceRow(int(time_ns), event, module, port, int(job), value))
+                    if progress is not None and n % 20_000 == 0:
+                        progress(n / total)
         finally:
             writer.close()
+        if progress is not None:
+            progress(1.0)
 
 
 class LiveSession:
@@ -196,6 +274,8 @@ class LiveSession:
 
         source = load(path)
         self.path, self.seed = path, seed
+        self.text = source.text
+        """The mission file's text (the run screen shows where the mission waits in it)."""
         self.mission = select_mission(source, mission).name
         plan = plan_mission(source, source.program.mission(self.mission))
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
@@ -229,16 +309,50 @@ class LiveSession:
         return self.result
 
     def report(self) -> str:
-        """``orccad run``'s text report of the finished run."""
+        """``orccad run``'s text report of the finished run (with the properties' verdicts),
+        the real-time ratio computed without the time spent paused (said on the second
+        line)."""
+        import dataclasses
+
         from orccad_app.properties.report import format_properties
         from orccad_app.trace import format_report
 
-        text = format_report(self.result, self.observer.injected)
+        paused = self.pace.paused_s
+        result = self.result
+        if paused > 0:
+            result = dataclasses.replace(result, wall_time_s=max(result.wall_time_s - paused,
+                                                                 1e-9))
+        lines = format_report(result, self.observer.injected).split("\n")
+        if paused > 0:
+            lines.insert(2, f"  paused {paused:.2f} s of wall time, not counted above")
         verdicts = self.monitor.results()
-        return "\n".join([text, *format_properties(verdicts)]) if verdicts else text
+        if verdicts:
+            lines.extend(format_properties(verdicts))
+        return "\n".join(lines)
 
-    def export(self, path: str) -> str:
-        """Write the trace (``.csv`` or ``.mcap``) to ``path``; return it."""
-        self._trace.export(path, {"mission": self.mission, "file": self.path,
-                                  "seed": str(self.seed)})
+    def export(self, path: str, *, overwrite: bool = False,
+               progress: Callable[[float], None] | None = None) -> str:
+        """Write the trace (``.csv`` or ``.mcap``) to ``path`` and return it: atomically (a
+        temporary file renamed once complete), never over an existing file unless
+        ``overwrite`` (``FileExistsError``)."""
+        from orccad_app.trace import TRACE_FORMATS, sensor_ports
+
+        suffix = Path(path).suffix.lower()
+        if suffix not in TRACE_FORMATS:
+            raise OrccadError(f"{path}: unknown trace format '{suffix or '(none)'}' (use "
+                              f"{' or '.join(TRACE_FORMATS)})")
+        if Path(path).exists() and not overwrite:
+            raise FileExistsError(path)
+        metadata = {"mission": self.mission, "file": self.path, "seed": str(self.seed)}
+        sensors = sensor_ports(self.run.plan)
+
+        def write(tmp: Path) -> None:
+            named = tmp.with_suffix(suffix)  # the writer picks the format by the suffix
+            try:
+                self._trace.export(str(named), metadata, sensors, progress)
+                os.replace(named, tmp)
+            finally:
+                named.unlink(missing_ok=True)
+
+        write_atomically(path, write)
         return path

@@ -14,8 +14,8 @@ def cli(*args):
                           capture_output=True, text=True)
 
 
-ARGS = ("run", "missions/arm_recovery.orc", "--inject", "Stop@3", "Gripper(0.8)@2",
-        "Gripper(0.2)@2.5")
+ARGS = ("run", "missions/arm_recovery.orc", "--inject", "Stop@3", "--inject", "Gripper(0.8)@2",
+        "--inject", "Gripper(0.2)@2.5")
 
 
 def test_text_report_groups_outputs_lists_injections_and_puts_the_story_first():

@@ -69,10 +69,10 @@ def test_mcap_trace_reads_back_with_the_mcap_reader(tmp_path):
     _traced(path, injections=[Injection("TrackPID.TrackingLost", 50_000_000)])
     messages = _mcap_messages(path)
     topics = {topic for topic, _, _ in messages}
-    assert {"/orccad/release", "/orccad/write", "/orccad/reaction", "/orccad/exception",
-            "/orccad/task_end"} <= topics
+    assert {"/orccad/release", "/ports/TrackPID/ctrl/tau", "/orccad/reaction",
+            "/orccad/exception", "/orccad/task_end", "/log"} <= topics
     end = [m for topic, _, m in messages if topic == "/orccad/task_end"]
-    assert end == [{"module": "TrackPID", "port": "", "job": 0, "value": "TrackingLost"}]
+    assert end == [{"task": "TrackPID", "site": 0, "outcome": "TrackingLost"}]
     times = [t for _, t, _ in messages]
     assert times == sorted(times) and times[-1] == 50_000_000
     with open(path, "rb") as stream:

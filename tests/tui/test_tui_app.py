@@ -47,6 +47,7 @@ async def _until(pilot, condition, timeout: float = 30.0) -> None:
     while not condition():
         assert time.monotonic() - start < timeout, "timed out waiting for the UI"
         await pilot.pause(0.05)
+    await pilot.pause(0.1)  # let a screen just pushed finish mounting (its Header's title)
 
 
 def _report_shown(app) -> bool:
@@ -102,6 +103,7 @@ async def test_an_arm_run_goes_live_to_its_report_and_exports_its_trace(tmp_path
         assert len({id(m) for m in finished}) == 1
         report.query_one("#export-path").value = str(tmp_path / "arm.mcap")
         await pilot.press("e")
+        await _until(pilot, lambda: (tmp_path / "arm.mcap").exists() and not report.exporting)
         assert (tmp_path / "arm.mcap").stat().st_size > 1000
         await pilot.press("escape")
         run = app.screen
@@ -135,7 +137,8 @@ async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_reco
         log = _log(run)
         assert any("input     Stop raised by the user" in line for line in log)
         assert any("TrackPID (site 2) ends: killed" in line for line in log)
-        assert any("Park (site" in line and "starts" in line for line in log)
+        assert any("Park (site 1) starts" in line for line in log)
+        assert any("Park (site 1) ends: good_end" in line for line in log)
 
 
 @pilot_test

@@ -127,7 +127,9 @@ def test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused(tmp_path):
     csv_rows = len(open(session.export(str(tmp_path / "run.csv")), encoding="utf-8")
                    .read().splitlines()) - 1
     with open(session.export(str(tmp_path / "run.mcap")), "rb") as stream:
-        messages = sum(1 for _ in make_reader(stream).iter_messages())
-    assert messages == csv_rows
+        topics = [channel.topic for _, channel, _ in make_reader(stream).iter_messages()]
+    # every row: a write on its port's topic, any other event on /orccad/<event>
+    assert sum(1 for t in topics if t.startswith(("/orccad/", "/ports/"))) == csv_rows
+    assert "/plant/arm/q" in topics and "/log" in topics
     with pytest.raises(OrccadError):
         session.export(str(tmp_path / "run.txt"))

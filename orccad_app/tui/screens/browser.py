@@ -7,8 +7,9 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.screen import Screen
-from textual.widgets import (Button, Footer, Header, Label, ListItem, ListView, Select, Static,
-                             TabbedContent, TabPane, TextArea)
+from textual.containers import Vertical
+from textual.widgets import (Button, Footer, Header, Input, Label, ListItem, ListView, Select,
+                             Static, TabbedContent, TabPane, TextArea)
 
 from orccad_app.tui.messages import CheckDone
 from orccad_app.tui.session import FileView, check_file, check_text, inspect_file
@@ -23,12 +24,18 @@ class BrowserScreen(Screen):
     AUTO_FOCUS = "#files"
 
     BINDINGS = [
-        Binding("r", "run", "Run"),
-        Binding("c", "check", "Check"),
-        Binding("s", "show_tab('source')", "Source"),
-        Binding("m", "show_tab('summary')", "Summary"),
+        Binding("r", "run", "Run", tooltip="run the selected mission live"),
+        Binding("c", "check", "Check", tooltip="prove its properties (orccad check)"),
+        Binding("s", "show_tab('source')", "Source", tooltip="show the source"),
+        Binding("m", "show_tab('summary')", "Summary", tooltip="show the compile summary"),
+        Binding("ctrl+e", "edit", "Edit", tooltip="edit it with live diagnostics"),
+        Binding("slash", "search", "Search", tooltip="type to filter the mission list"),
         Binding("q", "app.quit", "Quit"),
     ]
+
+    EMPTY = ("No mission here. Start `orccad tui FILE.orc` or `orccad tui FOLDER` from where your "
+             "missions are (missions/ is listed when it exists), or write one: see "
+             "docs/language.md. Then select it on the left: up/down preview, enter opens.")
 
     def __init__(self, files: list[str], selected: str | None = None) -> None:
         super().__init__()
@@ -39,8 +46,9 @@ class BrowserScreen(Screen):
     def compose(self) -> ComposeResult:
         yield Header()
         with Horizontal():
-            yield ListView(*[ListItem(Label(path), name=path) for path in self.files],
-                           id="files")
+            with Vertical(id="files-column"):
+                yield Input(placeholder="/ search missions", id="files-search", compact=True)
+                yield ListView(*self._items(self.files), id="files")
             with TabbedContent(id="tabs"):
                 with TabPane("Source", id="source"):
                     with VerticalScroll():
@@ -57,8 +65,15 @@ class BrowserScreen(Screen):
                                      id="check-text")
         yield Footer()
 
+    @staticmethod
+    def _items(paths: list[str]) -> list[ListItem]:
+        return [ListItem(Label(path), name=path) for path in paths]
+
     def on_mount(self) -> None:
         self.title = "ORCCAD — missions"
+        if not self.files:
+            self.query_one("#source-view", SourceView).update(self.EMPTY)
+            self.query_one("#check-text", Static).update(self.EMPTY)
         if self.selected is not None:
             files = self.query_one("#files", ListView)
             if self.selected in self.files:
@@ -96,9 +111,55 @@ class BrowserScreen(Screen):
         self.query_one("#summary-text", TextArea).load_text(text)
 
     @on(ListView.Selected, "#files")
-    def _file_selected(self, event: ListView.Selected) -> None:
-        if event.item.name:
+    @on(ListView.Highlighted, "#files")
+    def _file_selected(self, event) -> None:
+        """Enter opens, and so do the arrow keys (a preview of the highlighted file)."""
+        if event.item is not None and event.item.name and event.item.name != self.selected:
             self.open(event.item.name)
+
+    def select(self, path: str) -> None:
+        """Show ``path`` and highlight it in the list (the command palette's "open")."""
+        files = self.query_one("#files", ListView)
+        names = [item.name for item in files.query(ListItem)]
+        if path in names:
+            files.index = names.index(path)
+        self.open(path)
+
+    def action_search(self) -> None:
+        self.query_one("#files-search", Input).focus()
+
+    @on(Input.Changed, "#files-search")
+    def _search(self, event: Input.Changed) -> None:
+        """Keep the files whose path contains the text typed (case-insensitive)."""
+        text = event.value.strip().lower()
+        shown = [path for path in self.files if text in path.lower()]
+        files = self.query_one("#files", ListView)
+        files.clear()
+        files.extend(self._items(shown))
+        if not shown:
+            files.append(ListItem(Label(f"no file matches {event.value!r}")))
+
+    @on(Input.Submitted, "#files-search")
+    def _search_done(self) -> None:
+        files = self.query_one("#files", ListView)
+        files.focus()
+        if files.children:
+            files.index = 0
+            first = files.children[0]
+            if getattr(first, "name", None):
+                self.open(first.name)
+
+    def action_edit(self) -> None:
+        if self.selected is None:
+            self.notify("no file to edit", severity="warning")
+            return
+        from orccad_app.tui.screens.editor import EditorScreen
+
+        def edited(saved: bool | None) -> None:
+            if saved and self.selected is not None:
+                self.open(self.selected)
+
+        self.app.push_screen(EditorScreen(self.selected), edited)
 
     @on(Select.Changed, "#mission")
     def _mission_changed(self) -> None:

@@ -1,18 +1,43 @@
-"""Live plots of a run's key values: one sparkline per series component."""
+"""Live time-series plots of a run: a time axis, the whole mission or a rolling window, chosen
+series, each measurement drawn over its set-point, and markers at task starts, exceptions and
+injections.
+
+Drawn with textual-plotext (plotext in a Textual widget): a real plot with axes, ticks and a
+legend in the terminal, which Textual's ``Sparkline`` (no axis, no time, one series) cannot be.
+"""
 
 from __future__ import annotations
 
-from collections import deque
+import re
+from dataclasses import dataclass
 
 from textual.app import ComposeResult
-from textual.containers import VerticalScroll
-from textual.widgets import Label, Sparkline
+from textual.containers import Vertical
+from textual.widgets import Label
+from textual_plotext import PlotextPlot
 
-__all__ = ["Plots", "FIRST"]
+__all__ = ["Plots", "Marker", "FIRST", "default_series", "setpoint_of"]
 
 FIRST = ("tracking error", ".q[", ".depth", ".heading", ".attitude[2]")
 """Series shown first when present (the task error, the arm's joints, the AUV's depth and
 heading); every other series follows in name order."""
+
+ROLLING_S = 10.0
+"""Width of the rolling window [s]."""
+
+_MAX_POINTS = 400  # per series drawn: the terminal has fewer columns than that
+
+
+@dataclass(frozen=True)
+class Marker:
+    """A vertical line on the plots: ``kind`` is ``task``, ``exception`` or ``input``."""
+
+    t_s: float
+    kind: str
+    label: str
+
+
+_MARKER_COLOR = {"task": "green", "exception": "red", "input": "orange", "fault": "orange"}
 
 
 def _order(name: str) -> tuple[int, str]:
@@ -22,57 +47,135 @@ def _order(name: str) -> tuple[int, str]:
     return len(FIRST), name
 
 
-class Plots(VerticalScroll):
-    """Series added as they first appear (the task error, the robots' sensors), each with
-    its latest value and range over the window shown."""
+def setpoint_of(name: str, names) -> str | None:
+    """The set-point series of measurement ``name``: ``qd[i]`` for ``ROBOT.q[i]``."""
+    match = re.fullmatch(r"\w+\.q\[(\d+)\]", name)
+    if match and f"qd[{match.group(1)}]" in names:
+        return f"qd[{match.group(1)}]"
+    return None
+
+
+def default_series(names) -> list[str]:
+    """What is shown before the user chooses: the robot's joints (with their set-points drawn
+    over them), else the first series in :data:`FIRST` order."""
+    measured = [n for n in sorted(names) if setpoint_of(n, names) or re.fullmatch(
+        r"\w+\.q\[\d+\]", n)]
+    if measured:
+        return measured
+    ranked = sorted((n for n in names if not n.startswith("qd[")), key=_order)
+    return ranked[:1]
+
+
+class Plots(Vertical):
+    """Series added as they first appear; :attr:`chosen` are drawn (``None``: the default),
+    over the whole mission or the last :data:`ROLLING_S` seconds (:attr:`rolling`)."""
 
     DEFAULT_CSS = """
     Plots { height: 1fr; }
-    Plots Label { width: 100%; color: $text-muted; }
-    Plots Sparkline { height: 2; margin-bottom: 1; }
+    Plots #plots-caption { width: 100%; color: $text-muted; height: 1; }
+    Plots PlotextPlot { height: 1fr; }
     """
 
-    def __init__(self, window: int = 200, **kwargs) -> None:
+    def __init__(self, **kwargs) -> None:
         super().__init__(**kwargs)
-        self.window = window
-        self._data: dict[str, deque[float]] = {}
+        self._data: dict[str, tuple[list[float], list[float]]] = {}
+        self.markers: list[Marker] = []
+        self.chosen: list[str] | None = None
+        self.rolling = False
+        self._dirty = False
 
     def compose(self) -> ComposeResult:
-        yield Label("no samples yet", id="plots-empty")
+        yield Label("no samples yet", id="plots-caption")
+        yield PlotextPlot(id="plot")
 
-    def add_samples(self, samples: dict[str, list[float]]) -> None:
-        """Append new samples (series name -> values)."""
-        for name in sorted(samples, key=_order):
-            data = self._data.get(name)
-            if data is None:
-                data = self._data[name] = deque(maxlen=self.window)
-                self._mount_series(name)
-            data.extend(samples[name])
-            self._refresh(name)
+    def on_mount(self) -> None:
+        self.set_interval(0.25, self._redraw_if_dirty)
+        self.redraw()
+
+    def add_samples(self, samples: dict[str, list[tuple[float, float]]]) -> None:
+        """Append new ``(t [s], value)`` samples per series."""
+        for name, points in samples.items():
+            times, values = self._data.setdefault(name, ([], []))
+            for t, value in points:
+                times.append(t)
+                values.append(value)
+        self._dirty = self._dirty or bool(samples)
+
+    def add_markers(self, markers: list[Marker]) -> None:
+        self.markers.extend(markers)
+        self._dirty = self._dirty or bool(markers)
 
     @property
     def series(self) -> list[str]:
-        """The names of the series shown."""
-        return list(self._data)
+        """The names of the series recorded, in display order."""
+        return sorted(self._data, key=_order)
+
+    @property
+    def shown(self) -> list[str]:
+        """The series drawn now (the chosen ones that have samples)."""
+        chosen = self.chosen if self.chosen is not None else default_series(self._data)
+        return [name for name in chosen if name in self._data]
 
     def latest(self, name: str) -> float | None:
         data = self._data.get(name)
-        return data[-1] if data else None
+        return data[1][-1] if data and data[1] else None
 
-    def _key(self, name: str) -> str:
-        return "".join(c if c.isalnum() else "-" for c in name)
+    def choose(self, names: list[str]) -> None:
+        self.chosen = list(names)
+        self.redraw()
 
-    def _mount_series(self, name: str) -> None:
-        for empty in self.query("#plots-empty"):
-            empty.remove()
-        key = self._key(name)
-        later = [other for other in self._data if other != name and _order(other) > _order(name)]
-        before = self.query_one(f"#label-{self._key(min(later, key=_order))}") if later else None
-        self.mount(Label(name, id=f"label-{key}"), Sparkline([], id=f"plot-{key}"),
-                   before=before)
+    def toggle_window(self) -> None:
+        self.rolling = not self.rolling
+        self.redraw()
 
-    def _refresh(self, name: str) -> None:
-        data, key = self._data[name], self._key(name)
-        self.query_one(f"#label-{key}", Label).update(
-            f"{name}  {data[-1]: .4g}   ({min(data):.3g} … {max(data):.3g})")
-        self.query_one(f"#plot-{key}", Sparkline).data = list(data)
+    def _redraw_if_dirty(self) -> None:
+        if self._dirty:
+            self.redraw()
+
+    def _window(self) -> tuple[float, float] | None:
+        ends = [times[-1] for times, _ in self._data.values() if times]
+        if not ends:
+            return None
+        end = max(ends)
+        return (max(0.0, end - ROLLING_S) if self.rolling else 0.0), max(end, 1e-3)
+
+    def redraw(self) -> None:
+        """Draw the shown series (and their set-points) with the markers in the window."""
+        self._dirty = False
+        plot = self.query_one(PlotextPlot)
+        plt = plot.plt
+        plt.clear_data()
+        plt.clear_figure()
+        window = self._window()
+        caption = self.query_one("#plots-caption", Label)
+        if window is None:
+            caption.update("no samples yet: the plots start with the first measurement")
+            plot.refresh()
+            return
+        start, end = window
+        shown = self.shown
+        drawn = []
+        for name in shown:
+            drawn.append(name)
+            self._plot(plt, name, start, "braille")
+            setpoint = setpoint_of(name, self._data)
+            if setpoint is not None:
+                self._plot(plt, setpoint, start, "dot")
+        for marker in self.markers:
+            if start <= marker.t_s <= end:
+                plt.vline(marker.t_s, _MARKER_COLOR.get(marker.kind, "gray"))
+        plt.xlim(start, end)
+        plt.xlabel("t [s]")
+        over = " (set-points dotted)" if any(setpoint_of(n, self._data) for n in shown) else ""
+        span = f"last {ROLLING_S:g} s" if self.rolling else "whole mission"
+        caption.update(f"{', '.join(drawn) or 'nothing chosen'}{over} — {span}; markers: "
+                       f"green task start, red exception, orange input/fault  "
+                       f"[p] choose  [w] window")
+        plot.refresh()
+
+    def _plot(self, plt, name: str, start: float, marker: str) -> None:
+        times, values = self._data[name]
+        first = next((i for i, t in enumerate(times) if t >= start), len(times))
+        xs, ys = times[first:], values[first:]
+        step = max(1, len(xs) // _MAX_POINTS)
+        plt.plot(xs[::step], ys[::step], label=name, marker=marker)

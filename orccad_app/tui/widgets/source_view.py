@@ -40,3 +40,25 @@ class SourceView(Static):
         parts.append(Text(""))
         parts.append(syntax)
         self.update(Group(*parts))
+
+    def show_run(self, path: str, text: str, lines: list[int],
+                 sites: list[int] = ()) -> None:
+        """The mission's source with the lines it waits at highlighted (reversed) and the
+        ``run`` statements of the running Robot-Tasks (green), scrolled into view."""
+        caption = (Text(f"{path}: waiting at line{'s' if len(lines) > 1 else ''} "
+                        f"{', '.join(map(str, lines))}", style="bold yellow") if lines else
+                   Text(f"{path}: not waiting at a statement", style="dim"))
+        if sites:
+            caption.append(f"   running: line{'s' if len(sites) > 1 else ''} "
+                           f"{', '.join(map(str, sites))}", style="bold green")
+        syntax = Syntax(text, OrcLexer(), line_numbers=True, highlight_lines=set(lines),
+                        theme="monokai", word_wrap=False)
+        for line in sites:
+            syntax.stylize_range("bold black on green", (line, 0), (line + 1, 0))
+        for line in lines:
+            syntax.stylize_range("bold reverse", (line, 0), (line + 1, 0))
+        self.update(Group(caption, Text(""), syntax))
+        self.sites = list(sites)
+        self.waiting = lines
+        if lines and self.parent is not None:
+            self.parent.scroll_to(y=max(0, lines[0] - 4), animate=False)

@@ -6,7 +6,7 @@ from textual.widgets import DataTable
 
 from orccad_app.tui.live import PHASES
 
-__all__ = ["TaskTable", "LoadTable"]
+__all__ = ["TaskTable", "LoadTable", "TcsTable"]
 
 
 class TaskTable(DataTable):
@@ -43,3 +43,19 @@ class LoadTable(DataTable):
             self.add_row(f"  {module}", "", str(count))
         if not misses:
             self.add_row("deadline misses", "", "0")
+
+
+class TcsTable(DataTable):
+    """The TCS: every Module-Task with processor, period, WCET, priority, whether its task
+    runs now and its deadline misses; then each processor's load."""
+
+    DEFAULT_CSS = "TcsTable { height: 1fr; }"
+
+    def on_mount(self) -> None:
+        self.cursor_type = "row"
+        self.add_columns("Module-Task", "cpu", "T ms", "C ms", "prio", "active/load", "misses")
+
+    def show(self, rows: list[tuple[str, ...]]) -> None:
+        self.clear()
+        for row in rows:
+            self.add_row(*row)

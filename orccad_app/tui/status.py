@@ -1,0 +1,157 @@
+"""What the run screen says about a live run, as text (no Textual: testable alone).
+
+- :class:`SpeedMeter`: the actual speed (simulated seconds per wall second, pauses excluded)
+  from successive :class:`~orccad_app.tui.live.LiveUpdate` s;
+- :func:`status_text`: time and progress against the horizon, requested and actual speed,
+  paused, a warning when the run lags, and where the mission waits;
+- :func:`waiting_lines`: the source lines of the statements the automaton's state waits at;
+- :func:`rta_text`: each running Robot-Task's RTA, its current phase marked;
+- :func:`tcs_rows`: the TCS's Module-Tasks with processor, timing, load and misses.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from pathlib import Path
+from typing import Any
+
+from orccad_app.tui.live import PHASES, LiveUpdate
+
+__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "where_text", "rta_text", "tcs_rows",
+           "LAG_RATIO"]
+
+LAG_RATIO = 0.8
+"""The run lags when its actual speed is below this fraction of the requested one."""
+
+_PHASE_TEXT = {1: "waiting for its synchronization pre-conditions",
+               2: "measuring its measurement pre-conditions",
+               3: "running its control law"}
+
+
+class SpeedMeter:
+    """Actual speed over the last ``span_s`` wall seconds of updates, pauses excluded."""
+
+    def __init__(self, span_s: float = 2.0) -> None:
+        self.span_s = span_s
+        self._points: deque[tuple[float, float, float]] = deque()  # (wall, paused, sim) [s]
+
+    def reset(self) -> None:
+        """Forget the history (the requested speed changed)."""
+        self._points.clear()
+
+    def add(self, update: LiveUpdate) -> None:
+        self._points.append((update.wall_s, update.paused_s, update.time_ns / 1e9))
+        while len(self._points) > 2 and update.wall_s - self._points[0][0] > self.span_s:
+            self._points.popleft()
+
+    @property
+    def actual(self) -> float | None:
+        """Simulated seconds per running wall second, ``None`` before two updates."""
+        if len(self._points) < 2:
+            return None
+        (w0, p0, s0), (w1, p1, s1) = self._points[0], self._points[-1]
+        running = (w1 - w0) - (p1 - p0)
+        return (s1 - s0) / running if running > 1e-3 else None
+
+
+def waiting_lines(session: Any, state: int | None) -> list[int]:
+    """Lines of the mission's file where state ``state`` of its automaton is paused."""
+    if state is None:
+        return []
+    automaton = session.run.plan.automaton
+    if not 0 <= state < len(automaton.waiting):
+        return []
+    name = Path(session.path).name
+    return sorted({loc.line for loc in automaton.waiting[state]
+                   if loc.line > 0 and Path(loc.file or name).name == name})
+
+
+def run_site_lines(session: Any, tasks: list[tuple[str, int, int]]) -> list[int]:
+    """Lines of the ``run`` statements of the Robot-Tasks running now."""
+    running = {number for _, number, _ in tasks}
+    return sorted({site.site.stmt.loc.line for site in session.run.plan.sites
+                   if site.number in running and site.site.stmt.loc.line > 0})
+
+
+def where_text(session: Any, state: int | None, status: str = "running") -> str:
+    """``waiting at arm_recovery.orc:58, 77`` (or the status once the mission ended)."""
+    if status in ("done", "failed", "aborted"):
+        return f"the mission has ended: {status}"
+    lines = waiting_lines(session, state)
+    if not lines:
+        return "starting" if state is None else "reacting"
+    return f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+
+
+def _speed(session: Any, meter: SpeedMeter) -> tuple[str, str]:
+    factor = session.pace.factor
+    requested = "max" if factor is None else "paused" if factor == 0 else f"{factor:g}×"
+    actual = meter.actual
+    shown = "—" if actual is None or factor == 0 else f"{actual:.2f}×"
+    lag = ""
+    if factor not in (None, 0) and actual is not None and actual < LAG_RATIO * factor:
+        lag = f"  [b red]lagging: {actual:.2f}× of the {factor:g}× asked[/]"
+    return f"speed {requested} (actual {shown})", lag
+
+
+def status_text(session: Any, update: LiveUpdate | None, meter: SpeedMeter) -> str:
+    """Two lines: time/progress/speed, then where the mission waits (Rich markup)."""
+    horizon_s = session.run.until_ns / 1e9
+    if update is None:
+        return (f"mission {session.mission}: starting at {session.pace.label}   horizon "
+                f"{horizon_s:g} s\n{where_text(session, None)}")
+    t_s = update.time_ns / 1e9
+    share = min(1.0, t_s / horizon_s) if horizon_s else 0.0
+    bar = "█" * round(share * 10) + "░" * (10 - round(share * 10))
+    speed, lag = _speed(session, meter)
+    paused = "  [b reverse] PAUSED [/]" if session.pace.paused else ""
+    held = f"  held: {', '.join(update.held)}" if update.held else ""
+    return (f"t = {t_s:.3f} s of {horizon_s:g} s {bar} {share:.0%}   {speed}{paused}{lag}\n"
+            f"{where_text(session, update.state, update.status)}{held}")
+
+
+def rta_text(session: Any, tasks: list[tuple[str, int, int]]) -> str:
+    """Each running Robot-Task's RTA (RR-1801 §3.4): its three phases, the current one
+    marked, its observers and exceptions with their types."""
+    if not tasks:
+        return "no Robot-Task is running: the RTA of each one shows here while it runs"
+    sites = {site.number: site for site in session.run.plan.sites}
+    blocks = []
+    for task, number, phase in tasks:
+        site = sites.get(number)
+        lines = [f"[b]{task}[/b] (site {number}): phase {phase}, "
+                 f"{_PHASE_TEXT.get(phase, PHASES.get(phase, ''))}"]
+        for n in (1, 2, 3):
+            mark = "▶" if n == phase else " "
+            lines.append(f"  {mark} {n} {_PHASE_TEXT[n]}")
+        if site is not None:
+            lines.append(f"  modules: {', '.join(m.split('.', 1)[-1] for m in site.modules)}")
+            if site.measuring:
+                lines.append("  measuring: " + ", ".join(m.split(".", 1)[-1]
+                                                         for m in site.measuring))
+            for exception in site.site.robottask.exceptions:
+                kind = exception.type.number
+                adjust = site.adjustments.get(exception.name)
+                what = (f"adjust {adjust.module.split('.', 1)[-1]}.{adjust.param} := "
+                        f"{adjust.value}" if adjust else
+                        {2: "abort the task", 3: "fatal"}.get(kind, ""))
+                lines.append(f"  exception {exception.name} from {exception.source.func}: "
+                             f"type {kind}, {what}")
+        blocks.append("\n".join(lines))
+    return "\n\n".join(blocks)
+
+
+def tcs_rows(session: Any, tasks: list[tuple[str, int, int]], loads: dict[str, float],
+             misses: dict[str, int]) -> list[tuple[str, ...]]:
+    """Rows ``(module, processor, T ms, C ms, priority, active, misses)`` of the TCS, the
+    running tasks' modules first, then one row per processor with its load."""
+    running = {module for site in session.run.plan.sites
+               if any(site.number == number for _, number, _ in tasks) for module in site.modules}
+    modules = sorted(session.run.plan.tcs.module_tasks,
+                     key=lambda m: (m.name not in running, m.name))
+    rows = [(m.name, m.processor, f"{m.period_ns / 1e6:g}", f"{m.wcet_ns / 1e6:g}",
+             str(m.priority), "yes" if m.name in running else "", str(misses.get(m.name, 0)))
+            for m in modules]
+    rows += [(f"{name} load", name, "", "", "", f"{load:.1%}", "")
+             for name, load in sorted(loads.items())]
+    return rows
