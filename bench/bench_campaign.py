@@ -71,7 +71,7 @@ def run_cost(repeat: int) -> None:
     compiled = CompiledMission(AUV)  # cold: plugins loaded, parse, check, compile
     compile_s = time.perf_counter() - start
     plan_s = best(repeat, lambda: compiled.plan(setting))
-    path = next(iter(compiled.plan(setting).plant_specs.values()))["path"]
+    path = compiled.plan(setting).plants[0].path
     plant_s = best(repeat, lambda: mujoco.MjData(mujoco.MjModel.from_xml_path(path)))
     run_s = best(repeat, lambda: execute(compiled, setting))
     print("1. cost of one run (30 s simulated)")

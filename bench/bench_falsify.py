@@ -2,7 +2,7 @@
 
 On ``missions/auv_survey.orc`` with ``missions/auv_survey.campaign.toml``, the signal property
 ``safe_depth`` (``always (auv.depth < 30.0)``) is violated only when the depth sensor's
-offset fault (probability 0.1) reads about 19 m or more too shallow early enough in the survey:
+offset fault (probability 0.1) reads some 15-20 m or more too shallow early enough in the survey:
 about 1 run in 100 of the spec's distribution. This prints, for the same budget:
 
 - the **random campaign** (``orccad campaign``: settings drawn from the spec's distributions):

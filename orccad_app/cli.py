@@ -13,9 +13,13 @@ error (a bug: a one-line message, the traceback with ``--debug`` or ``ORCCAD_DEB
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
+
+TYPE_CHECKING = False  # not typing's: importing typing alone costs ~20 ms at every start
+if TYPE_CHECKING:  # argparse is imported inside main: this module's own import is instant,
+    import argparse  # so that a Ctrl-C at start-up already meets the guard of main()
+    from typing import NoReturn
 
 __all__ = ["main", "build_parser", "COMMANDS", "EXIT_INTERNAL", "EXIT_INTERRUPTED",
            "DEBUG_ENV"]
@@ -34,12 +38,17 @@ DEBUG_ENV = "ORCCAD_DEBUG"
 _REPORT = "please report it with the command that caused it"
 
 
-class _ArgumentParser(argparse.ArgumentParser):
-    """argparse exits 2 on usage errors already; keep its message short and clear."""
+def _argument_parser_class() -> type:
+    import argparse
 
-    def error(self, message: str) -> None:  # pragma: no cover - argparse plumbing
-        self.print_usage(sys.stderr)
-        self.exit(2, f"{self.prog}: error: {message}\n")
+    class _ArgumentParser(argparse.ArgumentParser):
+        """argparse exits 2 on usage errors already; keep its message short and clear."""
+
+        def error(self, message: str) -> NoReturn:  # pragma: no cover - argparse plumbing
+            self.print_usage(sys.stderr)
+            self.exit(2, f"{self.prog}: error: {message}\n")
+
+    return _ArgumentParser
 
 
 def _version() -> str:
@@ -48,9 +57,11 @@ def _version() -> str:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    import argparse
     import importlib
 
-    parser = _ArgumentParser(
+    parser_class = _argument_parser_class()
+    parser = parser_class(
         prog="orccad",
         description="Design reactive, real-time robot controllers.",
         epilog="Exit status: 0 ok, 1 a property or the mission failed, 2 bad input, "
@@ -59,7 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"orccad {_version()}")
     parser.add_argument("--debug", action="store_true",
                         help="show the Python traceback of an internal error")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_ArgumentParser)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=parser_class)
     for name in COMMANDS:
         importlib.import_module(f"orccad_app.commands.{name}").register(sub)
     for command in sub.choices.values():  # `orccad run F --debug` works too

@@ -184,7 +184,7 @@ def test_cli_state_budget_default_is_the_compilers():
     ("await 366 * 1 s;", None),  # an expression is not a literal: fine
     ("emit N(" + "9" * 5000 + ");", "integer literal out of range"),
     ("emit N(9223372036854775808);", "integer literal out of range"),
-    ("emit F(1e400);", "is out of range (finite numbers only"),
+    ("emit F(1e400);", "is out of range: not finite"),
     ("emit F(1e-400);", "too small: it would be read as 0"),
 ])
 def test_literals_out_of_range_are_located_errors(tmp_path, capsys, statement, message):
@@ -447,3 +447,12 @@ def test_a_very_long_line_is_shown_as_a_window_around_the_error(tmp_path, capsys
     head, shown, caret = err.splitlines()[:3]
     assert status == 2 and "undeclared signal 'C'" in head
     assert len(shown) < 200 and shown[caret.index("^")] == "C"
+
+
+def test_trace_values_are_strict_json():
+    import numpy as np
+
+    from orccad_app.trace.recorder import to_json
+
+    assert strict(to_json([1.0, float("nan"), np.array([np.inf, 2.0])])) == [1.0, None,
+                                                                           [None, 2.0]]

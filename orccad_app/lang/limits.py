@@ -81,7 +81,7 @@ def _float_literal(token: Token, filename: str) -> None:
     text = str(token)
     value = float(text)
     if not math.isfinite(value):
-        raise OrccadError(f"number {text} is out of range (finite numbers only: at most "
+        raise OrccadError(f"number {text} is out of range: not finite (at most "
                           f"{sys.float_info.max:.6g})", _loc(filename, token))
     mantissa = text.lower().split("e")[0]
     if value == 0 and mantissa.strip("0.") != "":

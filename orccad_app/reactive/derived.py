@@ -17,6 +17,7 @@ hidden data variables, never states.
 ``weak abort p when S``     ``trap T { { p; exit T } || { await S; exit T } }``
 ``… when S do q``           ``trap D { trap T { { …; exit D } || { await S; exit T } }; q }``
 ``suspend immediate``       ``await immediate not S; suspend p when S``
+``abort p when n S``        ``signal R { trap D { { abort p when R; exit D } || { await n S; emit R; halt } } }``
 ``loop p each S``           ``loop { abort { p; halt } when S }``
 ``every S p``               ``await S; loop { abort { p; halt } when S }``
 ``every d p``               periodic deadlines ``t := t + d`` anchored at the start
@@ -34,7 +35,7 @@ from orccad_app.reactive import ir
 __all__ = [
     "seq", "halt", "sustain", "await_signal", "await_count", "await_duration", "abort",
     "suspend", "loop_each", "every_signal", "every_duration", "repeat", "trap_handle", "race",
-    "deadline",
+    "deadline", "abort_count",
 ]
 
 
@@ -115,6 +116,18 @@ def abort(body: ir.Stmt, test: ir.Test, *, weak: bool = False, immediate: bool =
     if handler is None:
         return inner
     return ir.Trap(finished, seq(inner, handler), loc)
+
+
+def abort_count(body: ir.Stmt, count: ir.Expr, test: ir.Test, *, weak: bool = False,
+                handler: ir.Stmt | None = None, loc: SourceLocation = NOWHERE) -> ir.Stmt:
+    """``[weak] abort body when n S``: a watcher counts the occurrences of the test (as
+    ``await n S``) and emits a hidden local signal that preempts the body."""
+    reached = ir.SignalDecl("_counted", ir.LOCAL, None, loc)
+    watcher = seq(await_count(count, test, loc), ir.Emit(reached, None, loc), halt(loc))
+    done = _trap("counted_done", loc)
+    preempted = abort(body, ir.SigRef(reached, loc), weak=weak, handler=handler, loc=loc)
+    return ir.Local((reached,), ir.Trap(done, ir.Par(
+        (seq(preempted, ir.Exit(done, loc)), watcher), loc), loc), loc)
 
 
 def suspend(body: ir.Stmt, test: ir.Test, *, immediate: bool = False,

@@ -7,6 +7,7 @@ from typing import Any
 
 from orccad_app.reactive.automaton import Automaton, Transition, transitions
 from orccad_app.reactive.expr import format_expr
+from orccad_app.reactive.labels import MissionLabel
 
 __all__ = ["to_summary", "to_json", "to_dict", "to_dot", "guard_text"]
 
@@ -29,7 +30,10 @@ def _action_text(action) -> str:
     if action.kind == "assign":
         return f"{action.target.name} := {format_expr(action.expr)}"
     if action.target.name in ("_failed", "_aborted"):  # the mission's status and its reason
-        return f"{action.target.name[1:]} {getattr(action.expr, 'value', '?')}"
+        expr = action.expr
+        if getattr(expr, "op", None) == "last":  # a later emission in the instant wins
+            expr = expr.right
+        return f"{action.target.name[1:]} {getattr(expr, 'value', None) or format_expr(expr)}"
     return f"emit {action.target.name}({format_expr(action.expr)})"
 
 
@@ -100,8 +104,8 @@ def to_summary(automaton: Automaton) -> str:
 def mission_labels(automaton: Automaton, state: int) -> list[str]:
     """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
     labels = automaton.labels[state] if automaton.labels else ()
-    return sorted(f"{label[1]}#{label[2]}" for label in labels
-                  if isinstance(label, tuple) and label[0] == "mission")  # not Rt/PhaseLabel
+    return sorted(f"{label.mission}#{label.site}" for label in labels
+                  if isinstance(label, MissionLabel))
 
 
 def _missions_in(automaton: Automaton, state: int) -> str:

@@ -19,6 +19,7 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
+from orccad_app.reactive.labels import MissionLabel
 
 __all__ = ["lower_mission", "mission_interface", "Lowerer", "Scope", "not_yet"]
 
@@ -243,14 +244,9 @@ class Lowerer:
         a hidden local signal that preempts the body, as Esterel v5 expands it."""
         if trigger.immediate:
             raise OrccadError("a counted trigger cannot be 'immediate'", trigger.loc)
-        reached = ir.SignalDecl("_counted", ir.LOCAL, None, trigger.loc)
         test = self.condition(trigger.condition, scope)
-        watcher = d.seq(d.await_count(self.expr(trigger.count, scope), test, loc),
-                        ir.Emit(reached, None, loc), d.halt(loc))
-        done = ir.TrapDecl("_counted_done", loc)
-        preempted = d.abort(body, ir.SigRef(reached, loc), weak=weak, handler=handler, loc=loc)
-        return ir.Local((reached,), ir.Trap(done, ir.Par(
-            (d.seq(preempted, ir.Exit(done, loc)), watcher), loc), loc), loc)
+        return d.abort_count(body, self.expr(trigger.count, scope), test, weak=weak,
+                             handler=handler, loc=loc)
 
     def _abort(self, s: ast.Abort, scope: Scope) -> ir.Stmt:
         handler = None if s.handler is None else self.block(s.handler, scope)
@@ -326,7 +322,7 @@ class Lowerer:
             body = self.block(target.body, inner)
         finally:
             self._inlining = stack
-        return ir.Mark(("mission", target.name, site), body, s.loc)
+        return ir.Mark(MissionLabel(target.name, site), body, s.loc)
 
     def _bind(self, target: ast.Mission, s: ast.RunMission, scope: Scope) -> dict:
         """The caller's signal for each of the sub-mission's (renamed, else same name)."""

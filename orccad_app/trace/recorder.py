@@ -29,7 +29,8 @@ task_end      Robot-Task                         site   the outcome
 exception     Robot-Task or ""   exception name         its type (1, 2, 3)
 ============  =================  ==============  =====  ===========================================
 
-Values are JSON text (``json.dumps``: floats print exactly, so equal runs give equal files);
+Values are strict JSON text (``json.dumps``: floats print exactly, so equal runs give equal
+files; a NaN or an infinity is ``null``, see docs/limits.md);
 ``job`` is ``-1`` where it does not apply.
 """
 
@@ -41,6 +42,7 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 
 from orccad_app.executive.observer import Observer
+from orccad_app.jsonout import plain as strict_plain
 
 __all__ = ["TraceRow", "TraceWriter", "TraceRecorder", "EVENTS", "to_json", "plain_value"]
 
@@ -89,7 +91,11 @@ def to_json(value: Any) -> str:
     """``value`` as compact JSON text (arrays as lists, unknown objects by ``repr``)."""
     if value is None:
         return ""
-    return json.dumps(plain_value(value), separators=(",", ":"), allow_nan=True)
+    plain = plain_value(value)
+    try:
+        return json.dumps(plain, separators=(",", ":"), allow_nan=False)
+    except ValueError:  # a NaN or an infinity (a diverging plant): null, as docs/limits.md says
+        return json.dumps(strict_plain(plain), separators=(",", ":"), allow_nan=False)
 
 
 class TraceRecorder(Observer):

@@ -55,8 +55,11 @@ class Alphabet:
         base = self._base(step, guard)
         free = [name for name in self.inputs if name not in guard]
         found = []
+        relations = self.model.automaton.program.relations
         for choice in product((False, True), repeat=len(free)):
             chosen = tuple(name for name, on in zip(free, choice) if on)
+            if relations and not _possible(relations, {**guard, **dict(zip(free, choice))}):
+                continue  # the environment never gives these inputs (a relation)
             mask = base
             for name in chosen:
                 mask |= 1 << self.bit[("sig", name)]
@@ -88,3 +91,15 @@ class Alphabet:
     def letter_set(self, mask: int) -> frozenset:
         """The atoms true in a letter."""
         return frozenset(key for key, bit in self.bit.items() if mask >> bit & 1)
+
+
+def _possible(relations, known: dict) -> bool:
+    """Whether some presence of the inputs not in ``known`` (name -> present) satisfies
+    every relation."""
+    for relation in relations:
+        values = [known.get(s.name) for s in relation.signals]
+        if relation.kind == "#" and sum(v is True for v in values) > 1:
+            return False
+        if relation.kind == "=>" and values[0] is True and values[1] is False:
+            return False
+    return True

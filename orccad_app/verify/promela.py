@@ -142,7 +142,12 @@ class _Writer:
 
     def instant(self, monitors: list[str]) -> list[str]:
         body = ["   :: atomic {"]
-        body += [f"      if :: {name} = 1 :: {name} = 0 fi;" for name in self.inputs.values()]
+        relations = self.automaton.program.relations
+        related = {s.name for r in relations for s in r.signals}
+        body += [f"      if :: {name} = 1 :: {name} = 0 fi;" for signal, name in
+                 self.inputs.items() if signal not in related]
+        if related:  # the environment only gives inputs satisfying the relations
+            body.append("      " + _related_choice(relations, sorted(related), self.inputs))
         body += [f"      {name} = 0;" for name in self.outputs.values()]
         body += [f"      {flag} = 1;" for flag in self.fair]
         body.append("      if")
@@ -257,3 +262,15 @@ def to_promela(automaton: Automaton, *, tracked: tuple[ir.VarDecl, ...] | None =
     lines += claims
     return "\n".join(lines) + "\n"
 
+
+
+def _related_choice(relations, names: list[str], inputs: dict) -> str:
+    """One nondeterministic choice among the valuations of ``names`` that satisfy every
+    relation."""
+    from itertools import product
+    options = []
+    for values in product((1, 0), repeat=len(names)):
+        present = {n for n, v in zip(names, values) if v}
+        if all(r.holds(present) for r in relations):
+            options.append("; ".join(f"{inputs[n]} = {v}" for n, v in zip(names, values)))
+    return "if " + " ".join(f":: {o}" for o in options) + " fi;"

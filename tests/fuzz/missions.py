@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-__all__ = ["missions", "scripts", "mutated", "inject_specs", "INTERFACE"]
+__all__ = ["missions", "task_missions", "scripts", "mutated", "inject_specs", "INTERFACE"]
 
 INTERFACE = ("input A, B, C; input N : int; input F : float;\n"
              "output O, Q; output P : int; output R : float;\n")
@@ -135,6 +135,43 @@ def missions(draw, depth: int = 2) -> str:
                                         "always (Q -> previously true)", "eventually done"]))
         text += f"property M.p: {formula};\n"
     return text
+
+
+#: The Robot-Task of missions/arm_pid.orc, shortened (0.2 s), for generated missions that run.
+TASK = """robot arm : arm3dof;
+robottask Track(kp: float = 400.0) on arm {
+    duration 0.2 s;
+    task_function joint_tracking(trajectory = cosine(q0 = [0.5, 0.5, 0.5], omega = pi));
+    law pid(kp = kp, kv = 40.0, ki = 10.0);
+    exception TrackingLost from tracking_error(max = 0.2) : abort;
+}
+input Stop;
+output Done, Retry;
+"""
+
+
+@st.composite
+def _task_statement(draw, depth: int) -> str:
+    kp = draw(st.sampled_from(["", "kp = 100.0", "kp = 600.0", "kp = 1e6", "kp = -5.0"]))
+    within = draw(st.sampled_from(["", " within 0.1 s", " within 1 s"]))
+    run = f"run Track({kp}){within};"
+    if depth <= 0:
+        return draw(st.sampled_from([run, "emit Done;", "pause;", "await 0.05 s;"]))
+    inner = " ".join(draw(_task_statement(depth - 1)) for _ in range(draw(st.integers(1, 2))))
+    return draw(st.sampled_from([
+        run,
+        f"try {{ {inner} }} catch TrackingLost, Timeout {{ emit Retry; }}",
+        f"abort {{ {inner} }} when Stop;",
+        f"repeat 2 {{ {inner} }}",
+        f"par {{ {inner} }} || {{ await 0.1 s; emit Done; }}",
+    ]))
+
+
+@st.composite
+def task_missions(draw) -> str:
+    """A mission that runs a Robot-Task of the arm (a short one), for ``orccad run``."""
+    body = " ".join(draw(_task_statement(2)) for _ in range(draw(st.integers(1, 2))))
+    return f"{TASK}mission M {{ {body} emit Done; }}\n"
 
 
 def _script_line() -> st.SearchStrategy[str]:

@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tests.fuzz.harness import CORPUS, check_outcome, replay, run_orccad
-from tests.fuzz.missions import inject_specs, missions, mutated, scripts
+from tests.fuzz.missions import inject_specs, missions, mutated, scripts, task_missions
 
 ROOT = Path(__file__).resolve().parents[2]
 SHIPPED = sorted((ROOT / "missions").glob("*.orc"))
@@ -69,6 +69,21 @@ def _mutated_generated(examples: int):
 
 def test_mutated_generated_missions_keep_the_promises():
     _mutated_generated(50)()
+
+
+def _runs(examples: int):
+    @_settings(examples)
+    @given(task_missions(), st.sampled_from(["", "Stop@0.05", "Stop@0", "Stop@1e300"]))
+    def run(mission, inject):
+        folder = _files(m_orc=mission)
+        argv = ["run", str(folder / "m.orc"), "--json", "--until", "0.3",
+                "--trace", str(folder / "t.csv")] + (["--inject", inject] if inject else [])
+        check_outcome(run_orccad(argv, budget_s=60), json_doc=True, budget_s=60)
+    return run
+
+
+def test_generated_missions_run_in_the_executive():
+    _runs(6)()
 
 
 # ---------------------------------------------------------------- seeded mutations of shipped files
@@ -180,6 +195,11 @@ def test_long_mutated_generated_missions():
 def test_long_seeded_mutations_of_the_shipped_missions():
     for seed in range(20):
         _shipped_mutations(seed=seed, count=50)
+
+
+@pytest.mark.fuzz_long
+def test_long_generated_missions_run():
+    _runs(60)()
 
 
 @pytest.mark.fuzz_long

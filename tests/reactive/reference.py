@@ -64,7 +64,7 @@ from orccad_app.reactive import ir
 
 __all__ = ["ReferenceReactor", "RefReaction", "NotCoherent", "ReferenceError_",
            "Suspended", "Scoped", "MAX_RUNS", "Halt", "Sustain", "Await", "AwaitCount",
-           "AwaitDuration", "Abort", "SuspendNow", "LoopEach", "Every", "Repeat", "Race",
+           "AwaitDuration", "Abort", "AbortCount", "SuspendNow", "LoopEach", "Every", "Repeat", "Race",
            "TrapHandle"]
 
 #: Bound on the executions tried for one instant (guessing is exponential in the worst case).
@@ -134,6 +134,8 @@ AwaitCount = _node("AwaitCount", "count", "test", doc="``await n t``: n-th futur
 AwaitDuration = _node("AwaitDuration", "duration", doc="``await d``: first instant past start+d")
 Abort = _node("Abort", "body", "test", "weak", "immediate", "handler",
               doc="``[weak] abort body when [immediate] t [do handler]`` (handler may be None)")
+AbortCount = _node("AbortCount", "body", "count", "test", "weak", "handler",
+                   doc="``[weak] abort body when n t [do handler]``: the n-th later instant of t")
 SuspendNow = _node("SuspendNow", "body", "test", doc="``suspend body when immediate t``")
 LoopEach = _node("LoopEach", "body", "test", doc="``loop body each t``")
 Every = _node("Every", "test", "body", "immediate", doc="``every [immediate] t do body``")
@@ -145,6 +147,8 @@ _Waiting = _node("_Waiting", "test", doc="``await t`` started: t is now tested")
 _Counting = _node("_Counting", "test", "left", doc="``await n t`` with ``left`` occurrences to go")
 _Until = _node("_Until", "deadline", doc="``await d`` started: waits for the clock")
 _Aborting = _node("_Aborting", "body", "test", "weak", "handler", doc="``abort`` started")
+_AbortCounting = _node("_AbortCounting", "body", "left", "test", "weak", "handler",
+                       doc="counted ``abort`` started, ``left`` occurrences to go")
 _Repeating = _node("_Repeating", "left", "current", "body",
                    doc="``repeat``: ``current`` runs, ``left`` more runs of ``body`` to go")
 
@@ -357,6 +361,31 @@ class _Run:
     def _aborted(self, handler, scope, traps):
         return (0, _NOTHING) if handler is None else self.react(handler, scope, traps)
 
+    def _abort_count(self, term, scope, traps):
+        left = self.value(term.count, scope)
+        return self._count_body(term.body, term, left, False, scope, traps)
+
+    def _abort_counting(self, term, scope, traps):
+        left, fired = term.left, False
+        if self.holds(term.test, scope):
+            left -= 1
+            fired = left <= 0
+        if fired and not term.weak:
+            return self._aborted(term.handler, scope, traps)
+        return self._count_body(term.body, term, left, fired, scope, traps)
+
+    def _count_body(self, body, term, left, fired, scope, traps):
+        """The body reacts; a weak counted abort whose count is reached then dies."""
+        code, residual = self.react(body, scope, traps)
+        if code != 1:
+            return code, _NOTHING
+        if fired:
+            return self._aborted(term.handler, scope, traps)
+        return 1, _AbortCounting(residual, left, term.test, term.weak, term.handler)
+
+    def _mark(self, term, scope, traps):
+        return self.react(term.body, scope, traps)
+
     def _suspend_now(self, term, scope, traps):
         if self.holds(term.test, scope):
             return 1, term  # not started yet
@@ -478,7 +507,8 @@ _DISPATCH = {
     AwaitDuration: _Run._await_duration, _Until: _Run._until, Abort: _Run._abort,
     _Aborting: _Run._aborting, SuspendNow: _Run._suspend_now, LoopEach: _Run._loop_each,
     Every: _Run._every, Repeat: _Run._repeat, _Repeating: _Run._repeating, Race: _Run._race,
-    TrapHandle: _Run._trap_handle,
+    TrapHandle: _Run._trap_handle, AbortCount: _Run._abort_count,
+    _AbortCounting: _Run._abort_counting, ir.Mark: _Run._mark,
 }
 
 

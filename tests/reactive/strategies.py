@@ -6,8 +6,13 @@ of :mod:`tests.reactive.reference`, which that interpreter runs by their own rul
 :func:`expand` replaces them by the expansions of :mod:`orccad_app.reactive.derived` to give
 the kernel program the compiler receives. The interface is fixed: pure inputs ``A``, ``B``,
 ``C``, a valued input ``D : int`` (given a value in the first instant), pure outputs ``O1``,
-``O2``, a valued output ``V : int`` and a data variable ``n`` (set to 0 first). Local signals
-and traps are made fresh where they are declared and only used inside their scope.
+``O2``, a valued output ``V : int``, a valued output ``T : int := 0 combine +`` (emitted from
+several places: its emissions combine) and a data variable ``n`` (set to 0 first). Local
+signals (pure, or valued ``int`` with an initial value, read with ``?L`` in other
+parallel branches) and traps are made fresh where they are declared and only used inside
+their scope. Tests and values use ``pre(S)`` and ``pre(?T)``; counted ``abort``; sub-mission
+regions (``Mark``, what ``run mission`` inlines to); programs sometimes declare
+``relation A # B`` (the tests then drop B from instants with A).
 
 Well-formedness is by construction: every loop body ends with a ``pause`` (or is a derived
 form that cannot terminate at once), and ``exit T`` only appears inside ``trap T``. Programs
@@ -22,6 +27,7 @@ from hypothesis import strategies as st
 
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
+from orccad_app.reactive.labels import MissionLabel
 from tests.reactive import reference as ref
 
 __all__ = ["INPUTS", "OUTPUTS", "programs", "input_sequences", "expand", "show_program"]
@@ -30,9 +36,10 @@ A, B, C = (ir.SignalDecl(n, ir.INPUT) for n in "ABC")
 D = ir.SignalDecl("D", ir.INPUT, "int")
 O1, O2 = (ir.SignalDecl(n, ir.OUTPUT) for n in ("O1", "O2"))
 V = ir.SignalDecl("V", ir.OUTPUT, "int")
+T = ir.SignalDecl("T", ir.OUTPUT, "int", init=0, combine="+")
 N = ir.VarDecl("n")
 INPUTS = (A, B, C, D)
-OUTPUTS = (O1, O2, V)
+OUTPUTS = (O1, O2, V, T)
 
 
 @dataclass(frozen=True)
@@ -43,26 +50,41 @@ class _Ctx:
     traps: tuple[ir.TrapDecl, ...] = ()
     locals: tuple[ir.SignalDecl, ...] = ()
 
+    @property
+    def valued(self) -> tuple[ir.SignalDecl, ...]:
+        return tuple(s for s in self.locals if s.valued)
+
+    @property
+    def pure(self) -> tuple[ir.SignalDecl, ...]:
+        return tuple(s for s in self.locals if not s.valued)
+
     def deeper(self, **changes) -> "_Ctx":
         return replace(self, depth=self.depth - 1, **changes)
 
 
 # --------------------------------------------------------------------------- tests
 
-def _data_tests() -> st.SearchStrategy[ir.DataTest]:
+def _data_tests(ctx: "_Ctx | None" = None) -> st.SearchStrategy[ir.DataTest]:
     small = st.integers(0, 3).map(ir.Const)
     n, value, clock = ir.VarRef(N), ir.SigValue(D), ir.Clock()
-    return st.one_of(
+    options = [
         st.builds(lambda op, k: ir.DataTest(ir.Binary(op, n, k)),
                   st.sampled_from([">=", "=="]), small),
         small.map(lambda k: ir.DataTest(ir.Binary(">", value, k))),
         st.integers(1, 12).map(lambda k: ir.DataTest(ir.Binary(">=", clock, ir.Const(k)))),
-    )
+        small.map(lambda k: ir.DataTest(ir.Binary(">", ir.PreValue(T), k))),
+    ]
+    if ctx is not None and ctx.valued:  # a read that must wait for the other branches
+        options.append(st.builds(lambda s, k: ir.DataTest(ir.Binary(">", ir.SigValue(s), k)),
+                                 st.sampled_from(ctx.valued), small))
+    return st.one_of(*options)
 
 
 @st.composite
 def _signal_test(draw, ctx: _Ctx, depth: int = 2) -> ir.Test:
     if depth == 0 or draw(st.integers(0, 2)) > 0:
+        if draw(st.integers(0, 7)) == 0:
+            return ir.PreRef(draw(st.sampled_from((A, B, O1, *ctx.locals))))
         if ctx.locals and draw(st.integers(0, 2)) == 0:
             return ir.SigRef(draw(st.sampled_from(ctx.locals)))
         if draw(st.integers(0, 5)) == 0:
@@ -77,15 +99,16 @@ def _signal_test(draw, ctx: _Ctx, depth: int = 2) -> ir.Test:
 
 
 def _test(ctx: _Ctx) -> st.SearchStrategy[ir.Test]:
-    return st.one_of(_signal_test(ctx), _signal_test(ctx), _data_tests())
+    return st.one_of(_signal_test(ctx), _signal_test(ctx), _data_tests(ctx))
 
 
 # --------------------------------------------------------------------------- statements
 
 @st.composite
 def _leaf(draw, ctx: _Ctx):
-    emittable = (O1, O2, *ctx.locals)
-    options = ["nothing", "pause", "pause", "emit", "emit", "emit", "emitv", "assign", "if",
+    emittable = (O1, O2, *ctx.pure)
+    options = ["nothing", "pause", "pause", "emit", "emit", "emit", "emitv", "emitv", "assign",
+               "if",
                "if", "if", "await", "await_n", "await_t"] + ["exit"] * (3 if ctx.traps else 0)
     if draw(st.integers(0, 19)) == 0:
         options = ["halt"]
@@ -95,12 +118,18 @@ def _leaf(draw, ctx: _Ctx):
     if kind == "pause":
         return draw(_marked(ir.Pause()))
     if kind == "emit":
-        if ctx.locals and draw(st.booleans()):
-            return ir.Emit(draw(st.sampled_from(ctx.locals)))
+        if ctx.pure and draw(st.booleans()):
+            return ir.Emit(draw(st.sampled_from(ctx.pure)))
         return ir.Emit(draw(st.sampled_from(emittable)))
     if kind == "emitv":
-        value = draw(st.sampled_from([ir.VarRef(N), ir.SigValue(D)]))
-        return ir.Emit(V, ir.Binary("+", value, ir.Const(draw(st.integers(0, 2)))))
+        sources = [ir.VarRef(N), ir.SigValue(D), ir.PreValue(T),
+                   *(ir.SigValue(s) for s in ctx.valued)]
+        value = ir.Binary("+", draw(st.sampled_from(sources)), ir.Const(draw(st.integers(0, 2))))
+        target = draw(st.sampled_from((V, T, T, *ctx.valued)))
+        if target is not V and isinstance(value.left, ir.SigValue) \
+                and value.left.signal is target:
+            value = ir.Binary("+", ir.VarRef(N), value.right)  # not a value cycle
+        return ir.Emit(target, value)
     if kind == "assign":
         return ir.Assign(N, ir.Binary("+", ir.VarRef(N), ir.Const(draw(st.integers(1, 2)))))
     if kind == "await":
@@ -140,7 +169,7 @@ def statements(draw, ctx: _Ctx, compound: bool = False):
         return draw(_leaf(ctx))
     kind = draw(st.sampled_from([
         "seq", "seq", "par", "present", "loop", "trap", "trap", "suspend", "local",
-        "abort", "race", "every", "repeat", "each", "handle", "schizo"]))
+        "abort", "race", "every", "repeat", "each", "handle", "schizo", "mission"]))
     sub = ctx.deeper()
     stmt = lambda c=sub: draw(statements(c))  # noqa: E731 - local shorthand
     if kind == "seq":  # with progress marks, so that the instant each item ends shows
@@ -159,15 +188,27 @@ def statements(draw, ctx: _Ctx, compound: bool = False):
         test = draw(_test(ctx))
         return ref.SuspendNow(stmt(), test) if draw(st.booleans()) else ir.Suspend(test, stmt())
     if kind in ("local", "schizo"):
-        signal = ir.SignalDecl(f"S{len(ctx.locals)}", ir.LOCAL)
+        if kind == "local" and draw(st.booleans()):
+            # always an initial value: a data test whose outcome does not matter is dropped
+            # from the automaton, so an unset read there is not an error in the compiled
+            # program while the reference would report it (unit tests cover unset reads)
+            init = draw(st.sampled_from([0, 1, 3]))
+            signal = ir.SignalDecl(f"L{len(ctx.locals)}", ir.LOCAL, "int", init=init)
+        else:
+            signal = ir.SignalDecl(f"S{len(ctx.locals)}", ir.LOCAL)
         inner = ctx.deeper(locals=(*ctx.locals, signal))
         if kind == "local":
             return ir.Local((signal,), stmt(inner))
         return draw(_schizophrenic(inner, signal))
     if kind == "abort":
         handler = stmt() if draw(st.booleans()) else None
+        if draw(st.integers(0, 3)) == 0:
+            return ref.AbortCount(stmt(), ir.Const(draw(st.integers(0, 3))), draw(_test(ctx)),
+                                  draw(st.booleans()), handler)
         return ref.Abort(stmt(), draw(_test(ctx)), draw(st.booleans()), draw(st.booleans()),
                          handler)
+    if kind == "mission":
+        return ir.Mark(MissionLabel("Sub", len(ctx.traps)), stmt())
     if kind == "race":
         return ref.Race((stmt(), stmt()))
     if kind == "every":
@@ -197,7 +238,9 @@ def programs(draw, max_depth: int = 4) -> ir.Program:
     body = d.seq(*(draw(statements(ctx, compound=True)) for _ in range(draw(st.integers(1, 2)))))
     if draw(st.booleans()):
         body = ref.LoopEach(body, ir.SigRef(C))
-    return ir.Program("Random", INPUTS, OUTPUTS, d.seq(ir.Assign(N, ir.Const(0)), body))
+    relations = (ir.Relation("#", (A, B)),) if draw(st.integers(0, 3)) == 0 else ()
+    return ir.Program("Random", INPUTS, OUTPUTS, d.seq(ir.Assign(N, ir.Const(0)), body),
+                      relations=relations)
 
 
 # --------------------------------------------------------------------------- inputs
@@ -230,7 +273,10 @@ def expand(stmt):
     expansions, as the compiler receives them from the lowering."""
     kind = type(stmt)
     if kind is ir.Program:
-        return ir.Program(stmt.name, stmt.inputs, stmt.outputs, expand(stmt.body), stmt.loc)
+        return ir.Program(stmt.name, stmt.inputs, stmt.outputs, expand(stmt.body), stmt.loc,
+                          relations=stmt.relations)
+    if kind is ir.Mark:
+        return ir.Mark(stmt.label, expand(stmt.body), stmt.loc)
     if kind is ir.Seq:
         return ir.Seq(tuple(expand(s) for s in stmt.items), stmt.loc)
     if kind is ir.Par:
@@ -261,6 +307,8 @@ _DERIVED = {
     ref.AwaitDuration: lambda s: d.await_duration(s.duration),
     ref.Abort: lambda s: d.abort(expand(s.body), s.test, weak=s.weak, immediate=s.immediate,
                                  handler=_opt(s.handler)),
+    ref.AbortCount: lambda s: d.abort_count(expand(s.body), s.count, s.test, weak=s.weak,
+                                            handler=_opt(s.handler)),
     ref.SuspendNow: lambda s: d.suspend(expand(s.body), s.test, immediate=True),
     ref.LoopEach: lambda s: d.loop_each(expand(s.body), s.test),
     ref.Every: lambda s: d.every_signal(s.test, expand(s.body), immediate=s.immediate),

@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from orccad_app.reactive.labels import MissionLabel
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
@@ -198,9 +199,9 @@ def test_sub_missions_are_inlined_with_their_signals_renamed():
 
 def test_sub_mission_regions_label_the_states():
     automaton = _compiled(LIBRARY, "Main")
-    labels = set().union(*automaton.labels)
-    assert {label[:2] for label in labels if label[0] == "mission"} == {("mission", "Home")}
-    assert len({label for label in labels if label[0] == "mission"}) == 2  # two sites
+    labels = {label for label in set().union(*automaton.labels)
+              if isinstance(label, MissionLabel)}
+    assert labels == {MissionLabel("Home", 1), MissionLabel("Home", 2)}
 
 
 @pytest.mark.parametrize("call, message", [

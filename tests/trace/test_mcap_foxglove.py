@@ -46,7 +46,7 @@ def test_every_message_parses_with_its_channel_schema(trace):
         schema, channel, _ = items[0]
         assert (channel.message_encoding, schema.encoding) == ("json", "jsonschema"), topic
         validator = jsonschema.Draft202012Validator(json.loads(schema.data))
-        for item_schema, item_channel, message in items:
+        for item_schema, _item_channel, message in items:
             assert item_schema.id == schema.id  # one schema per topic
             validator.validate(_strict(message.data))
 
