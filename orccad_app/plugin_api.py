@@ -36,7 +36,7 @@ from orccad_app.control.module import ModuleInstance, ModuleKind
 from orccad_app.control.params import REQUIRED, ParamSpec, resolve_params
 from orccad_app.control.plant_extension import PlantExtension
 from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
-from orccad_app.control.robot import RobotPort, RobotType
+from orccad_app.control.robot import IdleBehaviour, RobotPort, RobotType
 from orccad_app.control.task_functions import TaskFunction, TaskState
 from orccad_app.control.trajectories import Sample, Trajectory
 from orccad_app.diagnostics import OrccadError
@@ -51,6 +51,7 @@ __all__ = [
     # robots
     "RobotType",
     "RobotPort",
+    "IdleBehaviour",
     "ActuatorConstraint",
     "PlantExtension",
     # component kinds and what they build

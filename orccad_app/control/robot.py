@@ -19,6 +19,7 @@ Port naming follows the plan language: a robot declared ``robot arm : arm3dof;``
 
 from __future__ import annotations
 
+import enum
 import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -33,7 +34,22 @@ from orccad_app.control.ports import PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
 from orccad_app.control.plant_extension import PlantExtension
 
-__all__ = ["RobotPort", "RobotType"]
+__all__ = ["RobotPort", "RobotType", "IdleBehaviour"]
+
+
+class IdleBehaviour(enum.Enum):
+    """What holds a robot while no Module-Task drives its actuators: before the first
+    Robot-Task, between Robot-Tasks, after the last one, and from a task's start until its
+    first command. Declared by the robot type (:attr:`RobotType.idle`); the executive applies
+    it (docs/robot-tasks.md, *Idle behaviour*)."""
+
+    FREE = "free"
+    """Actuators at zero: the robot moves under gravity and its own dynamics."""
+    BRAKES = "brakes"
+    """Joint brakes: the joints are locked at their position when the robot went idle."""
+    HOLD = "hold"
+    """A holding law: gravity (and Coriolis) compensation plus a stiff PD at the position
+    when the robot went idle, clamped to the torque limits."""
 
 
 @dataclass(frozen=True)
@@ -79,6 +95,10 @@ class RobotType:
     timestep_s: float = 0.001
     params: tuple[ParamSpec, ...] = ()
     param_values: Mapping[str, Any] = field(default_factory=dict)
+    idle: IdleBehaviour = IdleBehaviour.FREE
+    """What holds the robot while nothing drives its actuators (:class:`IdleBehaviour`)."""
+    idle_gains: tuple[float, float] = (400.0, 40.0)
+    """``(kp [N·m/rad], kv [N·m·s/rad])`` of the ``hold`` idle behaviour."""
 
     run_horizon_s: ClassVar[float] = 0.0
     """Extension point: the default simulated-time limit of ``orccad run`` for missions on

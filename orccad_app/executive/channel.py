@@ -6,6 +6,11 @@ its message is delivered. Control signalling (a read releasing a blocked produce
 message, matching the table's traffic column: push protocols send one message per write (per
 transfer for ``syn/syn``), pull protocols a request and a reply per read.
 
+**Fresh ports.** :meth:`Channel.reset` brings a channel back to its state before any write
+(its initial value, no pending reader, writer or request) and discards the values still
+crossing the bus: a Robot-Task run again starts with fresh ports as well as fresh modules, so
+it never reads what its previous instance wrote (docs/executive.md, *Fresh ports*).
+
 ``read(job)`` returns the value or :data:`~orccad_app.executive.block.BLOCK`;
 ``write(job, value)`` returns ``True`` when done, ``False`` when blocked. A blocked job is
 released through ``job.runtime.wake(job, value)``; the channel sets ``job.waits_for`` to the
@@ -38,7 +43,7 @@ class Channel:
     """
 
     __slots__ = ("connection", "label", "protocol_name", "producer", "consumer", "bus", "value",
-                 "writes", "reads")
+                 "writes", "reads", "initial", "epoch")
 
     def __init__(self, connection: Connection, producer: JobOwner | None,
                  consumer: JobOwner | None, initial: Any, bus: Bus | None) -> None:
@@ -49,14 +54,30 @@ class Channel:
         self.consumer = consumer
         self.bus = bus
         self.value = initial
+        self.initial = initial
+        self.epoch = 0
         self.writes = 0
         self.reads = 0
+
+    def reset(self) -> None:
+        """Back to the state before any write; values in flight on the bus are dropped."""
+        self.value = self.initial
+        self.epoch += 1
 
     def _send(self, kind: str, payload: Any, then: Callable[[Any], None]) -> None:
         if self.bus is None:
             then(payload)
         else:
-            self.bus.send(kind, self.label, payload, then)
+            self.bus.send(kind, self.label, payload, self._current(then))
+
+    def _current(self, then: Callable[[Any], None]) -> Callable[[Any], None]:
+        """``then``, unless the channel was reset before the message is delivered."""
+        epoch = self.epoch
+
+        def deliver(payload: Any) -> None:
+            if self.epoch == epoch:
+                then(payload)
+        return deliver
 
     def _store(self, value: Any) -> None:
         self.value = value
@@ -95,6 +116,11 @@ class AsynSyn(Channel):
         super().__init__(*args)
         self.fresh = False
         self.reader: Job | None = None
+
+    def reset(self) -> None:
+        super().reset()
+        self.fresh = False
+        self.reader = None
 
     def write(self, job: Job, value: Any) -> bool:
         self.writes += 1
@@ -154,6 +180,12 @@ class SynAsyn(Channel):
         self.demand = True
         self.writer: Job | None = None
         self.pending: Any = None
+
+    def reset(self) -> None:
+        super().reset()
+        self.demand = True
+        self.writer = None
+        self.pending = None
 
     def write(self, job: Job, value: Any) -> bool:
         self.writes += 1
@@ -221,6 +253,12 @@ class SynSyn(Channel):
         self.writer: Job | None = None
         self.pending: Any = None
 
+    def reset(self) -> None:
+        super().reset()
+        self.reader = None
+        self.writer = None
+        self.pending = None
+
     def write(self, job: Job, value: Any) -> bool:
         self.writes += 1
         reader = self.reader
@@ -235,7 +273,7 @@ class SynSyn(Channel):
             reader.runtime.wake(reader, value)
             return True
         job.waits_for = None
-        self.bus.send("data", self.label, (value, reader, job), self._meet)
+        self.bus.send("data", self.label, (value, reader, job), self._current(self._meet))
         return False
 
     def read(self, job: Job) -> Any:
@@ -252,7 +290,7 @@ class SynSyn(Channel):
             writer.runtime.wake(writer)
             return value
         job.waits_for = None
-        self.bus.send("data", self.label, (value, job, writer), self._meet)
+        self.bus.send("data", self.label, (value, job, writer), self._current(self._meet))
         return BLOCK
 
     def _meet(self, payload: tuple) -> None:
@@ -306,6 +344,11 @@ class AsynSynDF(Channel):
     def __init__(self, *args: Any) -> None:
         super().__init__(*args)
         self.requester: Job | None = None
+        self.arrived = False
+
+    def reset(self) -> None:
+        super().reset()
+        self.requester = None
         self.arrived = False
 
     def write(self, job: Job, value: Any) -> bool:

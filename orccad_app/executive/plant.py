@@ -25,6 +25,12 @@ the extension's sensor ports like MJCF sensors (noise and quantization included)
 ``--inject ROBOT.FAULT=VALUE@T`` through :meth:`MujocoPlant.inject`. A robot type provides one by
 defining ``plant_extension()`` (see docs/plugins.md, *Plant extensions*).
 
+**Idle behaviour.** With ``idle=`` (a robot type's
+:class:`~orccad_app.control.robot.IdleBehaviour`), the plant is held by it while nothing drives
+it: from the start until the first write of ``tau``, and from :meth:`MujocoPlant.go_idle` (its
+last driving Module-Task killed) until the next write (:mod:`orccad_app.executive.idle`).
+Without it the last command is held, as in a bare TCS.
+
 **Divergence.** After each advance, non-finite ``qpos``/``qvel`` or a new MuJoCo warning
 (bad ``qacc``/``qpos``/``qvel``/``ctrl``; MuJoCo resets the state on those) raises
 :class:`PlantDivergenceError`.
@@ -40,7 +46,8 @@ import numpy as np
 
 from orccad_app.control.plant_extension import PlantExtension
 from orccad_app.diagnostics import OrccadError
-from orccad_app.executive.kernel import Kernel
+from orccad_app.executive.idle import IdleBehaviour, IdleHold
+from orccad_app.executive.kernel import EventClass, Kernel
 from orccad_app.tcs.module_task import PhysicalResource
 
 __all__ = ["MujocoPlant", "PlantDivergenceError", "PlantExtension"]
@@ -81,13 +88,17 @@ class MujocoPlant:
     :param qpos0: initial joint positions (default: the model's ``qpos0``).
     :param qvel0: initial joint velocities (default zero).
     :param extension: a :class:`PlantExtension` (extra physics, sensors, faults).
+    :param idle: what holds the robot while nothing drives it (``None``: the last command).
+    :param idle_gains: ``(kp [N·m/rad], kv [N·m·s/rad])`` of the ``hold`` behaviour.
     """
 
     def __init__(self, name: str, *, xml: str | None = None, path: str | None = None,
                  noise_std: Mapping[str, float] | None = None,
                  quantization: Mapping[str, float] | None = None,
                  torque_limits: Any = None, qpos0: Any = None, qvel0: Any = None,
-                 extension: PlantExtension | None = None) -> None:
+                 extension: PlantExtension | None = None,
+                 idle: IdleBehaviour | None = None,
+                 idle_gains: tuple[float, float] = (400.0, 40.0)) -> None:
         self.model = _load(xml, path)
         self.extension: PlantExtension | None = None
         self.data = mujoco.MjData(self.model)
@@ -117,6 +128,36 @@ class MujocoPlant:
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
         self._warning_total = sum(self._warnings)
+        self.notify: Any = None
+        """``notify(signal, value)``, set by the simulation: idle changes as signals."""
+        self._idle: IdleHold | None = None
+        self._idle_on = False
+        if idle is not None:
+            self._idle = IdleHold(idle, self.model, self._low, self._high, *idle_gains)
+            self._idle_on = True
+            self._idle.engage(self.data)
+
+    @property
+    def idle(self) -> bool:
+        """Whether the idle behaviour holds the robot now."""
+        return self._idle_on
+
+    def go_idle(self) -> None:
+        """Nothing drives the robot any more: its idle behaviour holds it from now on."""
+        if self._idle is None or self._idle_on:
+            return
+        self.advance_to(self._kernel.now)
+        self._idle_on = True
+        self._idle.engage(self.data)
+        if self.notify is not None:
+            self.notify(f"{self.name}.idle", self._idle.behaviour.value)
+
+    def _holding(self) -> Any:
+        """The per-step idle action now, or ``None``."""
+        idle = self._idle
+        if not self._idle_on or idle is None or idle.behaviour is IdleBehaviour.FREE:
+            return None
+        return idle.before_step
 
     # -- construction ------------------------------------------------------------------------
 
@@ -187,10 +228,16 @@ class MujocoPlant:
         high[limited] = self.model.actuator_ctrlrange[limited, 1]
         return low, high
 
+    def _announce_idle(self, _: object) -> None:
+        if self._idle_on and self._idle is not None and self.notify is not None:
+            self.notify(f"{self.name}.idle", self._idle.behaviour.value)
+
     def attach(self, kernel: Kernel) -> None:
         """Bind to the simulation's kernel (clock and random streams)."""
         self._kernel = kernel
         self._attached = True
+        if self._idle_on:
+            kernel.schedule(kernel.now, EventClass.CONTROL, self._announce_idle)
 
     # -- coupling ----------------------------------------------------------------------------
 
@@ -219,13 +266,17 @@ class MujocoPlant:
         if count > 0:
             model, data, step = self.model, self.data, mujoco.mj_step
             extension = self.extension
-            if extension is None:
+            hold = self._holding()
+            if extension is None and hold is None:
                 for _ in range(count):
                     step(model, data)
             else:
                 dt_s = model.opt.timestep
                 for _ in range(count):
-                    extension.step(dt_s)
+                    if hold is not None:
+                        hold(data)
+                    if extension is not None:
+                        extension.step(dt_s)
                     step(model, data)
             self.steps += count
             self._time_ns = now = now + count * dt
@@ -238,6 +289,9 @@ class MujocoPlant:
         option = self.model.opt
         full = option.timestep
         option.timestep = duration_ns / 1e9
+        hold = self._holding()
+        if hold is not None:
+            hold(self.data)
         if self.extension is not None:
             self.extension.step(option.timestep)
         try:
@@ -307,6 +361,10 @@ class MujocoPlant:
         if (clamped != command).any():
             self.saturations += 1
         self.data.ctrl[:] = clamped
+        if self._idle_on:
+            self._idle_on = False
+            if self.notify is not None and self._idle is not None:
+                self.notify(f"{self.name}.driven", True)
 
     # -- accessors ---------------------------------------------------------------------------
 

@@ -100,6 +100,8 @@ class Simulation:
                                                    self.processors[task.processor])
                       for task in tcs.module_tasks}
         self.channels: dict[str, Channel] = {}
+        self._drivers: dict[str, list[ActuatorChannel]] = {}
+        """Per plant, the channels writing its actuators (idle when no producer is active)."""
         self.lateness_max_s = 0.0
         """Longest lag behind the wall clock in paced runs [s]."""
         self.lateness_s: list[float] = []
@@ -131,10 +133,16 @@ class Simulation:
                 raise OrccadError(f"plant '{name}' is not a physical resource of TCS "
                                   f"'{tcs.name}' (add plant.resource to the TCS)")
             by_name[name] = plant
+            plant.notify = self._plant_signal
             plant.attach(self.kernel)
         for name in resources - set(by_name):
             raise OrccadError(f"physical resource '{name}' of TCS '{tcs.name}' has no plant")
         return by_name
+
+    def _plant_signal(self, name: str, value: Any) -> None:
+        now = self.kernel.now
+        for hook in self.hooks.on_signal:
+            hook(now, name, value)
 
     def _wire(self) -> None:
         tcs = self.tcs
@@ -161,8 +169,10 @@ class Simulation:
             return SensorChannel(connection, self.tasks.get(consumer.name),
                                  self.plants[producer.name])
         if isinstance(consumer, PhysicalResource):
-            return ActuatorChannel(connection, self.tasks[producer.name],
-                                   self.plants[consumer.name])
+            actuator = ActuatorChannel(connection, self.tasks[producer.name],
+                                       self.plants[consumer.name])
+            self._drivers.setdefault(consumer.name, []).append(actuator)
+            return actuator
         out_port = producer.port(connection.producer_port)
         in_port = consumer.port(connection.consumer_port)
         initial = in_port.initial if in_port.initial is not None else out_port.initial_value()
@@ -236,7 +246,14 @@ class Simulation:
                     runtime.kill()
                     for hook in sim.hooks.on_kill:
                         hook(sim.kernel.now, runtime.name)
+            sim._idle_undriven()
         self.at(at_ns, stop)
+
+    def _idle_undriven(self) -> None:
+        """Plants none of whose actuator writers is active go idle (their idle behaviour)."""
+        for name, channels in self._drivers.items():
+            if not any(channel.producer.active for channel in channels):
+                self.plants[name].go_idle()
 
     def set_param(self, module: str, name: str, value: Any, at_ns: int | None = None) -> None:
         """Call ``set_param(name, value)`` of ``module``'s compute object at ``at_ns``."""
@@ -247,6 +264,20 @@ class Simulation:
             for hook in sim.hooks.on_param:
                 hook(sim.kernel.now, module, name, value)
         self.at(at_ns, change)
+
+    def reset_ports(self, modules: Iterable[str], at_ns: int | None = None) -> None:
+        """At ``at_ns`` (default now), bring every channel from or to one of ``modules`` back
+        to its state before any write (:meth:`Channel.reset
+        <orccad_app.executive.channel.Channel.reset>`): fresh ports for a new run."""
+        names = {runtime.name for runtime in self._runtimes(modules)}
+        channels = [channel for channel in self.channels.values()
+                    if channel.connection.producer_module in names
+                    or channel.connection.consumer_module in names]
+
+        def reset(sim: Simulation) -> None:
+            for channel in channels:
+                channel.reset()
+        self.at(at_ns, reset)
 
     def replace_compute(self, module: str, compute: Any) -> None:
         """Give ``module`` a new compute object, now (used by the next job that starts; call

@@ -128,7 +128,8 @@ class PlantSpec:
         extension: PlantExtension | None = self.robot_type.plant_extension()
         return MujocoPlant(self.robot, path=self.path, noise_std=self.noise_std,
                            quantization=self.quantization, qpos0=self.qpos0,
-                           extension=extension)
+                           extension=extension, idle=self.robot_type.idle,
+                           idle_gains=self.robot_type.idle_gains)
 
 
 @dataclass

@@ -25,7 +25,8 @@ which :class:`~orccad_app.robottask.labels.Phase` (its
 measuring modules (measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
 release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
 running restarts its modules; every run of a Robot-Task starts with fresh module instances
-(nominal parameters, no state, even when the same plan is run again). An output whose role
+(nominal parameters, no state, even when the same plan is run again) and fresh ports (its
+channels reset, :meth:`~orccad_app.executive.simulation.Simulation.reset_ports`). An output whose role
 (:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
 applies E's update to the running module (``set_param``); one whose role is a raised exception
 records it. The run stops when the mission
@@ -317,7 +318,8 @@ class MissionRun:
             restart = old > 0 and new > 0 and site.start_signal in emitted
             if old > 0 and (new == 0 or restart):
                 self._end_task(now, site, _outcome(site, emitted, raised))
-            if new > 0 and (old == 0 or restart):
+            starting = new > 0 and (old == 0 or restart)
+            if starting:
                 self._start_task(now, site)
             active = self._active[number]
             wanted = site.wanted(new)
@@ -325,6 +327,8 @@ class MissionRun:
             if stop:
                 self.sim.kill(stop, at_ns=now)
                 active.difference_update(stop)
+            if starting:  # fresh ports: nothing the previous run wrote is read again
+                self.sim.reset_ports(site.modules, at_ns=now)
             start = [m for m in wanted if m not in active]
             if start:
                 self.sim.activate(start, at_ns=now)

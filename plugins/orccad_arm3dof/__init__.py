@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from orccad_app.plugin_api import RobotType, hookimpl
+from orccad_app.plugin_api import IdleBehaviour, RobotType, hookimpl
 
 __all__ = ["MJCF_PATH", "ARM3DOF", "orccad_register_robot_types"]
 
@@ -34,7 +34,8 @@ MJCF_PATH = _mjcf_path()
 #: The robot type: 3 joints j1 (waist), j2 (shoulder), j3 (elbow), end effector site.
 ARM3DOF = RobotType.from_mjcf(
     "arm3dof", MJCF_PATH,
-    summary="3-DOF direct-drive arm of RR-1801 §7.1 (waist, shoulder, elbow)")
+    summary="3-DOF direct-drive arm of RR-1801 §7.1 (waist, shoulder, elbow)",
+    idle=IdleBehaviour.HOLD)  # gravity compensation at the last position between tasks
 
 
 @hookimpl

@@ -23,6 +23,7 @@ import numpy as np
 
 from orccad_app.plugin_api import (
     ActuatorConstraint,
+    IdleBehaviour,
     ParamSpec,
     PortSpec,
     RobotPort,
@@ -119,7 +120,8 @@ def make_auv() -> AuvRobotType:
         sensors=tuple(_sensor(port) for port in SENSOR_DIMS), actuators=(tau,),
         actuator_constraint=constraint,
         joint_limits=(np.array([-np.inf]), np.array([np.inf])), end_effector=None,
-        timestep_s=0.01, params=AUV_PARAMS)
+        timestep_s=0.01, params=AUV_PARAMS,
+        idle=IdleBehaviour.FREE)  # thrusters off while no task drives them
 
 
 AUV = make_auv()
