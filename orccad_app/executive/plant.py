@@ -33,7 +33,10 @@ Without it the last command is held, as in a bare TCS.
 
 **Divergence.** After each advance, non-finite ``qpos``/``qvel`` or a new MuJoCo warning
 (bad ``qacc``/``qpos``/``qvel``/``ctrl``; MuJoCo resets the state on those) raises
-:class:`PlantDivergenceError`.
+:class:`PlantDivergenceError`, whose message (the run's ``reason`` in its report) quotes
+MuJoCo's warning text. MuJoCo's warnings are routed to this module
+(``mujoco.set_mju_user_warning``), so no ``MUJOCO_LOG.TXT`` is left in the user's working
+directory.
 """
 
 from __future__ import annotations
@@ -55,6 +58,19 @@ __all__ = ["MujocoPlant", "PlantDivergenceError", "PlantExtension"]
 _WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
                      mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
 _WATCHED_INDEX = np.array([int(w) for w in _WATCHED_WARNINGS])
+
+
+_MUJOCO_WARNINGS: list[str] = []
+"""MuJoCo's warning messages of this process, in order (see :func:`_mujoco_warning`)."""
+
+
+def _mujoco_warning(message: str) -> None:
+    """MuJoCo's warning handler: keep the message for the run's report. Without a handler
+    MuJoCo appends it to ``MUJOCO_LOG.TXT`` in the user's working directory and prints it."""
+    _MUJOCO_WARNINGS.append(" ".join(message.split()))
+
+
+mujoco.set_mju_user_warning(_mujoco_warning)
 
 
 class PlantDivergenceError(OrccadError):
@@ -128,6 +144,7 @@ class MujocoPlant:
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
         self._warning_total = sum(self._warnings)
+        self._messages_seen = len(_MUJOCO_WARNINGS)
         self.notify: Any = None
         """``notify(signal, value)``, set by the simulation: idle changes as signals."""
         self._idle: IdleHold | None = None
@@ -317,8 +334,11 @@ class MujocoPlant:
         what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         self._warnings = counts
         self._warning_total = sum(counts)
+        said = list(dict.fromkeys(_MUJOCO_WARNINGS[self._messages_seen:]))
+        self._messages_seen = len(_MUJOCO_WARNINGS)
+        mujoco_said = f"; MuJoCo: {' / '.join(said)}" if said else ""
         raise PlantDivergenceError(f"plant '{self.name}' diverged before t = {time_ns} ns "
-                                   f"({what}); reduce the timestep or the gains")
+                                   f"({what}{mujoco_said}); reduce the timestep or the gains")
 
     def sample(self, port: str) -> np.ndarray:
         """The sensor ``port`` now (noise and quantization applied)."""

@@ -142,15 +142,17 @@ def test_noise_and_quantization_are_seeded():
 
 
 def test_divergence_raises_a_clear_error(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to ./MUJOCO_LOG.TXT
+    monkeypatch.chdir(tmp_path)  # without our handler MuJoCo logs to ./MUJOCO_LOG.TXT
     stiff = PENDULUM.replace('type="hinge"', 'type="hinge" stiffness="1e12"').replace(
         'integrator="RK4"', 'integrator="Euler"').replace('timestep="0.001"',
                                                           'timestep="0.01"')
     plant = MujocoPlant("arm", xml=stiff, qpos0=[0.5])
     sim = _sim(plant, Constant({}))
     sim.activate()
-    with pytest.raises(PlantDivergenceError, match="plant 'arm' diverged"):
+    with pytest.raises(PlantDivergenceError, match="plant 'arm' diverged") as raised:
         sim.run(s(2))
+    assert "MuJoCo: " in raised.value.message  # its warning text, in the run's reason
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
 
 
 def test_bad_plant_configuration_is_reported():
