@@ -9,7 +9,7 @@ transfer for ``syn/syn``), pull protocols a request and a reply per read.
 **Fresh ports.** :meth:`Channel.reset` brings a channel back to its state before any write
 (its initial value, no pending reader, writer or request) and discards the values still
 crossing the bus: a Robot-Task run again starts with fresh ports as well as fresh modules, so
-it never reads what its previous instance wrote (docs/executive.md, *Fresh ports*).
+it never reads what its previous instance wrote (docs/executive.md, *What runs*).
 
 ``read(job)`` returns the value or :data:`~orccad_app.executive.block.BLOCK`;
 ``write(job, value)`` returns ``True`` when done, ``False`` when blocked. A blocked job is

@@ -1,6 +1,6 @@
 """Issue 15, defect 1: every run of a Robot-Task starts with fresh ports as well as fresh
-modules — a re-run never reads what its killed instance wrote (docs/executive.md, *Fresh
-ports*)."""
+modules — a re-run never reads what its killed instance wrote (docs/executive.md, *What
+runs*)."""
 
 from __future__ import annotations
 
