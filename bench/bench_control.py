@@ -86,6 +86,12 @@ def bench_law(host: PluginHost, call: tuple, baseline_factory: Callable,
     return (_best_us(run_law, len(pairs), repeat), _best_us(run_baseline, len(pairs), repeat))
 
 
+def _bounds(c, qdot):
+    """The torque–speed bounds max(τmin, -α - βq̇) ≤ τ ≤ min(τmax, α - βq̇), inline."""
+    back_emf = c.beta * qdot
+    return np.maximum(c.tau_min, -c.alpha - back_emf), np.minimum(c.tau_max, c.alpha - back_emf)
+
+
 class NumpyPID:
     """The baseline PID: e = q - qd, tau = clip(-(kp e + kv ė + ki ∫e)), conditional
     integration of the saturated joints (the law's anti-windup for diagonal gains)."""
@@ -93,7 +99,7 @@ class NumpyPID:
     def __init__(self, robot, law):
         self.kp, self.kv, self.ki = (np.diag(g).copy() for g in
                                      (law.gains.kp, law.gains.kv, law.gains.ki))
-        self.low, self.high = robot.actuator_constraint.tau_min, robot.actuator_constraint.tau_max
+        self.constraint = robot.actuator_constraint
 
     def reset(self) -> None:
         self.integral = np.zeros(3)
@@ -108,7 +114,7 @@ class NumpyPID:
         push = (-self.ki * delta * self.sat_dir) > 0
         self.integral = self.integral + np.where(push, 0.0, delta)
         tau_unsat = -(self.kp * e + self.kv * (qdot - qd_dot) + self.ki * self.integral)
-        tau = np.clip(tau_unsat, self.low, self.high)
+        tau = np.clip(tau_unsat, *_bounds(self.constraint, qdot))
         self.sat_dir = np.sign(tau_unsat - tau)
         return tau
 
@@ -121,7 +127,7 @@ class NumpyComputedTorque:
         self.model = law.model.model
         self.data = self.model.createData()
         self.damping = np.array(self.model.damping, dtype=float)
-        self.low, self.high = robot.actuator_constraint.tau_min, robot.actuator_constraint.tau_max
+        self.constraint = robot.actuator_constraint
 
     def reset(self) -> None:
         pass
@@ -131,7 +137,7 @@ class NumpyComputedTorque:
         mass = np.triu(upper) + np.triu(upper, 1).T
         bias = pinocchio.nonLinearEffects(self.model, self.data, q, qdot)
         acc = qd_ddot - self.kp * (q - qd) - self.kv * (qdot - qd_dot)
-        return np.clip(mass @ acc + bias + self.damping * qdot, self.low, self.high)
+        return np.clip(mass @ acc + bias + self.damping * qdot, *_bounds(self.constraint, qdot))
 
 
 def _trajectory_baselines() -> dict[str, tuple[tuple, Callable[[float], tuple]]]:
