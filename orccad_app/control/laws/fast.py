@@ -158,7 +158,7 @@ class LeanPath:
             return
         delta = e * dt
         sat_dir = law._sat_dir
-        if self.anti_windup and sat_dir.any():
+        if self.anti_windup and np.count_nonzero(sat_dir):
             push = self.neg_ki * delta * sat_dir > 0
             delta[push] = 0.0
         law.integral = law.integral + delta
