@@ -138,7 +138,8 @@ class RunScreen(Screen):
         if update.state != getattr(self, "_shown_state", -1) or update.tasks != self._tasks:
             self._shown_state, self._tasks = update.state, update.tasks
             self._where(update)
-        self.query_one(TaskTable).show(update.tasks)
+        self.query_one(TaskTable).show(update.tasks or tasks_in_state(self.session,
+                                                                      update.state))
         self.query_one(LoadTable).show(update.loads, update.misses)
         plots = self.query_one(Plots)
         plots.add_samples(update.samples)
