@@ -34,3 +34,4 @@ property ArmComputedTorque.terminates: eventually (done or failed or aborted);
 property ArmComputedTorque.at_rest_at_end:
     always (ended(TrackCT) -> norm(arm.qdot) < 0.1);
 property ArmComputedTorque.shoulder_in_range: always (arm.q[0] > -0.1 and arm.q[0] < 1.1);
+property ArmComputedTorque.tracking_bound: always (norm(arm.e) < 0.05);

@@ -35,3 +35,4 @@ property ArmPID.fatal_aborts: always (raised(JointLimit) -> aborted);
 // Signal properties (docs/signal-properties.md): judged on runs and campaigns, not proved.
 property ArmPID.at_rest_at_end: always (ended(TrackPID) -> norm(arm.qdot) < 0.1);
 property ArmPID.shoulder_in_range: always (arm.q[0] > -0.1 and arm.q[0] < 1.1);
+property ArmPID.tracking_bound: always (norm(arm.e) < 0.05);

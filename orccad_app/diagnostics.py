@@ -94,11 +94,19 @@ def format_diagnostic(severity: str, message: str, location: SourceLocation | No
     end = start + 1
     if location.end_line == location.line and location.end_col and location.end_col > location.col:
         end = location.end_col - 1
+    if len(line) > _SHOWN_WIDTH:  # a very long line: show a window around the column
+        first = max(0, min(start - _SHOWN_WIDTH // 3, len(line) - _SHOWN_WIDTH))
+        line, start, end = line[first:first + _SHOWN_WIDTH], start - first, end - first
+        end = min(end, len(line))
     text = _shown(line)
     before = len(_shown(line[:start]))
     width = max(len(_shown(line[:end])) - before, 1)
     caret = " " * before + "^" + "~" * (width - 1)
     return f"{head}\n    {text}\n    {caret}"
+
+
+#: Widest excerpt of a source line shown under a diagnostic [characters].
+_SHOWN_WIDTH = 160
 
 
 def _shown(text: str) -> str:

@@ -21,6 +21,7 @@ from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplica
 from orccad_app.robottask.composition import Composition, compose
 
 if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a file has tasks
+    from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
 __all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
@@ -36,7 +37,9 @@ class Source:
     :param text: its text.
     :param program: its checked AST.
     :param warnings: the checker's warnings.
-    :param instances: the checked Robot-Task instances (one per ``run`` site).
+    :param tasks: the checked Robot-Task instances (one per ``run`` site), ``None`` for a file
+        without Robot-Tasks (see :attr:`instances`).
+    :param host: the plugin host the file was checked against (``None`` when it needed none).
     """
 
     path: str
@@ -44,6 +47,7 @@ class Source:
     program: ast.Program
     warnings: tuple = ()
     tasks: TaskInstances | None = None
+    host: PluginHost | None = None
 
     @property
     def instances(self) -> TaskInstances:
@@ -64,26 +68,41 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path) -> Source:
-    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations."""
+def load(path: str | Path, host: PluginHost | None = None) -> Source:
+    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations.
+
+    The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
+    declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
+    their failures printed once on stderr."""
     path = str(path)
     text = read_source(path)
     program = parse(text, path)
     result = check(program)
     instances = None
     if program.robottasks:
-        from orccad_app.plugins.host import default_host  # loads plugins: only when needed
         from orccad_app.robottask.model import check_tasks
-        instances = check_tasks(program, default_host())
+        host = _plugins(host)
+        instances = check_tasks(program, host)
     if any(ast.is_signal_formula(p.formula) for p in program.properties):
-        from orccad_app.plugins.host import default_host
-        from orccad_app.verify.signal_types import check_signal_properties
-        check_signal_properties(program, default_host())
-    return Source(path, text, program, result.warnings, instances)
+        from orccad_app.lang.signal_types import check_signal_properties
+        host = _plugins(host)
+        check_signal_properties(program, host)
+    return Source(path, text, program, result.warnings, instances, host)
+
+
+def _plugins(host: PluginHost | None) -> PluginHost:
+    """``host``, or the installed plugins loaded now (their failures printed once on stderr):
+    only files that need the registries load them."""
+    if host is not None:
+        return host
+    from orccad_app.plugin_host.host import PluginHost
+    loaded = PluginHost.load()
+    loaded.warn_failures()
+    return loaded
 
 
 #: Largest source file or script read [bytes] (a budget: see docs/limits.md).
-MAX_SOURCE_BYTES = 1_000_000
+MAX_SOURCE_BYTES = 512_000
 
 
 def read_source(path: str | bytes, name: str | None = None) -> str:
@@ -103,7 +122,7 @@ def read_source(path: str | bytes, name: str | None = None) -> str:
         except OSError as error:
             raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
     if len(data) > MAX_SOURCE_BYTES:
-        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES:_} bytes an input "
+        raise OrccadError(f"{name}: larger than the {MAX_SOURCE_BYTES} bytes an input "
                           "may have")
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]

@@ -169,4 +169,4 @@ def test_a_huge_source_is_refused_at_once(tmp_path, capsys):
     line = "mission M { output O; emit O; }\n"
     big.write_text(line * (5_000_000 // len(line)))
     assert main(["compile", str(big)]) == 2
-    assert f"larger than the {MAX_SOURCE_BYTES:_} bytes" in capsys.readouterr().err
+    assert f"larger than the {MAX_SOURCE_BYTES} bytes" in capsys.readouterr().err

@@ -55,6 +55,9 @@ def write(tmp_path: Path, text: str, name: str = "m.orc") -> str:
     (["compile", ABRO, "--max-states", "0"], "argument --max-states"),
     (["check", ABRO, "--max-states", "1" + "0" * 30], "argument --max-states"),
     (["tui", "--speed", "inf"], "argument --speed"),
+    (["campaign", PID, "--spec", "s.toml", "--until", "inf"], "argument --until"),
+    (["campaign", PID, "--spec", "s.toml", "--runs", "0"], "argument --runs"),
+    (["falsify", PID, "--spec", "s.toml", "-p", "p", "--seed", "-1"], "argument --seed"),
 ])
 def test_out_of_range_numbers_are_usage_errors(capsys, argv, message):
     with pytest.raises(SystemExit) as stop:
@@ -86,13 +89,25 @@ def test_injected_values_must_fit_their_input(capsys, spec, message):
     assert status == 2 and message in err
 
 
-def test_inject_before_the_file_does_not_swallow_it(capsys):
-    status, out, err = orccad(capsys, "run", "--inject", "TrackPID.TrackingLost@0.05",
-                              "--inject", "TrackPID.Saturated@0.02", PID, "--json",
-                              "--until", "0.1")
+@pytest.mark.parametrize("form", ["repeated", "listed"])
+def test_inject_before_the_file_does_not_swallow_it(capsys, form):
+    specs = (["--inject", "TrackPID.TrackingLost@0.05", "--inject", "TrackPID.Saturated@0.02"]
+             if form == "repeated" else
+             ["--inject", "TrackPID.TrackingLost@0.05", "TrackPID.Saturated@0.02"])
+    status, out, err = orccad(capsys, "run", *specs, PID, "--json", "--until", "0.1")
     report = strict(out)
     assert status in (0, 1) and report["mission"] == "ArmPID"
     assert {"TrackingLost", "Saturated"} <= {e["name"] for e in report["exceptions"]}
+
+
+@pytest.mark.parametrize("timing, message", [
+    ("TrackPID.ctrl.period_ms=0.0001", "a period must be at least 1 us"),
+    ("TrackPID.ctrl.period_ms=1e300", "at most one year"),
+    ("TrackPID.ctrl.wcet_ms=nan", "must be finite"),
+])
+def test_timing_overrides_keep_the_languages_limits(capsys, timing, message):
+    status, _, err = orccad(capsys, "run", PID, "--timing", timing, "--until", "0.01")
+    assert status == 2 and message in err
 
 
 def test_inject_at_zero_is_delivered_in_the_first_instant_and_says_so(capsys):
@@ -424,3 +439,11 @@ def test_non_finite_values_are_null_in_json():
 
     text = dumps({"a": float("nan"), "b": [float("inf"), -float("inf")], "c": 1.5})
     assert strict(text) == {"a": None, "b": [None, None], "c": 1.5}
+
+
+def test_a_very_long_line_is_shown_as_a_window_around_the_error(tmp_path, capsys):
+    path = write(tmp_path, "mission M { output O; " + "emit O; pause; " * 5000 + "await C; }\n")
+    status, _, err = orccad(capsys, "compile", path)
+    head, shown, caret = err.splitlines()[:3]
+    assert status == 2 and "undeclared signal 'C'" in head
+    assert len(shown) < 200 and shown[caret.index("^")] == "C"

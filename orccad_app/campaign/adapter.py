@@ -99,10 +99,8 @@ class CompiledMission:
     def monitor(self, mission_run: Any) -> Any:
         """The monitor judging every property of the mission on ``mission_run`` (attached to
         it: build it before the run), as ``orccad run`` does."""
-        try:
-            from orccad_app.properties import PropertyMonitor
-        except ImportError:  # signal properties land with issue 13 item 1
-            return None
+        from orccad_app.properties import PropertyMonitor
+
         return PropertyMonitor(self.source.program, self.mission, mission_run)
 
     def mission_run(self, setting: RunSetting, observers: tuple = ()) -> Any:
@@ -162,8 +160,6 @@ def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, 
 def _verdicts(monitor: Any) -> dict[str, PropertyResult]:
     """The mission's properties judged on the run (:mod:`orccad_app.properties`): ``holds``
     from the verdict (``None`` when undecided), the robustness when finite."""
-    if monitor is None:
-        return {}
     found = {}
     for verdict in monitor.results():
         holds = {"true": True, "false": False}.get(verdict.verdict.value)

@@ -70,12 +70,14 @@ class Falsifier:
             raise OrccadError(f"--sampler {sampler}: expected one of {', '.join(SAMPLERS)}")
         self.sampler_name, self.run_seed = sampler, run_seed
         optuna.logging.set_verbosity(optuna.logging.WARNING)
-        self.study = optuna.create_study(
-            study_name=f"falsify-{self.compiled.name}-{prop}-{sampler}-{seed}",
-            storage=storage, sampler=self._sampler(optuna, sampler, seed),
-            direction="minimize", load_if_exists=resume)
-        if not resume and storage is not None and self.study.trials:
-            raise OrccadError(f"the study in {storage} already has trials: --resume it")
+        try:
+            self.study = optuna.create_study(
+                study_name=f"falsify-{self.compiled.name}-{prop}-{sampler}-{seed}",
+                storage=storage, sampler=self._sampler(optuna, sampler, seed),
+                direction="minimize", load_if_exists=resume)
+        except optuna.exceptions.DuplicatedStudyError:
+            raise OrccadError(f"{storage} already holds this study: --resume it, or choose "
+                              f"another --study") from None
 
     @staticmethod
     def _sampler(optuna: Any, name: str, seed: int) -> Any:

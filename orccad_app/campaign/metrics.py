@@ -13,8 +13,8 @@ Metrics of one run (``None`` when a run has none, e.g. a task that never ran):
 ======================================  ==========================================================
 
 **Signal extrema** are sampled at every instant some Module-Task reads a sensor of the robot,
-when the plant has just been brought to that instant: :meth:`MujocoPlant.peek` reads the
-noiseless value without advancing the plant or drawing random numbers, so observing a run
+when the plant has just been brought to that instant: :meth:`MujocoPlant.observe` reads the
+physical value (no noise, no sensor fault) without drawing random numbers, so observing a run
 never changes it (a test compares with and without).
 """
 
@@ -54,10 +54,11 @@ class SignalExtrema(Observer):
             if plant is None:
                 raise OrccadError(f"signal {signal}: no robot '{robot}' in the mission "
                                   f"(robots: {', '.join(sim.plants)})")
-            if port not in plant.sensor_ports:
+            sensors = [p.name for p in plant.resource.outputs]
+            if port not in sensors:
                 raise OrccadError(f"signal {signal}: robot '{robot}' has no sensor port "
-                                  f"'{port}' (sensors: {', '.join(plant.sensor_ports)})")
-            dim = int(np.size(plant.peek(port)))
+                                  f"'{port}' (sensors: {', '.join(sensors)})")
+            dim = int(np.size(plant.observe(port)))
             if index is not None and int(index) >= dim:
                 raise OrccadError(f"signal {signal}: port '{port}' has {dim} component(s)")
             if index is None and dim != 1:
@@ -72,7 +73,7 @@ class SignalExtrema(Observer):
         for signal, plant, name, index in self._probes:
             if plant.time_ns != t_ns:
                 continue  # not brought to this instant: looking would change the run
-            sample = plant.peek(name)
+            sample = plant.observe(name)
             number = float(sample.ravel()[index or 0])
             if signal not in self.high:
                 self.low[signal] = self.high[signal] = number

@@ -3,23 +3,12 @@ live progress bar (rich, on a terminal only)."""
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from orccad_app.campaign.runner import CampaignResult
+from orccad_app.jsonout import plain
 
 __all__ = ["result_dict", "format_result", "Progress"]
-
-
-def _clean(value: Any) -> Any:
-    """``value`` with non-finite floats as ``None`` (strict JSON)."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    return value
 
 
 def result_dict(result: CampaignResult) -> dict[str, Any]:
@@ -33,7 +22,7 @@ def result_dict(result: CampaignResult) -> dict[str, Any]:
                      "properties": {k: {"holds": p.holds, "robustness": p.robustness}
                                     for k, p in record.properties.items()},
                      "setting": record.setting.as_dict()})
-    return _clean({"file": result.file, "mission": result.mission, "runs": len(result.records),
+    return plain({"file": result.file, "mission": result.mission, "runs": len(result.records),
                    "backend": result.backend, "stopped_by": result.stopped_by,
                    "interrupted": result.interrupted, "confidence": result.confidence,
                    "wall_time_s": result.wall_time_s, "database": result.db,

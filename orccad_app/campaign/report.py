@@ -9,7 +9,8 @@ a browser runtime for five figures, and matplotlib already draws the docs' plots
 2. each property's robustness histogram (0 marked: left of it, violated);
 3. the completion time of the runs that ended ``done``;
 4. the worst runs over the two drawn quantities that influence the score most (|Spearman ρ|
-   with the first property's robustness, or with ``done`` when there is none);
+   with the robustness of the property most at risk — most violations, then the smallest
+   robustness — or with ``done`` when no property has a robustness);
 5. the replay commands of the worst runs and of the runs that did not end ``done``.
 """
 
@@ -52,6 +53,7 @@ def _outcomes(plt: Any, result: CampaignResult) -> Any:
     ax.set_xlim(0, 1)
     ax.set_xlabel(f"probability ({100 * result.confidence:g} % Clopper–Pearson interval)")
     ax.set_title(f"{result.mission}: {len(result.records)} runs")
+    fig.tight_layout()
     return fig
 
 
@@ -84,9 +86,13 @@ def _completion(plt: Any, result: CampaignResult) -> Any | None:
 
 
 def _score(result: CampaignResult) -> tuple[str, dict[int, float]]:
+    """The robustness of the property most at risk (most violations, then the smallest
+    robustness), or ``done`` when no property has a robustness."""
     props = [k for k, v in result.summary["robustness"].items() if v]
     if props:
-        name = props[0]
+        name = min(props, key=lambda k: (-(result.estimates[k]["runs"]
+                                           - result.estimates[k]["count"]),
+                                         result.summary["robustness"][k]["min"]))
         return f"robustness of {name}", {
             r.index: r.properties[name].robustness for r in result.records
             if name in r.properties and r.properties[name].robustness is not None}

@@ -71,8 +71,9 @@ class CampaignStore:
         """Bind the database to a campaign: a new one is stamped with ``meta``; an existing
         one must hold the same campaign (``--resume``), else it is refused."""
         old = self.meta()
-        if not old:
+        if not old or (not resume and self.count() == 0):  # new, or never got a run
             with self.db:
+                self.db.execute("DELETE FROM campaign")
                 self.db.executemany("INSERT INTO campaign VALUES (?, ?)", meta.items())
             return
         if not resume:

@@ -16,21 +16,16 @@ internal error; the others are kept); 130 on Ctrl-C (every finished run is in th
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
+
+from orccad_app.commands.arguments import positive_int, seconds
 
 __all__ = ["register", "run", "add_common"]
 
 
 def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text!r}")
-    return value
+    return positive_int(text)  # one check for every command (commands/arguments.py)
 
 
 def _probability(text: str) -> float:
@@ -38,19 +33,13 @@ def _probability(text: str) -> float:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not 0 < value < 1:
+    if not 0 < value < 1:  # NaN fails this test too
         raise argparse.ArgumentTypeError(f"expected a number in (0, 1), got {text!r}")
     return value
 
 
 def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seconds, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a duration > 0 s, got {text!r}")
-    return value
+    return seconds(text)  # finite, in (0, one year]: docs/limits.md
 
 
 def add_common(parser: argparse.ArgumentParser) -> None:
@@ -106,6 +95,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.campaign.output import Progress, format_result, result_dict
     from orccad_app.campaign.runner import Campaign, CampaignOptions
     from orccad_app.campaign.spec import load_spec
+    from orccad_app.jsonout import dumps
 
     spec = load_spec(args.spec)
     options = CampaignOptions(args.runs, args.workers, args.cluster,
@@ -121,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
         from orccad_app.campaign.report import write_report
         write_report(result, args.report)
     if args.json:
-        print(json.dumps(result_dict(result), indent=2, allow_nan=False))
+        print(dumps(result_dict(result), indent=2))
     else:
         print(format_result(result))
         if args.report:

@@ -15,21 +15,15 @@ was found (robustness < 0), 0 when none was; 2 on bad input.
 from __future__ import annotations
 
 import argparse
-import json
 
+from orccad_app.commands.arguments import non_negative_int
 from orccad_app.commands.campaign import _positive_int, add_common
 
 __all__ = ["register", "run"]
 
 
 def _natural(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
+    return non_negative_int(text)  # one check for every command (commands/arguments.py)
 
 
 def register(sub) -> None:
@@ -59,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.campaign.falsify import Falsifier
     from orccad_app.campaign.replay import replay_with_trace
     from orccad_app.campaign.spec import load_spec
+    from orccad_app.jsonout import dumps
     from orccad_app.diagnostics import OrccadError
 
     if args.resume and not args.study:
@@ -75,12 +70,12 @@ def run(args: argparse.Namespace) -> int:
     robustness = replayed.properties.get(args.property)
     violated = robustness is not None and robustness.holds is False
     if args.json:
-        print(json.dumps({"property": args.property, "sampler": args.sampler,
+        print(dumps({"property": args.property, "sampler": args.sampler,
                           "trials": result.trials, "robustness": result.best_robustness,
                           "violated": violated, "first_violation": result.first_violation,
                           "status": replayed.status, "outcome": replayed.outcome,
                           "setting": replayed.setting.as_dict(), "replay": command,
-                          "trace": trace}, indent=2, allow_nan=False))
+                          "trace": trace}, indent=2))
     else:
         found = (f"violated (robustness {result.best_robustness:.4g}), first at trial "
                  f"{result.first_violation}" if violated else

@@ -10,10 +10,9 @@ and the listing still shows what the others provide.
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
 
-#: The environment variable naming plugins to disable (``plugins.host.DISABLE_ENV``; a test
+#: The environment variable naming plugins to disable (``plugin_host.host.DISABLE_ENV``; a test
 #: keeps them equal: importing the host here would load numpy for every command).
 DISABLE_ENV = "ORCCAD_DISABLE_PLUGINS"
 
@@ -129,12 +128,11 @@ def _details(entry: dict[str, Any]) -> list[str]:
 def run(args: argparse.Namespace) -> int:
     """Print the listing; failed plugins are warnings on stderr (exit status stays 0)."""
     from orccad_app.jsonout import dumps
-    from orccad_app.plugins import default_host
+    from orccad_app.plugin_host import PluginHost
 
-    host = default_host()
+    host = PluginHost.load()
+    host.warn_failures()
     document = describe(host)
-    for failure in host.failures:
-        print(f"orccad: warning: {failure.format()}", file=sys.stderr)
     if args.json:
         print(dumps(document, indent=2))
     else:

@@ -34,10 +34,11 @@ def register(sub) -> None:
 
 
 def _read_script(path: str | None) -> tuple[str, str]:
-    from orccad_app.pipeline import read_source
+    from orccad_app.pipeline import MAX_SOURCE_BYTES, read_source
 
-    if path is None:
-        data = sys.stdin.buffer.read() if hasattr(sys.stdin, "buffer") else sys.stdin.read()
+    if path is None:  # read at most the budget: a larger input is refused, not swallowed
+        stream = getattr(sys.stdin, "buffer", sys.stdin)
+        data = stream.read(MAX_SOURCE_BYTES + 1)
         return (read_source(data, "<stdin>") if isinstance(data, bytes) else data), "<stdin>"
     return read_source(path), path
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from orccad_app.commands.arguments import (MAX_SECONDS, add_file, add_mission, bounded_int,
+from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
                                            factor, non_negative_int, refuse_overwriting,
                                            seconds)
 
@@ -35,7 +35,8 @@ def register(sub) -> None:
                             description="Run the mission in the timed executive (Module-Tasks "
                                         "on simulated processors, MuJoCo plant) and print a "
                                         "report.")
-    add_file(parser)
+    parser.add_argument("file", nargs="?", metavar="FILE",
+                        help="the .orc file (may also come after --inject specs)")
     add_mission(parser)
     parser.add_argument("--until", type=seconds, default=None, metavar="S",
                         help="simulated-time limit [s] (default 60, or the robot type's "
@@ -43,10 +44,10 @@ def register(sub) -> None:
                              "the mission is still running then")
     parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
                         help="seed of execution times and sensor noise (default 0)")
-    parser.add_argument("--inject", action="append", default=[], metavar="SIG@T",
+    parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
-                             "repeat the flag for several injections")
+                             "several specs may follow one flag, or repeat the flag")
     parser.add_argument("--set", action="append", default=[], dest="overrides",
                         metavar="ROBOT.PARAM=V",
                         help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
@@ -68,6 +69,17 @@ def register(sub) -> None:
     parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
     parser.set_defaults(func=run)
+
+
+def _file_after_injections(args: argparse.Namespace) -> str:
+    """The .orc file: the positional argument, or the word after the --inject specs that is
+    not one (``orccad run --inject A@1 FILE``: a spec always holds '@')."""
+    if args.file is None and args.inject and "@" not in args.inject[-1]:
+        args.file = args.inject.pop()
+    if args.file is None:
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError("orccad run: the .orc file is missing (orccad run FILE ...)")
+    return args.file
 
 
 def _injection(text: str):
@@ -147,6 +159,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict, sensor_ports)
 
+    _file_after_injections(args)
     injections = [_injection(text) for text in args.inject]
     _warn_first_instant(injections)
     overrides = PlanOverrides.from_arguments(args.overrides, args.timing)

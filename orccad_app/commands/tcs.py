@@ -22,7 +22,9 @@ from orccad_app.commands.arguments import (add_file, add_format, add_mission, ad
 
 __all__ = ["register", "run", "MAX_PROCESSORS"]
 
-#: Most processors a placement is searched on (its cost grows with processors × modules).
+#: Most processors a placement is searched on (its cost grows with processors × modules); the
+#: same figure as ``orccad_app.tcs.placement.MAX_PROCESSORS`` (not imported here: it would load
+#: networkx when the parser is built).
 MAX_PROCESSORS = 256
 
 
@@ -68,7 +70,6 @@ def register(sub) -> None:
 
 def _instance(source, args: argparse.Namespace):
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.plugins.host import default_host
     from orccad_app.robottask.model import instantiate
 
     program = source.program
@@ -80,7 +81,9 @@ def _instance(source, args: argparse.Namespace):
     robots = {r.name: r for r in program.robots}
     if args.mission is None:
         found = source.instances.defaults.get(task.name)
-        return found if found is not None else instantiate(task, robots, default_host())
+        if found is None and source.host is not None:  # (instantiating it says why not)
+            found = instantiate(task, robots, source.host)
+        return found
     from orccad_app.pipeline import compose_mission, select_mission
 
     sites = compose_mission(source, select_mission(source, args.mission)).sites
@@ -101,11 +104,9 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.mission.tcs_bridge import task_tcs
     from orccad_app.pipeline import load
     from orccad_app.tcs.bus_delay import BusModel
-    from orccad_app.tcs.placement import check_placement_size
     from orccad_app.tcs.report import analyse, to_dict, to_dot, to_text
 
     refuse_overwriting(args.output, args.file)
-    check_placement_size(args.processors)
     source = load(args.file)
     source.print_warnings()
     instance = _instance(source, args)

@@ -20,13 +20,13 @@ from typing import TYPE_CHECKING, Any
 from orccad_app.control.params import ParamSpec, Resolver, resolve_params
 
 if TYPE_CHECKING:
-    from orccad_app.control.laws import ControlLaw
+    from orccad_app.control.laws.base import ControlLaw
     from orccad_app.control.robot import RobotType
     from orccad_app.control.task_functions import TaskFunction
     from orccad_app.control.trajectories import Trajectory
 
 __all__ = ["ComponentKind", "TrajectoryKind", "TaskFunctionKind", "LawKind", "DefaultModule",
-           "STANDARD_SCHEME"]
+           "STANDARD_SCHEME", "Spec"]
 
 
 @dataclass(frozen=True)
@@ -107,3 +107,20 @@ class LawKind(ComponentKind):
                task_function: TaskFunction) -> ControlLaw:
         """A fresh law (its own integrator state) for ``robot`` and ``task_function``."""
         return self.factory(self.resolve_params(params), robot, task_function)
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A kind and its validated ``params``."""
+
+    kind: ComponentKind
+    params: Mapping[str, Any]
+
+    @property
+    def name(self) -> str:
+        """The kind's name."""
+        return self.kind.name
+
+    def build(self, *deps: Any) -> Any:
+        """A fresh object: ``kind.factory(params, *deps)`` (robot, task function…)."""
+        return self.kind.factory(dict(self.params), *deps)

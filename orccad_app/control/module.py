@@ -28,20 +28,17 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
-import numpy as np
 
-from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
+from orccad_app.control.context import ModuleContext
+from orccad_app.control.errors import ControlError, InvalidParameter
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
-
-if TYPE_CHECKING:
-    from orccad_app.control.robot import RobotType
-    from orccad_app.control.spec import Spec
+from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
 
 __all__ = [
     "PORT_TYPES",
+    "PortDirection",
     "PortSpec",
     "ParamSpec",
     "Timing",
@@ -49,109 +46,6 @@ __all__ = [
     "ModuleKind",
     "ModuleInstance",
 ]
-
-#: Value types a port can carry. ``vector`` values are ``numpy.ndarray`` of length ``dim``.
-PORT_TYPES: tuple[str, ...] = ("vector", "float", "bool", "event", "string")
-
-
-@dataclass(frozen=True, slots=True)
-class PortSpec:
-    """A typed port of a module kind or robot.
-
-    ``direction`` is ``"in"`` (the module reads it) or ``"out"`` (it writes it). A robot's
-    sensors are ``out`` ports (``arm.q -> ctrl.q``) and its actuators ``in`` ports
-    (``ctrl.tau -> arm.tau``). ``dim`` is the length of a ``vector`` port; ``None`` in a
-    kind's declaration means "fixed at creation" (the robot's number of joints, the task
-    function's dimension); instances always carry concrete dims. An input with
-    ``required=False`` may stay unconnected: the module then falls back to a documented
-    default (e.g. velocity estimated by differences).
-    """
-
-    name: str
-    direction: str
-    type: str
-    dim: int | None = None
-    required: bool = True
-    doc: str = ""
-
-    def __post_init__(self) -> None:
-        if self.direction not in ("in", "out"):
-            raise ControlError(f"port {self.name!r}: direction must be 'in' or 'out', "
-                               f"got {self.direction!r}")
-        if self.type not in PORT_TYPES:
-            raise ControlError(f"port {self.name!r}: type must be one of "
-                               f"{', '.join(PORT_TYPES)}, got {self.type!r}")
-        if self.dim is not None and (self.type != "vector" or self.dim < 1):
-            raise ControlError(f"port {self.name!r}: dim {self.dim!r} needs a vector "
-                               "type and a positive size")
-
-    def with_dim(self, dim: int | None) -> PortSpec:
-        """A copy with ``dim`` set (vector ports only; other types stay dimensionless)."""
-        if self.type != "vector":
-            return self
-        return PortSpec(self.name, self.direction, self.type, dim, self.required, self.doc)
-
-    def check_value(self, value: Any) -> None:
-        """Raise :class:`DimensionMismatch` if ``value`` does not fit this port."""
-        if self.type == "vector" and self.dim is not None:
-            size = np.asarray(value).shape
-            if size != (self.dim,):
-                raise DimensionMismatch(
-                    f"port {self.name!r} expects a vector of {self.dim}, got shape {size}")
-
-
-@dataclass(frozen=True, slots=True)
-class Timing:
-    """Timing of a Module-Task: ``period_ns``, ``wcet_ns`` and optional ``bcet_ns`` [ns].
-
-    With ``bcet_ns`` the executive may draw execution times in ``[bcet_ns, wcet_ns]``.
-    """
-
-    period_ns: int
-    wcet_ns: int
-    bcet_ns: int | None = None
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.period_ns, int) or self.period_ns <= 0:
-            raise ControlError(f"timing: period_ns must be a positive integer, "
-                               f"got {self.period_ns!r}")
-        if not isinstance(self.wcet_ns, int) or self.wcet_ns < 0:
-            raise ControlError(f"timing: wcet_ns must be a non-negative integer, "
-                               f"got {self.wcet_ns!r}")
-        if self.bcet_ns is not None and not 0 <= self.bcet_ns <= self.wcet_ns:
-            raise ControlError(f"timing: bcet_ns must be in [0, wcet_ns={self.wcet_ns}], "
-                               f"got {self.bcet_ns!r}")
-
-    @classmethod
-    def from_ms(cls, period_ms: float, wcet_ms: float, bcet_ms: float | None = None) -> Timing:
-        """Build from milliseconds (rounded to the nanosecond)."""
-        bcet = None if bcet_ms is None else round(bcet_ms * 1e6)
-        return cls(round(period_ms * 1e6), round(wcet_ms * 1e6), bcet)
-
-
-@dataclass(frozen=True)
-class ModuleContext:
-    """What a module instance may know about its Robot-Task.
-
-    ``robot`` is the robot type the task runs on; ``task_function`` and ``law`` are the
-    task's validated :class:`~orccad_app.control.spec.Spec` s (each module builds its own
-    fresh object from them, so modules never share state); ``duration_s`` is the task's
-    nominal duration T [s]. Build one by names with
-    :func:`orccad_app.control.spec.module_context`.
-    """
-
-    robot: RobotType | None = None
-    task_function: Spec | None = None
-    law: Spec | None = None
-    duration_s: float | None = None
-    robot_name: str | None = None
-
-    def require_robot(self, who: str) -> RobotType:
-        """The robot, or a :class:`ControlError` saying ``who`` needs one."""
-        if self.robot is None:
-            raise ControlError(f"{who} needs a robot (the Robot-Task's 'on ROBOT')")
-        return self.robot
-
 
 class ModuleKind(ABC):
     """A kind of Module-Task, registered by a plugin.

@@ -31,7 +31,7 @@ from orccad_app.control.params import ParamSpec
 from orccad_app.control.task_functions import TaskFunction
 from orccad_app.control.trajectories import Sample
 
-__all__ = ["TrajectoryModule", "ControlLawModule", "MODULE_KINDS"]
+__all__ = ["TrajectoryModule", "ControlLawModule"]
 
 
 def _reference_ports(ref: str, direction: str, required: bool) -> tuple[PortSpec, ...]:
@@ -176,6 +176,3 @@ class _ControlLawInstance(ModuleInstance):
         out = self.law.command(t_s, q, qdot, reference)
         return {"tau": out.tau, "e": out.e, "saturated": bool(out.saturated.any())}
 
-
-#: The built-in generic module kinds, registered by the ``orccad_control`` plugin.
-MODULE_KINDS: tuple[ModuleKind, ...] = (TrajectoryModule(), ControlLawModule())

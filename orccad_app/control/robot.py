@@ -29,7 +29,7 @@ import numpy as np
 
 from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.errors import ControlError
-from orccad_app.control.module import PortSpec, Timing
+from orccad_app.control.ports import PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
 from orccad_app.control.plant_extension import PlantExtension
 

@@ -16,12 +16,11 @@ Robot-Task.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any, Protocol
 
+from orccad_app.control.context import ModuleContext
 from orccad_app.control.errors import ControlError
-from orccad_app.control.kinds import ComponentKind
-from orccad_app.control.module import ModuleContext
+from orccad_app.control.kinds import Spec
 from orccad_app.control.params import ParamSpec, as_call
 
 __all__ = ["Spec", "KindLookup", "resolve", "module_context"]
@@ -32,29 +31,12 @@ class _Lookup(Protocol):
 
 
 class KindLookup(Protocol):
-    """What :func:`resolve` needs: one registry per category (see ``orccad_app.plugins``)."""
+    """What :func:`resolve` needs: one registry per category (see ``orccad_app.plugin_host``)."""
 
     robot_types: _Lookup
     control_laws: _Lookup
     task_functions: _Lookup
     trajectories: _Lookup
-
-
-@dataclass(frozen=True)
-class Spec:
-    """A kind and its validated ``params``."""
-
-    kind: ComponentKind
-    params: Mapping[str, Any]
-
-    @property
-    def name(self) -> str:
-        """The kind's name."""
-        return self.kind.name
-
-    def build(self, *deps: Any) -> Any:
-        """A fresh object: ``kind.factory(params, *deps)`` (robot, task function…)."""
-        return self.kind.factory(dict(self.params), *deps)
 
 
 def _trajectory_resolver(registries: KindLookup):

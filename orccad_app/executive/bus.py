@@ -9,7 +9,7 @@ then is delivered: its callback runs in an event of class ``DELIVERY``, so a val
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
 from orccad_app.diagnostics import OrccadError
@@ -36,7 +36,7 @@ class BusStats:
     """
 
     messages: int = 0
-    by_kind: dict[str, int] | None = None
+    by_kind: dict[str, int] = field(default_factory=dict)
     busy_ns: int = 0
     queued_ns: int = 0
     max_queued_ns: int = 0
@@ -75,8 +75,8 @@ class Bus:
         self._queue: deque[list[Any]] = deque()
         self._busy = False
         self._transfer_start = 0
-        self._kernel: Kernel | None = None
-        self._hooks: Hooks | None = None
+        self._kernel: Kernel  # set by attach(), before the run
+        self._hooks: Hooks
 
     def attach(self, kernel: Kernel, hooks: Hooks) -> None:
         """Bind to a simulation's kernel and observer hooks (done by the Simulation)."""

@@ -1,4 +1,4 @@
-"""Run-time channels: one per connection, implementing its protocol (DESIGN.md §5 table).
+"""Run-time channels: one per connection, implementing its protocol (docs/design.md, the protocols table).
 
 A channel's state lives on the consumer side. Between Module-Tasks on different processors a
 value crosses the bus (:mod:`orccad_app.executive.bus`): it becomes visible to the consumer when
@@ -288,6 +288,7 @@ class AsynSynD(Channel):
         return BLOCK
 
     def _answer(self, job: Job) -> None:
+        assert self.bus is not None  # only ever called back by the bus
         self.bus.send("reply", self.label, (self.value, job), self._reply)
 
     @staticmethod
@@ -347,7 +348,7 @@ class SensorChannel(Channel):
 
     __slots__ = ("plant", "port")
 
-    def __init__(self, connection: Connection, consumer: JobOwner, plant: Any) -> None:
+    def __init__(self, connection: Connection, consumer: JobOwner | None, plant: Any) -> None:
         super().__init__(connection, None, consumer, None, None)
         self.plant = plant
         self.port = connection.producer_port

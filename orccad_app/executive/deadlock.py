@@ -57,7 +57,8 @@ def describe_cycle(cycle: list[Job], now_ns: int) -> DeadlockError:
     for job in cycle:
         operation = "read" if job.start_ns < 0 else "write"
         parts.append(f"{job.runtime.name}.{job.blocked_port} ({operation}, "
-                     f"{job.blocked_protocol}) waits for {job.waits_for.name}")
+                     f"{job.blocked_protocol}) waits for "
+                     f"{job.waits_for.name if job.waits_for is not None else '?'}")
     ports = tuple(f"{job.runtime.name}.{job.blocked_port}" for job in cycle)
     message = f"deadlock at t = {now_ns} ns: " + "; ".join(parts)
     return DeadlockError(message, ports, now_ns)

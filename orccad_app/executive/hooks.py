@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 from orccad_app.executive.observer import HOOKS, Observer, listeners
 
 __all__ = ["Hooks"]
@@ -12,6 +15,24 @@ class Hooks:
 
     __slots__ = HOOKS
 
+    on_release: list[Callable[..., None]]
+    on_start: list[Callable[..., None]]
+    on_preempt: list[Callable[..., None]]
+    on_resume: list[Callable[..., None]]
+    on_compute_end: list[Callable[..., None]]
+    on_finish: list[Callable[..., None]]
+    on_overrun: list[Callable[..., None]]
+    on_block: list[Callable[..., None]]
+    on_unblock: list[Callable[..., None]]
+    on_read: list[Callable[..., None]]
+    on_write: list[Callable[..., None]]
+    on_signal: list[Callable[..., None]]
+    on_message: list[Callable[..., None]]
+    on_activate: list[Callable[..., None]]
+    on_kill: list[Callable[..., None]]
+    on_param: list[Callable[..., None]]
+    on_deadlock: list[Callable[..., None]]
+
     def __init__(self, observers: list[Observer]) -> None:
         for hook in HOOKS:
             setattr(self, hook, listeners(observers, hook))
@@ -20,4 +41,5 @@ class Hooks:
         """Recompute the listeners in place (holders of this object see the change)."""
         fresh = Hooks(observers)
         for hook in HOOKS:
-            getattr(self, hook)[:] = getattr(fresh, hook)
+            listening: list[Any] = getattr(self, hook)
+            listening[:] = getattr(fresh, hook)

@@ -25,6 +25,8 @@ class JobOwner(Protocol):
     name: str
     priority: int
     stats: TaskStats
+    job: Job | None
+    """The Module-Task's unfinished job, if any."""
 
     def compute(self, job: Job) -> None:
         """``job`` got its processor for the first time: run the compute object."""

@@ -53,7 +53,8 @@ class EventClass(IntEnum):
 def stream_key(name: str) -> tuple[int, int, int, int]:
     """The spawn key of the random stream called ``name`` (see the module docstring)."""
     digest = hashlib.sha256(name.encode("utf-8")).digest()
-    return tuple(int.from_bytes(digest[i:i + 4], "big") for i in range(0, 16, 4))
+    a, b, c, d = (int.from_bytes(digest[i:i + 4], "big") for i in range(0, 16, 4))
+    return a, b, c, d
 
 
 class Kernel:

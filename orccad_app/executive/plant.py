@@ -1,4 +1,4 @@
-"""Plant coupling: a MuJoCo model advanced between events (DESIGN.md §5, RR-1801 §6.1).
+"""Plant coupling: a MuJoCo model advanced between events (docs/design.md, *Plant coupling*; RR-1801 §6.1).
 
 :class:`MujocoPlant` wraps an MJCF model as the physical resource of a TCS. Its ports:
 
@@ -112,7 +112,8 @@ class MujocoPlant:
         self._time_ns = 0
         self.saturations = 0
         """Actuator writes that the torque limits clamped."""
-        self._kernel: Kernel | None = None
+        self._kernel: Kernel  # set by attach(), before the run
+        self._attached = False
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
         self._warning_total = sum(self._warnings)
@@ -154,13 +155,14 @@ class MujocoPlant:
 
     def inject(self, fault: str, value: Any) -> None:
         """Apply the extension's fault ``fault`` now (``--inject ROBOT.FAULT=VALUE@T``)."""
-        faults = self.extension.faults if self.extension is not None else {}
-        if fault not in faults:
+        extension = self.extension
+        if extension is None or fault not in extension.faults:
+            faults = extension.faults if extension is not None else {}
             raise OrccadError(f"plant '{self.name}' has no fault '{fault}' "
                               f"(faults: {', '.join(faults) or 'none'})")
-        if self._kernel is not None:
+        if self._attached:
             self.advance_to(self._kernel.now)
-        self.extension.inject(fault, value)
+        extension.inject(fault, value)
 
     def _per_port(self, label: str, values: Mapping[str, float] | None) -> dict[str, float]:
         values = dict(values or {})
@@ -188,6 +190,7 @@ class MujocoPlant:
     def attach(self, kernel: Kernel) -> None:
         """Bind to the simulation's kernel (clock and random streams)."""
         self._kernel = kernel
+        self._attached = True
 
     # -- coupling ----------------------------------------------------------------------------
 
@@ -293,21 +296,6 @@ class MujocoPlant:
         if port == "tau" and port not in self._readers:
             return self.data.ctrl.copy()
         return np.asarray(self._readers[port](), dtype=float)
-
-    def peek(self, port: str) -> np.ndarray:
-        """The physical value sensor ``port`` measures at the plant's current time: no noise,
-        quantization or sensor fault (an extension's ``true_value``); it neither advances the
-        plant nor draws random numbers, so an observer's look cannot change the run."""
-        extension = self.extension
-        if extension is not None and port in extension.sensors:
-            true_value = getattr(extension, "true_value", extension.read)
-            return np.array(true_value(port), dtype=float)
-        return self._readers[port]()
-
-    @property
-    def sensor_ports(self) -> tuple[str, ...]:
-        """The names of the sensor ports."""
-        return tuple(self._readers)
 
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""

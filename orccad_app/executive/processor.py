@@ -78,8 +78,8 @@ class Processor:
         self._busy_mark = 0
         self._finish_entry: list | None = None
         self._dispatch_pending = False
-        self._kernel: Kernel | None = None
-        self._hooks: Hooks | None = None
+        self._kernel: Kernel  # set by attach(), before the run
+        self._hooks: Hooks
 
     def attach(self, kernel: Kernel, hooks: Hooks) -> None:
         """Bind to a simulation's kernel and observer hooks (done by the Simulation)."""

@@ -46,10 +46,11 @@ class _SignalCallback(Observer):
     """Adapts a plain ``callback(t_ns, name, value)`` to the observer interface."""
 
     def __init__(self, callback: Callable[[int, str, Any], None]) -> None:
-        self.on_signal = callback  # type: ignore[method-assign]
+        self._callback = callback
 
-    def on_signal(self, t_ns: int, name: str, value: Any) -> None:  # replaced per instance
+    def on_signal(self, t_ns: int, name: str, value: Any) -> None:
         """Forward to the callback."""
+        self._callback(t_ns, name, value)
 
 
 @dataclass(frozen=True, slots=True)
@@ -145,9 +146,9 @@ class Simulation:
         for runtime in self.tasks.values():
             task = runtime.task
             for port in task.inputs:
-                connection = tcs.feeding(f"{task.name}.{port.name}")
-                if connection is not None:
-                    runtime.reads.append((port.name, self.channels[connection.label]))
+                feeding = tcs.feeding(f"{task.name}.{port.name}")
+                if feeding is not None:
+                    runtime.reads.append((port.name, self.channels[feeding.label]))
             for port in task.outputs:
                 runtime.writes.append((port.name, port.is_event, None))
                 for channel in writes.get(f"{task.name}.{port.name}", ()):

@@ -103,9 +103,9 @@ class ModuleTaskRuntime:
             self._kernel.cancel(job.wake_entry)
             for _, channel in self.reads:
                 channel.cancel(job)
-            for _, _, channel in self.writes:
-                if channel is not None:
-                    channel.cancel(job)
+            for _, _, written in self.writes:
+                if written is not None:
+                    written.cancel(job)
             self.processor.abort(job)
 
     def set_param(self, name: str, value: Any) -> None:
@@ -138,11 +138,11 @@ class ModuleTaskRuntime:
         self._read(job)
 
     def _duration(self) -> int:
-        if self._rng is None:
+        bcet = self.task.bcet_ns
+        if self._rng is None or bcet is None:
             return self.task.wcet_ns
         if not self._draws:
-            block = self._rng.integers(self.task.bcet_ns, self.task.wcet_ns, endpoint=True,
-                                       size=_DRAW_BLOCK)
+            block = self._rng.integers(bcet, self.task.wcet_ns, endpoint=True, size=_DRAW_BLOCK)
             self._draws = block.tolist()[::-1]
         return self._draws.pop()
 

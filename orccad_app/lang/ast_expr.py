@@ -6,15 +6,20 @@ Also the dataclass decorator every AST node uses: frozen, slotted, keyword-only.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
+from typing import TypeVar, Union, dataclass_transform
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
 __all__ = ["node", "VALUE_TYPES", "PreSignal", "PreValue", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
            "LastValue", "Unary", "Binary", "Arg", "Call", "Expr"]
 
-#: The decorator of every AST node class.
-node = dataclass(frozen=True, slots=True, kw_only=True)
+_Node = TypeVar("_Node", bound=type)
+
+
+@dataclass_transform(frozen_default=True, kw_only_default=True)
+def node(cls: _Node) -> _Node:
+    """The decorator of every AST node class: a frozen, slotted, keyword-only dataclass."""
+    return dataclass(frozen=True, slots=True, kw_only=True)(cls)  # type: ignore[return-value]
 
 #: Value types of signals, variables and parameters.
 VALUE_TYPES: frozenset[str] = frozenset({"int", "float", "bool", "string", "vector", "duration"})

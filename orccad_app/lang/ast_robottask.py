@@ -11,7 +11,7 @@ __all__ = ["PROTOCOLS", "DEFAULT_PROTOCOL", "Param", "PortRef", "Module", "Conne
            "SignalPrecondition", "MeasurePrecondition", "ExceptionType", "Adjust",
            "ExceptionDecl", "MeasurePostcondition", "SignalPostcondition", "RobotTask"]
 
-#: Port-to-port communication protocols (DESIGN.md §5).
+#: Port-to-port communication protocols (docs/design.md).
 PROTOCOLS: tuple[str, ...] = (
     "asyn/asyn", "syn/syn", "asyn/syn", "syn/asyn",
     "asyn/synF", "synF/asyn", "asyn/synD", "asyn/synDF",

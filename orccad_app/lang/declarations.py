@@ -104,7 +104,7 @@ def check_formula(formula: ast.Formula, where: str, signals: set[str],
                   problems: Problems, robots: set[str] | None = None) -> None:
     """Atoms of a property or assumption: signals of the mission, known RTs/exceptions,
     declared robots and known functions in signal atoms (their ports are typed against the
-    robot types by :mod:`orccad_app.verify.signal_types`)."""
+    robot types by :mod:`orccad_app.lang.signal_types`)."""
     if isinstance(formula, ast.FCompare):
         for expr in (formula.left, formula.right):
             _check_signal_expr(expr, where, robots, problems)

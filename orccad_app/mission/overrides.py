@@ -30,6 +30,7 @@ from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.lang.limits import MAX_DURATION_NS, MIN_PERIOD_NS
 from orccad_app.mission.plan import MissionPlan, plan_composition
 
 __all__ = ["ParamOverride", "NoiseOverride", "TimingOverride", "TimingField", "PlanOverrides",
@@ -110,8 +111,10 @@ class PlanOverrides:
     def arguments(self) -> list[str]:
         """The ``orccad run`` arguments that give these overrides (``--set``, ``--timing``)."""
         args: list[str] = []
-        for item in (*self.params, *self.noise):
+        for item in self.params:
             args += ["--set", item.text()]
+        for noise in self.noise:
+            args += ["--set", noise.text()]
         for timing in self.timings:
             args += ["--timing", timing.text()]
         return args
@@ -166,9 +169,12 @@ def parse_timing(text: str) -> TimingOverride:
     if isinstance(value, bool) or not value >= 0:
         raise OrccadError(f"--timing {text}: the time must be a number >= 0 ms")
     field = TimingField(field_name)
+    if float(value) * 1e6 > MAX_DURATION_NS:
+        raise OrccadError(f"--timing {text}: at most one year (the longest duration)")
     value_ns = int(round(float(value) * 1e6))
-    if field is TimingField.PERIOD and value_ns <= 0:
-        raise OrccadError(f"--timing {text}: a period must be > 0 ms")
+    if field is TimingField.PERIOD and value_ns < MIN_PERIOD_NS:
+        raise OrccadError(f"--timing {text}: a period must be at least 1 us (0.001 ms), as "
+                          "in the language")
     return TimingOverride(task, module, field, value_ns)
 
 
@@ -256,14 +262,14 @@ def plan_with_overrides(source: Any, mission: ast.Mission, overrides: PlanOverri
     with ``overrides`` (see the module docstring); ``composition``: the mission's
     :class:`~orccad_app.robottask.composition.Composition` when the caller has it already."""
     from orccad_app.pipeline import compose_mission
-    from orccad_app.plugins.host import default_host
+    from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import instantiate
 
     composition = composition or compose_mission(source, mission)
     if not overrides:
         instances = {site.number: source.instance(site.stmt) for site in composition.sites}
         return plan_composition(composition, instances)
-    host = default_host()
+    host = source.host if source.host is not None else PluginHost.load()
     robots = robot_declarations({r.name: r for r in source.program.robots}, host, overrides)
     instances = {}
     for site in composition.sites:

@@ -219,7 +219,7 @@ def plan_composition(composition: Composition,
         instance = instances[site.number]
         robot = instance.robot_name
         if robot not in plants:
-            robot_type = instance.context.robot
+            robot_type = instance.context.require_robot(f"Robot-Task '{site.task}'")
             plants[robot] = _plant_spec(robot, robot_type, _initial_q(instance))
             tcs.add(robot_resource(robot, robot_type))
         names = add_instance(tcs, instance, prefix)

@@ -32,11 +32,13 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.mission.plan import MissionPlan
+from orccad_app.mission.run import MissionRun
 from orccad_app.properties.recorder import PropertyRecorder
 from orccad_app.verify.checker import applicable
 from orccad_app.verify.formula import atoms, from_ast
 from orccad_app.verify.monitor import Verdict, ltl_verdict
-from orccad_app.verify.signal_types import formula_unit, port_signals
+from orccad_app.lang.signal_types import formula_unit, port_signals
 from orccad_app.verify.stl import StlFormula, robustness, translate
 
 __all__ = ["PropertyKind", "PropertyResult", "PropertyMonitor", "Verdict", "results_dict"]
@@ -58,7 +60,8 @@ class PropertyResult:
     :param kind: :class:`PropertyKind`.
     :param verdict: :class:`~orccad_app.verify.monitor.Verdict` (true, false, undecided).
     :param robustness: signal properties: the robustness at time 0 (may be ``±inf``);
-        ``None`` for LTL properties.
+        ``None`` for LTL properties and when a sampled value was not a number (a diverged
+        plant: the verdict is then ``undecided``).
     :param unit: the robustness's unit (``[m]``), ``""`` when unknown or mixed.
     :param samples: the instants (LTL) or samples (signal) the run gave it.
     """
@@ -75,7 +78,8 @@ class PropertyResult:
         ``robustness_infinite`` is ``"+inf"`` or ``"-inf"``)."""
         value = self.robustness
         finite = value is not None and math.isfinite(value)
-        infinite = None if value is None or finite else ("+inf" if value > 0 else "-inf")
+        infinite = ("+inf" if value > 0 else "-inf") if value is not None and \
+            math.isinf(value) else None
         return {"name": self.name, "kind": self.kind.value, "verdict": self.verdict.value,
                 "robustness": value if finite else None, "robustness_infinite": infinite,
                 "unit": self.unit, "samples": self.samples}
@@ -91,10 +95,25 @@ class _Signal:
     prop: ast.Property
     stl: StlFormula
     unit: str
+    task_errors: dict[str, int]
 
 
-def _robot_types(plan: Any) -> dict[str, Any]:
+def _robot_types(plan: MissionPlan) -> dict[str, Any]:
     return {site.instance.robot_name: site.instance.context.robot for site in plan.sites}
+
+
+def _check_task_error(prop: ast.Property, robot: str, dim: int, plan: MissionPlan) -> None:
+    """``robot.e`` was typed as a vector of the robot's joints: every control law on the
+    robot must write an error of that size (a Cartesian task may not)."""
+    for site in plan.sites:
+        if site.instance.robot_name != robot or not site.error_module:
+            continue
+        module = plan.tcs.modules[site.error_module]
+        size = next((port.dim for port in module.ports if port.name == "e"), dim)
+        if size != dim:
+            raise OrccadError(f"property '{prop.name}': {robot}.e has {size} components in "
+                              f"Robot-Task '{site.task}', not the robot's {dim} joints",
+                              prop.loc)
 
 
 class PropertyMonitor:
@@ -104,7 +123,8 @@ class PropertyMonitor:
     :meth:`results` after.
     """
 
-    def __init__(self, program: ast.Program, mission: ast.Mission, mission_run: Any) -> None:
+    def __init__(self, program: ast.Program, mission: ast.Mission,
+                 mission_run: MissionRun) -> None:
         self.mission = mission
         plan = mission_run.plan
         self.period_ns = int(plan.tick_ns)
@@ -117,22 +137,28 @@ class PropertyMonitor:
         for _, formula in self._ltl:
             keys |= atoms(formula)
         ports: set[tuple[str, str]] = set()
+        task_errors: dict[str, int] = {}
         for signal in self._signal:
             keys |= set(signal.stl.events.values())
             ports |= {(c.robot, c.port) for c in signal.stl.ports.values()}
-        self.recorder = PropertyRecorder(mission_run, keys, ports, self.period_ns)
+            task_errors.update(signal.task_errors)
+        self.recorder = PropertyRecorder(mission_run, keys, ports, self.period_ns, task_errors)
         if props:
             mission_run.add_observer(self.recorder)
 
-    def _signal_property(self, prop: ast.Property, plan: Any, mission_run: Any) -> _Signal:
+    def _signal_property(self, prop: ast.Property, plan: MissionPlan,
+                         mission_run: MissionRun) -> _Signal:
         robot_types = _robot_types(plan)
         ports = port_signals(prop.formula, robot_types)
         for robot, _ in ports:
             if robot not in mission_run.sim.plants:  # pragma: no cover - one plant per robot
                 raise OrccadError(f"property '{prop.name}': robot '{robot}' has no plant in "
                                   f"mission '{self.mission.name}'", prop.loc)
+        errors = {p.robot: p.dim for p in ports.values() if p.task_error}
+        for robot, dim in errors.items():
+            _check_task_error(prop, robot, dim, plan)
         stl = translate(prop.formula, ports, self.period_ns)
-        return _Signal(prop, stl, formula_unit(ports))
+        return _Signal(prop, stl, formula_unit(ports), errors)
 
     @property
     def properties(self) -> list[ast.Property]:
@@ -142,19 +168,15 @@ class PropertyMonitor:
     def results(self) -> list[PropertyResult]:
         """The verdict of every property on the run recorded so far, in file order."""
         recorder = self.recorder
-        found = {}
+        found: list[tuple[ast.Property, PropertyResult]] = []
         for prop, formula in self._ltl:
             verdict = ltl_verdict(formula, recorder.letters, recorder.ended)
-            found[prop.name] = PropertyResult(prop.name, PropertyKind.LTL, verdict,
-                                              samples=len(recorder.letters))
+            found.append((prop, PropertyResult(prop.name, PropertyKind.LTL, verdict,
+                                               samples=len(recorder.letters))))
         for signal in self._signal:
-            found[signal.prop.name] = self._signal_result(signal)
-        order = [p.name for p in self.properties]
-        return [found[name] for name in sorted(order, key=self._file_order)]
-
-    def _file_order(self, name: str) -> tuple:
-        prop = next(p for p in self.properties if p.name == name)
-        return (prop.loc.line, prop.loc.col)
+            found.append((signal.prop, self._signal_result(signal)))
+        found.sort(key=lambda item: (item[0].loc.line, item[0].loc.col))
+        return [result for _, result in found]
 
     def _signal_result(self, signal: _Signal) -> PropertyResult:
         recorder = self.recorder
@@ -171,8 +193,10 @@ class PropertyMonitor:
         if not count:  # the run never reacted: nothing to judge
             return PropertyResult(signal.prop.name, PropertyKind.SIGNAL, Verdict.UNDECIDED,
                                   None, signal.unit, 0)
-        value = robustness(signal.stl, samples)
-        verdict = (Verdict.TRUE if value > 0 else Verdict.FALSE if value < 0
-                   else Verdict.UNDECIDED)
+        value: float | None = None
+        if not any(math.isnan(v) for name in signal.stl.ports for v in samples[name]):
+            value = robustness(signal.stl, samples)  # else a diverged plant: no verdict
+        verdict = (Verdict.UNDECIDED if value is None or value == 0
+                   else Verdict.TRUE if value > 0 else Verdict.FALSE)
         return PropertyResult(signal.prop.name, PropertyKind.SIGNAL, verdict, value,
                               signal.unit, count)

@@ -12,7 +12,8 @@ every reaction of the automaton, the periodic ticks included) and keeps:
 - **samples** (signal properties), one per period ``period_ns`` (the mission's tick), sample
   ``k`` standing for ``[k·P, (k+1)·P)``: the monitored ports' true values at ``k·P``
   (:meth:`~orccad_app.executive.plant.MujocoPlant.observe`: no noise, no sensor fault) and the
-  event atoms true in some reaction of the interval.
+  event atoms true in some reaction of the interval. ``robot.e`` is the last task error written
+  by the control law of a Robot-Task on the robot (zero before the first write).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from orccad_app.mission.observer import MissionObserver
+from orccad_app.mission.run import MissionRun
 from orccad_app.robottask.labels import RtLabel
 
 __all__ = ["PropertyRecorder"]
@@ -36,12 +38,21 @@ class PropertyRecorder(MissionObserver):
     :param keys: the atom keys the properties mention (``("started", "Dive")``…).
     :param ports: the ``(robot, port)`` pairs the signal properties read.
     :param period_ns: the sampling period of signal properties [ns].
+    :param task_errors: robot -> dimension of its task error ``robot.e``, for the robots
+        whose ``e`` is read (among ``ports``).
     """
 
-    def __init__(self, mission_run: Any, keys: Iterable[tuple],
-                 ports: Iterable[tuple[str, str]], period_ns: int) -> None:
+    def __init__(self, mission_run: MissionRun, keys: Iterable[tuple],
+                 ports: Iterable[tuple[str, str]], period_ns: int,
+                 task_errors: dict[str, int] | None = None) -> None:
         self._run = mission_run
         self.period_ns = period_ns
+        self._task_errors = dict(task_errors or {})
+        self._error_robot = {site.error_module: site.instance.robot_name
+                             for site in mission_run.plan.sites
+                             if site.error_module
+                             and site.instance.robot_name in self._task_errors}
+        self._errors = {robot: np.zeros(dim) for robot, dim in self._task_errors.items()}
         self._keys = sorted(set(keys))
         self._ports = sorted(set(ports))
         self._status = "running"
@@ -62,11 +73,18 @@ class PropertyRecorder(MissionObserver):
             self._new_sample()
         self.sample_events[index].update(letter)
 
+    def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        if port == "e" and module in self._error_robot:
+            self._errors[self._error_robot[module]] = np.array(value, dtype=float)
+
     def _new_sample(self) -> None:
         self.sample_events.append(set())
         plants = self._run.sim.plants
         for (robot, port), values in self.port_values.items():
-            values.append(plants[robot].observe(port))
+            if port == "e" and robot in self._task_errors:
+                values.append(self._errors[robot])
+            else:
+                values.append(plants[robot].observe(port))
 
     def _letter(self, present: set[str], status: str) -> frozenset:
         labels = None

@@ -1,4 +1,4 @@
-"""Static deadlock analysis of a TCS: cycles of blocking protocol ends (DESIGN.md §5).
+"""Static deadlock analysis of a TCS: cycles of blocking protocol ends (docs/design.md, *Deadlock*).
 
 Each job of a Module-Task performs its port operations in a fixed cyclic order: read every input
 (declaration order), then write every output (declaration order, one write per connection). An

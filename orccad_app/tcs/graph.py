@@ -16,7 +16,7 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.tcs.connection import Connection
 from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
 from orccad_app.tcs.port import PortDirection, Port
-from orccad_app.tcs.protocol import Protocol
+from orccad_app.tcs.protocol import Protocol, parse_protocol
 
 __all__ = ["TCS"]
 
@@ -60,7 +60,7 @@ class TCS:
                 location: SourceLocation | None = None) -> Connection:
         """Connect ``producer`` (``"module.port"``, an output) to ``consumer`` (an input)."""
         try:
-            connection = Connection(producer, consumer, protocol, location)
+            connection = Connection(producer, consumer, parse_protocol(protocol), location)
         except OrccadError as error:
             raise OrccadError(error.message, location) from None
         out_port = self._port(connection.producer_module, connection.producer_port, location)

@@ -83,7 +83,7 @@ class ModuleTask(_HasPorts):
     :param priority: fixed priority, 1 is the highest.
     :param bcet_ns: best-case execution time [ns]; when given, each job's duration is drawn
         uniformly in ``[bcet_ns, wcet_ns]`` from the run's seed; else every job takes ``wcet_ns``.
-    :param deadline_ns: relative deadline [ns]; defaults to the period.
+    :param deadline_ns: relative deadline [ns]; 0 (the default): the period.
     :param offset_ns: delay of the first release after activation [ns].
     :param kind: the module kind (plugin name), informative.
     :param activation: :attr:`Activation.PERIODIC` (released every ``period_ns``) or
@@ -101,7 +101,7 @@ class ModuleTask(_HasPorts):
     processor: str = "cpu0"
     priority: int = 1
     bcet_ns: int | None = None
-    deadline_ns: int | None = None
+    deadline_ns: int = 0
     offset_ns: int = 0
     kind: str = ""
     location: SourceLocation | None = None
@@ -142,7 +142,7 @@ class ModuleTask(_HasPorts):
             if self.bcet_ns > self.wcet_ns:
                 raise OrccadError(f"module-task '{self.name}': bcet_ns {self.bcet_ns} exceeds "
                                   f"wcet_ns {self.wcet_ns}")
-        if self.deadline_ns is None:
+        if not self.deadline_ns:  # 0 (or None): the period
             self.deadline_ns = self.period_ns
         positive_int("deadline_ns", self.deadline_ns, True)
 

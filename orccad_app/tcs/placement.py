@@ -37,8 +37,9 @@ from orccad_app.tcs.timebase import NS_PER_S
 __all__ = ["Placement", "traffic_graph", "suggest_placement", "check_placement_size",
            "MAX_PROCESSORS", "MAX_MODULE_TASKS"]
 
-MAX_PROCESSORS = 1024
-"""Largest number of processors a placement is computed for."""
+MAX_PROCESSORS = 256
+"""Largest number of processors a placement is computed for (``orccad tcs --processors``
+refuses more)."""
 
 MAX_MODULE_TASKS = 500
 """Largest number of Module-Tasks a placement is computed for."""

@@ -4,14 +4,20 @@ A :class:`Port` belongs to a module (a :class:`~orccad_app.tcs.module_task.Modul
 physical resource such as the plant) and is named ``module.port`` in the TCS. Data flows from
 producer (``out``) ports to consumer (``in``) ports; a port of type ``event`` carries signals that
 the executive also surfaces to its observers.
+
+One port vocabulary: the direction is the control library's
+:class:`~orccad_app.control.ports.PortDirection`, shared with the ports module kinds and robot
+types declare (:class:`~orccad_app.control.ports.PortSpec`); a :class:`Port` is such a port
+placed in a TCS, with the value read before any write (the mission layer converts one into the
+other, :func:`orccad_app.mission.tcs_bridge.tcs_port`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
 from typing import Any
 
+from orccad_app.control.ports import PortDirection
 from orccad_app.diagnostics import OrccadError
 
 __all__ = ["PortDirection", "Port", "EVENT", "NUMERIC_TYPES", "split_port_ref"]
@@ -21,15 +27,6 @@ EVENT = "event"
 
 NUMERIC_TYPES = frozenset({"float", "int", "bool"})
 """Types whose default initial value is zero (a scalar if ``dim == 1``, else a vector)."""
-
-
-class PortDirection(str, Enum):
-    """Which way values cross a port."""
-
-    IN = "in"
-    """A consumer port: the module reads it at the start of each job."""
-    OUT = "out"
-    """A producer port: the module writes it at the end of each job's compute phase."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -9,7 +9,8 @@ dispatch and the resumption of the job it preempts, the executive's model).
 **Fixed priority** (Audsley et al., with jitter): from readiness the job completes within
 :math:`w_i = C'_i + \\sum_{j \\in hp(i)} \\max(1, \\lceil (w_i + J_j)/T_j \\rceil)\\,C'_j`
 (``hp`` holds the other Module-Tasks of priority number lower *or equal*: ties interfere both
-ways; the ``max(1, ·)`` counts the jobs released with it when ``C'_i = 0``).
+ways). The caller charges a job of no execution time 1 ns: such a job ends when it is
+dispatched, after the releases of that instant, and a 1 ns job's bound covers that.
 
 **EDF** (Spuri; Zhang & Burns' QPA): a job's absolute deadline is its release + ``D_i``; every
 deadline is met iff :math:`h(t) = \\sum_j \\max(0, \\lfloor (t + J_j - D_j)/T_j \\rfloor + 1)\\,
@@ -213,7 +214,7 @@ def edf_response_ns(task: Load, others: list[Load], busy_ns: int,
     offsets ``a`` in ``[-J_i, L)`` where a count changes. Jobs with the same absolute deadline
     count as interfering (the executive breaks such ties by priority). ``None`` when there
     are more offsets than ``points_budget`` (the caller keeps a coarser bound)."""
-    offsets = set()
+    offsets: set[int] = set()
     for x in [task, *others]:
         if x is task:
             first = -task.jitter_ns

@@ -1,4 +1,4 @@
-"""The 8 synchronization protocols of a connection (RR-1801 §3.2.1, DESIGN.md §5).
+"""The 8 synchronization protocols of a connection (RR-1801 §3.2.1, docs/design.md).
 
 A protocol is named ``producer_end/consumer_end``; its ends say who may block:
 

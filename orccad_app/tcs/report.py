@@ -30,7 +30,7 @@ from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
 from orccad_app.tcs.placement import Placement, suggest_placement, traffic_graph
 from orccad_app.tcs.schedulability import Schedulability, TaskTiming, analyse_timing
 
-__all__ = ["TcsReport", "analyse", "to_dot", "to_text", "to_dict", "to_json"]
+__all__ = ["TcsReport", "analyse", "to_dot", "to_text", "to_dict"]
 
 
 @dataclass
@@ -128,8 +128,8 @@ def _schedule_lines(report: TcsReport) -> list[str]:
 
 
 def _bus_lines(timing: Schedulability) -> list[str]:
-    if not timing.messages:
-        return []
+    if not any(m.transfer_ns for m in timing.messages):
+        return []  # no transfer time given (--bus-us): messages cost nothing
     load = timing.messages[0].bus_utilization
     lines = [f"  bus: utilization {load:.3f}, worst delay {_ms(timing.bus_busy_ns)} ms "
              f"(FIFO); per message class:"]
@@ -249,9 +249,3 @@ def to_dict(report: TcsReport) -> dict[str, Any]:
         "traffic_hz": {f"{u}--{v}": d["traffic"] for u, v, d in traffic.edges(data=True)},
     }
 
-
-def to_json(report: TcsReport) -> str:
-    """:func:`to_dict` as strict JSON (a non-finite number is an error, never ``NaN``)."""
-    import json
-
-    return json.dumps(to_dict(report), indent=2, allow_nan=False)

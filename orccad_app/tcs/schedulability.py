@@ -209,7 +209,7 @@ class _Analysis:
                                 self._delay(delays, c, "request"), self.remote(c))
             if skip is None and done is None:
                 self.fail(task.name, f"no bound on its read of {c.label}")
-            elif skip is None and done > cap:
+            elif skip is None and done is not None and done > cap:
                 self.fail(task.name, f"its read of {c.label} can wait beyond its deadline "
                                      f"or its next release")
             tau = cap if done is None else min(done, cap)
@@ -252,8 +252,10 @@ class _Analysis:
         for task in self.tasks:
             by_processor.setdefault(task.processor, []).append(task)
         for processor, tasks in by_processor.items():
-            loads = [Load(t.name, self.costs[t.name], t.min_interarrival_ns, self.cap(t),
-                          new.read[t.name], t.priority) for t in tasks]
+            # a job of no execution time counts 1 ns: it then ends no later than the bound
+            # says even when it is dispatched after same-instant releases (integer time)
+            loads = [Load(t.name, max(1, self.costs[t.name]), t.min_interarrival_ns,
+                          self.cap(t), new.read[t.name], t.priority) for t in tasks]
             try:
                 if self.scheduler == "edf":
                     self._edf(processor, tasks, loads, new)

@@ -1,6 +1,6 @@
 """The run report: one JSON object (``orccad run --json``) or a text for people.
 
-JSON keys (DESIGN.md §7, issue 6):
+JSON keys (docs/design.md, *Command line*):
 
 - ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;

@@ -40,7 +40,7 @@ SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
 
 PHASES = {1: "waiting", 2: "measuring", 3: "running"}
-"""Name of each phase of a Robot-Task's RTA (DESIGN.md §3: pre-conditions, then control)."""
+"""Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
 class Pace:

@@ -201,6 +201,8 @@ def check_text(report: Any) -> str:
         if not outcome.holds and outcome.script is not None:
             script = outcome.script.text([f"counterexample to {outcome.name}"])
             lines += [f"        | {line}" for line in script.splitlines()]
+    for prop in getattr(report, "signal_properties", ()):
+        lines.append(f"  --    signal property {prop.name}: not proved; judged on runs")
     failed = sum(1 for o in report.outcomes if not o.holds)
     lines.append("all properties hold" if not failed else f"{failed} failed")
     return "\n".join(lines)
@@ -290,6 +292,11 @@ class LiveSession:
         self._trace = _Spool()
         self.run.add_observer(self.observer)
         self.run.add_observer(TraceRecorder(self._trace.writer))
+        from orccad_app.properties import PropertyMonitor
+
+        self.monitor = PropertyMonitor(source.program, source.program.mission(self.mission),
+                                       self.run)
+        """Judges the mission's properties on the run (``orccad run``'s list)."""
         self.result: Any = None
 
     def execute(self) -> Any:
@@ -302,10 +309,12 @@ class LiveSession:
         return self.result
 
     def report(self) -> str:
-        """``orccad run``'s text report of the finished run, the real-time ratio computed
-        without the time spent paused (said on the second line)."""
+        """``orccad run``'s text report of the finished run (with the properties' verdicts),
+        the real-time ratio computed without the time spent paused (said on the second
+        line)."""
         import dataclasses
 
+        from orccad_app.properties.report import format_properties
         from orccad_app.trace import format_report
 
         paused = self.pace.paused_s
@@ -316,6 +325,9 @@ class LiveSession:
         lines = format_report(result, self.observer.injected).split("\n")
         if paused > 0:
             lines.insert(2, f"  paused {paused:.2f} s of wall time, not counted above")
+        verdicts = self.monitor.results()
+        if verdicts:
+            lines.extend(format_properties(verdicts))
         return "\n".join(lines)
 
     def export(self, path: str, *, overwrite: bool = False,

@@ -121,6 +121,9 @@ def from_ast(formula: ast.Formula) -> F:
         return atom(("status", formula.status))
     if isinstance(formula, ast.FBool):
         return TRUE if formula.value else FALSE
+    if isinstance(formula, ast.FCompare) or getattr(formula, "bounds", None) is not None:
+        raise OrccadError("a signal property (signal comparison or time bound) is judged on "
+                          "runs, not by the model checker", formula.loc)
     if isinstance(formula, ast.FUnary):
         return _unary(formula.op, from_ast(formula.operand), formula)
     if isinstance(formula, ast.FBinary):

@@ -37,7 +37,7 @@ from typing import Mapping, Sequence
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
-from orccad_app.verify.signal_types import PortSignal
+from orccad_app.lang.signal_types import PortSignal
 
 __all__ = ["StlFormula", "translate", "robustness", "event_key", "Component"]
 
@@ -185,7 +185,7 @@ class _Writer:
 def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
               period_ns: int) -> StlFormula:
     """``formula`` in rtamt's STL over samples of period ``period_ns``; ``ports`` are its typed
-    ports (:func:`~orccad_app.verify.signal_types.port_signals`). Raises a located
+    ports (:func:`~orccad_app.lang.signal_types.port_signals`). Raises a located
     :class:`OrccadError` when a time bound is not a multiple of the period."""
     writer = _Writer(ports, period_ns)
     text = writer.formula(formula)

@@ -13,8 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from orccad_app.control.robot import RobotType
-from orccad_app.plugins import hookimpl
+from orccad_app.plugin_api import RobotType, hookimpl
 
 __all__ = ["MJCF_PATH", "ARM3DOF", "orccad_register_robot_types"]
 

@@ -8,7 +8,7 @@ observers (:mod:`orccad_auv.observers`). See docs/auv.md.
 
 from __future__ import annotations
 
-from orccad_app.plugins import hookimpl
+from orccad_app.plugin_api import hookimpl
 
 from orccad_auv.control import MODULE_KINDS
 from orccad_auv.observers import OBSERVERS
@@ -38,6 +38,6 @@ def orccad_register_module_kinds(register):
 @hookimpl
 def orccad_plugins_loaded(host):
     if "orccad_observers" not in host.plugins:
-        from orccad_app.diagnostics import OrccadError
+        from orccad_app.plugin_api import OrccadError
 
         raise OrccadError("orccad_auv needs the observer library (plugin orccad_observers)")

@@ -44,8 +44,14 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.control import ModuleInstance, ModuleKind, ParamSpec, PortSpec, Timing
-from orccad_app.control.errors import ControlError
+from orccad_app.plugin_api import (
+    ControlError,
+    ModuleInstance,
+    ModuleKind,
+    ParamSpec,
+    PortSpec,
+    Timing,
+)
 
 from orccad_auv.vehicle import THRUST_LIMITS_N, THRUSTER_ARM_M
 

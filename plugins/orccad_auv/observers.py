@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.control import ParamSpec, PortSpec, Timing
+from orccad_app.plugin_api import ParamSpec, PortSpec, Timing
 from orccad_observers import Monitor, ObserverKind
 
 __all__ = ["BatteryLow", "Leak", "DepthLimit", "AltitudeLow", "AtWaypoint", "GpsFix",

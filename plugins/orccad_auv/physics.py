@@ -42,7 +42,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from orccad_app.control.plant_extension import PlantExtension
+from orccad_app.plugin_api import PlantExtension
 
 __all__ = ["AuvPhysics", "SENSOR_DIMS", "G_MPS2"]
 

@@ -21,10 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
-from orccad_app.control import ParamSpec, PortSpec, RobotType
-from orccad_app.control.constraints import ActuatorConstraint
-from orccad_app.control.params import resolve_params
-from orccad_app.control.robot import RobotPort
+from orccad_app.plugin_api import (
+    ActuatorConstraint,
+    ParamSpec,
+    PortSpec,
+    RobotPort,
+    RobotType,
+    resolve_params,
+)
 
 from orccad_auv.physics import SENSOR_DIMS, AuvPhysics
 

@@ -6,11 +6,13 @@ Registers the trajectories (``cosine``, ``min_jerk``, ``constant``), the task fu
 loaded through the ``orccad`` entry-point group like any third-party plugin.
 """
 
-from orccad_app.control.laws import LAW_KINDS
-from orccad_app.control.module_kinds import MODULE_KINDS
-from orccad_app.control.task_functions import TASK_FUNCTION_KINDS
-from orccad_app.control.trajectories import TRAJECTORY_KINDS
-from orccad_app.plugins import hookimpl
+from orccad_app.plugin_api import (
+    LAW_KINDS,
+    MODULE_KINDS,
+    TASK_FUNCTION_KINDS,
+    TRAJECTORY_KINDS,
+    hookimpl,
+)
 
 __all__ = [
     "orccad_register_control_laws",

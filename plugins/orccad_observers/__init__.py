@@ -13,7 +13,7 @@ Observers are module kinds with an ``event`` output (see :mod:`orccad_observers.
 =====================================  =====================================================
 """
 
-from orccad_app.plugins import hookimpl
+from orccad_app.plugin_api import hookimpl
 
 from orccad_observers.base import Monitor, ObserverInstance, ObserverKind
 from orccad_observers.kinematics import Singularity

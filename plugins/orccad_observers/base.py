@@ -15,8 +15,14 @@ from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from typing import Any, ClassVar
 
-from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
-from orccad_app.control.params import ParamSpec
+from orccad_app.plugin_api import (
+    ModuleContext,
+    ModuleInstance,
+    ModuleKind,
+    ParamSpec,
+    PortSpec,
+    Timing,
+)
 
 __all__ = ["Monitor", "ObserverKind", "ObserverInstance", "EVENT_PORT", "VALUE_PORT"]
 

@@ -7,9 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.control.errors import ControlError
-from orccad_app.control.module import ModuleContext, PortSpec
-from orccad_app.control.params import REQUIRED, ParamSpec
+from orccad_app.plugin_api import REQUIRED, ControlError, ModuleContext, ParamSpec, PortSpec
 
 from orccad_observers.base import Monitor, ObserverKind
 

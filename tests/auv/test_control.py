@@ -9,15 +9,16 @@ import pytest
 
 from orccad_app.control import ModuleContext
 from orccad_app.diagnostics import OrccadError
-from orccad_app.plugins import default_host
+from orccad_app.plugin_host import PluginHost
 from orccad_auv import AUV
 from orccad_auv.control import FAR_M, allocate
 
+HOST = PluginHost.load()
 CONTEXT = ModuleContext(robot=AUV, robot_name="auv")
 
 
 def _module(kind: str, **params):
-    instance = default_host().module_kind(kind).create(params, CONTEXT)
+    instance = HOST.module_kind(kind).create(params, CONTEXT)
     instance.init()
     return instance
 
@@ -56,7 +57,7 @@ def test_los_guidance_corrects_the_cross_track_error():
 
 
 def test_lawnmower_lanes_and_resume_from_the_nearest_point():
-    kind = default_host().module_kind("lawnmower_guidance")
+    kind = HOST.module_kind("lawnmower_guidance")
     points = kind.waypoints({"area": [10.0, 0.0, 50.0, 20.0], "spacing": 10.0})
     assert points == [(10, 0), (50, 0), (50, 10), (10, 10), (10, 20), (50, 20)]
     guide = _module("lawnmower_guidance", area=[10.0, 0.0, 50.0, 20.0], depth=8.0)

@@ -15,6 +15,7 @@ from orccad_app.campaign.executor import PoolBackend
 from orccad_app.campaign.runner import Campaign, CampaignOptions
 from orccad_app.campaign.spec import load_spec
 from orccad_app.mission.injection import parse_injection
+from orccad_app.properties import results_dict
 from orccad_app.trace import InjectionRecord, report_dict
 
 from .conftest import AUV, orccad
@@ -64,10 +65,19 @@ def test_the_replay_command_reproduces_the_run_bit_for_bit(leak_spec, tmp_path):
     # the same run in this process, through the campaign's adapter
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault)
                 for i in map(parse_injection, record.setting.injections)]
-    here = report_dict(CompiledMission(AUV).mission_run(record.setting).run(), injected)
+    compiled = CompiledMission(AUV)
+    mission_run = compiled.mission_run(record.setting)
+    monitor = compiled.monitor(mission_run)
+    here = report_dict(mission_run.run(), injected)
+    here["properties"] = results_dict(monitor.results())
     for data in (report, here):
         data.pop("wall_time_s")
+    assert {p["name"] for p in report.pop("properties")} >= {"leak_surfaces"}  # orccad run's
     assert report == here
+    for verdict in report["properties"]:  # the campaign's row holds the same verdicts
+        found = record.properties[verdict["name"]]
+        assert found.robustness == verdict["robustness"]
+        assert found.holds == {"true": True, "false": False}.get(verdict["verdict"])
     assert (report["status"], report["reason"]) == (record.status, record.reason)
     assert report["sim_time_s"] == record.sim_time_s
 
@@ -155,9 +165,14 @@ def test_dask_local_cluster_gives_the_same_rows_as_the_pool(leak_spec, tmp_path)
             distributed.Client(cluster) as client:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
         result = _campaign(leak_spec, tmp_path / "d.db", 4).run(backend=DaskBackend(client))
+        command = orccad("campaign", AUV, "--spec", str(leak_spec), "--runs", "4",
+                         "--cluster", cluster.scheduler_address, "--db",
+                         str(tmp_path / "cli.db"), "--json")
     assert result.backend == "dask"
+    assert command.returncode == 0, command.stderr
+    assert json.loads(command.stdout)["backend"] == "dask"
     _campaign(leak_spec, tmp_path / "p.db", 4).run(backend=PoolBackend(2))
-    assert _rows(tmp_path / "d.db") == _rows(tmp_path / "p.db")
+    assert _rows(tmp_path / "d.db") == _rows(tmp_path / "p.db") == _rows(tmp_path / "cli.db")
 
 
 @pytest.mark.slow

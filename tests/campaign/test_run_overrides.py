@@ -59,7 +59,7 @@ def test_a_heavier_vehicle_cannot_get_its_gps_fix():
 
 def test_timing_overrides_reach_the_module_tasks():
     result = orccad("run", PID, "--timing", "TrackPID.ctrl.period_ms=2",
-                    "TrackPID.ctrl.wcet_ms=0.5", "--json")
+                    "--timing", "TrackPID.ctrl.wcet_ms=0.5", "--json")
     data = json.loads(result.stdout)
     ctrl = data["modules"]["TrackPID.ctrl"]
     assert ctrl["period_s"] == 0.002 and ctrl["wcet_s"] == 0.0005 and ctrl["jobs"] == 2000

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from orccad_app.control.spec import module_context
-from orccad_app.plugins import PluginHost
+from orccad_app.plugin_host import PluginHost
 
 REPO = Path(__file__).resolve().parents[2]
 ARM_XML = REPO / "robots" / "arm3dof.xml"

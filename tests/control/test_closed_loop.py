@@ -7,7 +7,8 @@ both are stable. docs/control.md records the figures.
 
 import pytest
 
-from orccad_app.control.closed_loop import main, simulate
+from orccad_app.commands.closed_loop import main
+from orccad_app.control.closed_loop import simulate
 from orccad_app.control.errors import ControlError
 from orccad_app.control.spec import resolve
 

@@ -4,7 +4,7 @@ import contextlib
 import io
 import re
 
-from orccad_app.control.closed_loop import main
+from orccad_app.commands.closed_loop import main
 
 from tests.control.conftest import REPO
 
@@ -28,7 +28,7 @@ def test_the_python_example_prints_what_the_doc_shows():
 
 
 def test_the_closed_loop_figures_are_those_the_command_prints(capsys):
-    assert "python -m orccad_app.control.closed_loop\n" in blocks("sh")
+    assert "python -m orccad_app.commands.closed_loop\n" in blocks("sh")
     printed = next(block for block in blocks("text") if block.startswith("arm3dof:"))
     assert main([]) == 0
     assert capsys.readouterr().out == printed

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from orccad_app.control.errors import DimensionMismatch, InvalidParameter
-from orccad_app.control.laws import (
+from orccad_app.control.catalogue import (
     COMPUTED_TORQUE_KIND,
     GENERIC_KIND,
     PID_KIND,

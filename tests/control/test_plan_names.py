@@ -1,4 +1,4 @@
-"""Every name PLAN_LANGUAGE.md §3 uses exists, and the TrackPID example composes.
+"""Every name docs/language.md uses exists, and the TrackPID example composes.
 
 The Robot-Task ``TrackPID`` (arm3dof, joint_tracking of cosine(q0, omega = pi), pid(kp, kv,
 ki), modules traj/ctrl/jl and the observers named after ``from``) is assembled from the

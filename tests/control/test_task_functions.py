@@ -4,12 +4,8 @@ import numpy as np
 import pytest
 
 from orccad_app.control.errors import ControlError, DimensionMismatch
-from orccad_app.control.task_functions import (
-    CARTESIAN_TRACKING,
-    JOINT_TRACKING,
-    CartesianTracking,
-    JointTracking,
-)
+from orccad_app.control.catalogue import CARTESIAN_TRACKING, JOINT_TRACKING
+from orccad_app.control.task_functions import CartesianTracking, JointTracking
 from orccad_app.control.trajectories import Constant, Cosine, MinimumJerk, Sample
 
 REF = Sample(pos=np.array([1.0, 0.5, -0.2]), vel=np.array([0.1, 0.0, -0.3]),

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from orccad_app.control.errors import DimensionMismatch, InvalidParameter
-from orccad_app.control.trajectories import COSINE, MINIMUM_JERK, Constant, Cosine, MinimumJerk
+from orccad_app.control.catalogue import COSINE, MINIMUM_JERK
+from orccad_app.control.trajectories import Constant, Cosine, MinimumJerk
 
 Q0 = np.array([0.5, 0.5, 0.5])
 

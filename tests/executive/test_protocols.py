@@ -1,4 +1,4 @@
-"""The 8 protocols of DESIGN.md §5, one test per row: who blocks when, and what is read.
+"""The 8 protocols of docs/design.md (*The 8 port-synchronization protocols*), one test per row: who blocks when, and what is read.
 
 Scenario "fast producer" unless stated: P (period 4 ms) -> C (period 10 ms), both 1 ms of
 execution on one processor, C at the higher priority. P writes 1, 2, 3, ... at the end of its

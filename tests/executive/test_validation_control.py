@@ -22,7 +22,7 @@ from orccad_app.control.closed_loop import simulate
 from orccad_app.control.spec import resolve
 from orccad_app.executive import Observer
 from orccad_app.mission.run import MissionRun
-from orccad_app.plugins import default_host
+from orccad_app.plugin_host import PluginHost
 
 
 class _Samples(Observer):
@@ -38,7 +38,7 @@ class _Samples(Observer):
 
 
 def _direct_pid():
-    host = default_host()
+    host = PluginHost.load()
     robot = host.robot_types.get("arm3dof")
     task = resolve(host, "task function", ("joint_tracking", {
         "trajectory": ("cosine", {"q0": [0.5, 0.5, 0.5], "omega": math.pi})}))

@@ -128,6 +128,20 @@ def test_every_command_keeps_the_promises(argv, json_doc):
     check_outcome(run_orccad(argv), json_doc=json_doc)
 
 
+def test_a_short_campaign_keeps_the_promises(tmp_path):
+    argv = ["campaign", PID, "--spec", str(ROOT / "missions" / "arm_pid.campaign.toml"),
+            "--runs", "2", "--until", "0.05", "--workers", "1", "--json",
+            "--db", str(tmp_path / "c.db")]
+    check_outcome(run_orccad(argv, budget_s=120), json_doc=True, budget_s=120)
+
+
+def test_a_short_falsification_keeps_the_promises(tmp_path):
+    argv = ["falsify", PID, "--spec", str(ROOT / "missions" / "arm_pid.campaign.toml"),
+            "-p", "bounded", "--budget", "2", "--until", "0.05", "--workers", "1",
+            "--trace", str(tmp_path / "worst.csv")]
+    check_outcome(run_orccad(argv, budget_s=120), budget_s=120)
+
+
 def _injections(examples: int):
     @_settings(examples)
     @given(st.lists(inject_specs(), min_size=1, max_size=2))

@@ -1,4 +1,4 @@
-"""The examples of PLAN_LANGUAGE.md, verbatim, for the lang tests."""
+"""The examples of docs/language.md, for the lang tests."""
 
 DECLARATIONS = """\
 robot arm : arm3dof;                          // a physical resource, of a type a plugin provides

@@ -83,7 +83,7 @@ def _load(tmp_path, prop: str):
 @pytest.mark.parametrize("prop, message", [
     ("property M.p: always (rover.q[0] < 1.0);", "unknown robot 'rover'"),
     ("property M.p: always (arm.depth < 1.0);", "robot 'arm' .* has no port 'depth'; its "
-                                                "ports: q, qdot, tau"),
+                                                "ports: q, qdot, tau, e"),
     ("property M.p: always (arm.q < 1.0);", "compares scalars; this side is a vector of 3"),
     ("property M.p: always (arm.q[3] < 1.0);", r"has 3 components \(\[0\] to \[2\]\)"),
     ("property M.p: always (abs(arm.q) < 1.0);", r"abs\(\) takes a scalar"),

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from orccad_app.plugins import PluginHost
+from orccad_app.plugin_host import PluginHost
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -15,7 +15,7 @@ import pytest
 from orccad_app.control.closed_loop import simulate
 from orccad_app.control.module import ModuleContext
 from orccad_app.control.spec import module_context, resolve
-from orccad_app.plugins import PluginHost
+from orccad_app.plugin_host import PluginHost
 
 from tests.plugins.conftest import REPO, install_dist_info, run_cli
 

@@ -3,7 +3,7 @@
 import inspect
 import re
 
-from orccad_app.plugins import REGISTRATION_HOOKS, STARTUP_HOOKS, hookspecs
+from orccad_app.plugin_host import REGISTRATION_HOOKS, STARTUP_HOOKS, hookspecs
 
 from tests.plugins.conftest import REPO
 
@@ -41,9 +41,14 @@ def test_the_example_plugin_implements_every_hook():
         assert f"def {name}(" in example, name
 
 
-def test_the_facade_has_one_method_per_hook():
-    from orccad_app.plugins.hooks import OrccadHooks
+def test_registration_is_driven_by_one_table():
+    from orccad_app.plugin_host import CATEGORIES, PluginHost, Registries
 
-    methods = {name for name, _ in inspect.getmembers(OrccadHooks, inspect.isfunction)
-               if not name.startswith("_")}
-    assert methods == {name.removeprefix("orccad_") for name in hooks()}
+    registration = {name for name in hooks() if name.startswith("orccad_register_")}
+    assert [c.hook for c in CATEGORIES] == [name for name, _ in REGISTRATION_HOOKS]
+    assert {c.hook for c in CATEGORIES} == registration
+    registries = Registries.empty()
+    assert [name for name, _ in registries.all()] == [c.attribute for c in CATEGORIES]
+    host = PluginHost.load()
+    for category in CATEGORIES:  # every category is filled through the same path
+        assert len(getattr(host.registries, category.attribute)) > 0, category.attribute

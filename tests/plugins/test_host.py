@@ -2,14 +2,14 @@
 
 import pytest
 
-from orccad_app.control.trajectories import COSINE, TrajectoryKind, Cosine
+from orccad_app.control.catalogue import COSINE
+from orccad_app.control.trajectories import Cosine
+from orccad_app.control.kinds import TrajectoryKind
 from orccad_app.control.params import ParamSpec
 from orccad_app.diagnostics import OrccadError
-from orccad_app.plugins import (
+from orccad_app.plugin_host import (
     PluginHost,
-    default_host,
     hookimpl,
-    reset_default_host,
 )
 
 from tests.plugins.conftest import install_dist_info, run_cli
@@ -88,17 +88,38 @@ def test_invalid_items_disable_their_plugin():
     assert "control law 'cosine': must be a LawKind, got TrajectoryKind" in failure.message
 
 
-def test_duplicate_names_name_the_first_provider():
+def test_a_name_clash_refuses_only_the_clashing_contribution_naming_both_plugins():
     class Clash:
         @staticmethod
         @hookimpl
         def orccad_register_trajectories(register):
             register(COSINE)
+            register(SINE)
 
     host = load(("clash", Clash()))
     [failure] = host.failures
-    assert failure.message == "trajectory 'cosine' is already provided by plugin 'orccad_control'"
+    assert failure.plugin == "clash" and not failure.disabled
+    assert failure.message == ("trajectory 'cosine' is already provided by plugin "
+                               "'orccad_control'; plugin 'clash''s trajectory 'cosine' is ignored")
     assert host.trajectories.plugin_of("cosine") == "orccad_control"
+    assert host.trajectories.plugin_of("sine") == "clash"  # its other contribution stays
+    assert "clash" in host.plugins
+
+
+def test_every_command_warns_once_on_stderr_when_a_plugin_clashes(tmp_path):
+    package = tmp_path / "clash_plugin.py"
+    package.write_text("from orccad_app.plugin_api import LAW_KINDS, hookimpl\n\n"
+                       "@hookimpl\n"
+                       "def orccad_register_control_laws(register):\n"
+                       "    register(LAW_KINDS[0])  # a second 'pid'\n", encoding="utf-8")
+    install_dist_info(tmp_path, "clash-plugin", "1.0", {"clash": "clash_plugin"})
+    result = run_cli("compile", "missions/arm_pid.orc", "--format", "summary",
+                     pythonpath=tmp_path)
+    assert result.returncode == 0, result.stderr
+    warning = ("orccad: warning: plugin 'clash': orccad_register_control_laws: control law "
+               "'pid' is already provided by plugin 'orccad_control'; plugin 'clash''s control "
+               "law 'pid' is ignored")
+    assert result.stderr.count(warning) == 1, result.stderr
 
 
 def test_a_misspelt_hook_is_caught_by_check_pending():
@@ -153,12 +174,12 @@ def test_module_kind_finds_module_kinds_and_observers(host):
     assert host.provider("observers", "at_rest") == "orccad_observers"
 
 
-def test_the_default_host_is_loaded_once():
-    reset_default_host()
-    first = default_host()
-    assert default_host() is first and "arm3dof" in first.robot_types
-    reset_default_host()
-    assert default_host() is not first
+def test_there_is_no_process_wide_host_each_load_is_independent():
+    import orccad_app.plugin_host.host as module
+
+    first, second = PluginHost.load(), PluginHost.load()
+    assert first is not second and "arm3dof" in first.robot_types
+    assert not hasattr(module, "default_host")
 
 
 def test_the_environment_variable_blocks_named_plugins():

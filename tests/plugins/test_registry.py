@@ -2,9 +2,9 @@
 
 import pytest
 
-from orccad_app.control.trajectories import CONSTANT, COSINE, MINIMUM_JERK
+from orccad_app.control.catalogue import CONSTANT, COSINE, MINIMUM_JERK
 from orccad_app.diagnostics import OrccadError
-from orccad_app.plugins import Registries, Registry
+from orccad_app.plugin_host import Registries, Registry
 
 
 def test_items_remember_their_plugin_in_registration_order():

@@ -23,6 +23,8 @@ property ArmPID.shoulder_tight: always (arm.q[0] < 0.9);
 property ArmPID.reaches_one: eventually[0, 2] (abs(arm.q[1] - 1.0) < 0.05);
 property ArmPID.one_end: never (done and failed);
 property ArmPID.calm_while_tracking: always (active(TrackPID) -> norm(arm.qdot) < 3.0);
+property ArmPID.error_bound: always (abs(arm.e[0]) < 1.0 and abs(arm.e[1]) < 1.0
+                                     and abs(arm.e[2]) < 1.0);
 """
 
 
@@ -55,8 +57,9 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     assert status == 1 and report["status"] == "done"
     by_name = {p["name"]: p for p in report["properties"]}
     assert list(by_name) == ["tracked_at_good_end", "terminates", "fatal_aborts",
-                             "at_rest_at_end", "shoulder_in_range", "shoulder_tight",
-                             "reaches_one", "one_end", "calm_while_tracking"]
+                             "at_rest_at_end", "shoulder_in_range", "tracking_bound",
+                             "shoulder_tight",
+                             "reaches_one", "one_end", "calm_while_tracking", "error_bound"]
     tight = by_name["shoulder_tight"]
     assert (tight["kind"], tight["verdict"], tight["unit"]) == ("signal", "false", "[rad]")
     # the shoulder follows q0 (1 + cos(pi t)) = 1.0 rad at t = 0: about 0.1 rad over 0.9
@@ -73,6 +76,11 @@ def test_a_violated_property_fails_the_run_and_a_satisfied_one_passes(arm_report
     # active(TrackPID) holds during the run: the bound decides, finite robustness [rad/s]
     calm = by_name["calm_while_tracking"]
     assert calm["verdict"] == "true" and 0.0 < calm["robustness"] < 3.0
+    # arm.e is the control law's task error: its worst component is the report's maximum
+    [task] = report["robot_tasks"]
+    assert by_name["error_bound"]["robustness"] == pytest.approx(
+        1.0 - task["tracking_error"]["max"], abs=1e-12)
+    assert 0.0 < by_name["tracking_bound"]["robustness"] < 0.05
     assert by_name["at_rest_at_end"]["samples"] == 4001  # 1 ms samples over 4 s, both ends
 
 
@@ -133,3 +141,26 @@ def test_the_api_on_an_auv_fault_that_breaks_the_depth_limit():
     assert by_name["clear_of_seabed"].verdict is Verdict.TRUE
     # a run cut by --until cannot decide these liveness/safety properties
     assert by_name["leak_surfaces"].verdict is Verdict.UNDECIDED
+
+
+def test_the_tui_report_lists_the_properties():
+    from orccad_app.tui.session import LiveSession
+
+    session = LiveSession(str(ROOT / "missions" / "arm_pid.orc"), None, lambda update: None,
+                          speed=None)
+    session.execute()
+    report = session.report()
+    assert "Properties on this run:" in report
+    assert "true      signal shoulder_in_range   robustness 0.08" in report
+
+
+def test_strict_json_of_infinite_and_missing_robustness():
+    from orccad_app.properties import PropertyResult
+
+    infinite = PropertyResult("p", PropertyKind.SIGNAL, Verdict.TRUE, float("inf"), "[m]", 3)
+    assert infinite.as_dict()["robustness"] is None
+    assert infinite.as_dict()["robustness_infinite"] == "+inf"
+    none = PropertyResult("q", PropertyKind.SIGNAL, Verdict.UNDECIDED, None, "[m]", 3)
+    assert none.as_dict()["robustness_infinite"] is None
+    text = json.dumps([infinite.as_dict(), none.as_dict()], allow_nan=False)
+    assert _strict(text)[0]["verdict"] == "true"

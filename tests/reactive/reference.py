@@ -575,7 +575,7 @@ class ReferenceReactor:
                 continue
             except _Pending:
                 stuck = True
-                for key, (decl, values) in run.emissions.items():
+                for key, (_decl, values) in run.emissions.items():
                     learned.setdefault(key, values[0])
                 continue
             if run.coherent():

@@ -99,11 +99,10 @@ mission M { run A(); run B(); }""")
 
 
 def test_parameterized_task_reused_with_different_arguments(orc):
-    from orccad_app.plugins.host import default_host
     from orccad_app.robottask.model import check_tasks
     source = orc(arm_task("T", params="kp: float = 400.0") + """
 mission M { run T(kp = 600.0); run T(); run T(kp = 800.0); }""")
-    instances = check_tasks(source.program, default_host())
+    instances = check_tasks(source.program, source.host)
     gains = sorted(i.params["kp"] for i in instances.by_run.values())
     assert gains == [400.0, 600.0, 800.0]
     t = Trace(mission_automaton(source), ["", "T.good_end", "T.good_end", "T.good_end"])

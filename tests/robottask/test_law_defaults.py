@@ -17,7 +17,6 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.pipeline import load
-from orccad_app.plugins import default_host
 from orccad_app.robottask.model import ModuleOrigin, check_tasks
 
 TRACK = """robot arm : arm3dof;
@@ -55,7 +54,7 @@ def test_tcs_shows_the_law_default_modules_and_connections(track):
 
 def test_the_default_modules_are_marked_as_the_law_s(track):
     source = load(track)
-    instances = check_tasks(source.program, default_host())
+    instances = check_tasks(source.program, source.host)
     inst = instances.defaults["Track"]
     assert {name: spec.origin for name, spec in inst.modules.items()} == {
         "traj": ModuleOrigin.LAW_DEFAULT, "ctrl": ModuleOrigin.LAW_DEFAULT,

@@ -56,10 +56,9 @@ def test_vector_dimensions_must_agree(tmp_path):
 
 
 def test_implicit_observers_are_wired_and_timed_by_their_kind():
-    from orccad_app.plugins.host import default_host
     from orccad_app.robottask.model import check_tasks
     source = load("missions/arm_pid.orc")
-    instance = check_tasks(source.program, default_host()).defaults["TrackPID"]
+    instance = check_tasks(source.program, source.host).defaults["TrackPID"]
     tracking = instance.modules["tracking_error"]
     assert tracking.implicit and tracking.timing == tracking.kind.default_timing
     wired = {str(c) for c in instance.connections if c.implicit}

@@ -131,9 +131,11 @@ class Survey:
     skipped: int
 
 
-def survey(sets_per_protocol: int, first_seed: int = 0) -> Survey:
+def survey(sets_per_protocol: int, first_seed: int = 0,
+           horizon_ns: int | None = None) -> Survey:
     """Generate ``sets_per_protocol`` sets per protocol, analyse and run each under FP and
-    EDF. Sets with a potential deadlock cycle are skipped (the static analysis rejects them)."""
+    EDF (for ``horizon_ns`` instead of the set's own horizon when given). Sets with a potential
+    deadlock cycle are skipped (the static analysis rejects them)."""
     counts: dict[tuple[str, str], Counter] = {}
     unsafe: list[str] = []
     skipped = 0
@@ -145,6 +147,8 @@ def survey(sets_per_protocol: int, first_seed: int = 0) -> Survey:
             if find_deadlock_cycles(random_set.tcs):
                 skipped += 1
                 continue
+            if horizon_ns is not None:
+                random_set.horizon_ns = horizon_ns
             for scheduler in ("fp", "edf"):
                 said_ok = random_set.analyse(scheduler).ok
                 run = random_set.run(scheduler)

@@ -94,7 +94,13 @@ def test_json_is_strict(capsys):
 
 
 def test_a_huge_placement_fails_fast_with_a_message(capsys):
+    from orccad_app.commands.tcs import MAX_PROCESSORS
+    from orccad_app.tcs.placement import MAX_PROCESSORS as PLACEMENT_MAX
+
+    assert MAX_PROCESSORS == PLACEMENT_MAX
     started = time.perf_counter()
-    assert main(["tcs", str(PID), "--task", "TrackPID", "--processors", "100000"]) == 2
-    assert "beyond the budget of 1024 processors" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as stop:
+        main(["tcs", str(PID), "--task", "TrackPID", "--processors", "100000"])
+    assert stop.value.code == 2
+    assert "expected a whole number in [1, 256], got '100000'" in capsys.readouterr().err
     assert time.perf_counter() - started < 2.0

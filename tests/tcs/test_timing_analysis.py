@@ -161,3 +161,15 @@ def test_context_switches_are_charged_twice_per_job():
     timing = analyse_timing(tcs, context_switch_ns=us(10))
     assert timing.tasks["a"].response_ns == us(320)
     assert timing.tasks["b"].response_ns == us(1020 + 2 * 320)
+
+
+def test_a_job_of_no_execution_time_waits_for_earlier_deadlines_released_with_it():
+    # found by a 400 ms run: m0 (no execution time) is dispatched after m1, whose deadline is
+    # earlier, at every common release; its syn/syn partner then waited past its deadline
+    tcs = TCS("zero")
+    tcs.add(ModuleTask("m0", ms(3), 0, Writer(()), priority=1))
+    tcs.add(ModuleTask("m1", ms(3), us(1859), Writer(()), priority=3, deadline_ns=us(2764)))
+    timing = analyse_timing(tcs, "edf")
+    assert timing.tasks["m0"].compute_end_ns >= us(1859)
+    stats = _run(tcs, ms(30), "edf")
+    assert stats["m0"].response_max_ns <= timing.tasks["m0"].response_ns

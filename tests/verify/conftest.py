@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 from orccad_app.lang.names import check
@@ -15,14 +16,20 @@ ROOT = Path(__file__).resolve().parents[2]
 CORPUS = Path(__file__).resolve().parent / "corpus"
 
 
+@functools.cache
+def _host():
+    """The installed plugins, loaded once for these tests."""
+    from orccad_app.plugin_host.host import PluginHost
+    return PluginHost.load()
+
+
 def program_of(text: str, filename: str = "test.orc"):
     """Parse and name-check ``text`` (Robot-Tasks are checked against the plugins)."""
     program = parse(text, filename)
     check(program)
     if program.robottasks:
-        from orccad_app.plugins.host import default_host
         from orccad_app.robottask.model import check_tasks
-        check_tasks(program, default_host())
+        check_tasks(program, _host())
     return program
 
 

@@ -11,7 +11,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang.parser import parse
 from orccad_app.verify.formula import from_ast
 from orccad_app.verify.monitor import Verdict, ltl_verdict
-from orccad_app.verify.signal_types import PortSignal
+from orccad_app.lang.signal_types import PortSignal
 from orccad_app.verify.stl import Component, robustness, translate
 
 INF = math.inf
@@ -124,3 +124,9 @@ def _verdict(text: str, word, ended: bool) -> Verdict:
 ])
 def test_ltl_verdicts(text, word, ended, expected):
     assert _verdict(text, word, ended) is expected
+
+
+def test_the_model_checker_refuses_a_signal_formula_rather_than_dropping_its_bounds():
+    for text in ("always[0, 1] done", "always (done -> r.x < 1.0)"):
+        with pytest.raises(OrccadError, match="judged on runs, not by the model checker"):
+            from_ast(parse(f"property p: {text};").properties[0].formula)

@@ -11,13 +11,12 @@ Gains are scalars or one value per task component.
 
 from __future__ import annotations
 
-from orccad_app.control.kinds import LawKind
 from orccad_app.control.laws.base import ControlLaw, Gains
 from orccad_app.control.laws.gains import gain_matrix
 from orccad_app.control.models import IdentityModel
 from orccad_app.control.params import ParamSpec
 
-__all__ = ["PID", "PID_KIND"]
+__all__ = ["PID"]
 
 
 class PID(ControlLaw):
@@ -39,6 +38,3 @@ class PID(ControlLaw):
                                           positive=False))
         self.model = IdentityModel(self.robot.dof)
         self.feedforward = False
-
-
-PID_KIND = LawKind("pid", "PID of eq. 8 (M = I, N = 0), anti-windup", PID.PARAMS, PID)

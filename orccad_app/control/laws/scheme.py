@@ -20,13 +20,12 @@ tracking :math:`\hat M (\ddot q_d - k_p e - k_v \dot e) + \hat N`.
 
 from __future__ import annotations
 
-from orccad_app.control.kinds import LawKind
 from orccad_app.control.laws.base import ControlLaw, Gains, build_model
 from orccad_app.control.laws.gains import adjusting_matrix, gain_matrix
 from orccad_app.control.models import MODEL_NAMES
 from orccad_app.control.params import REQUIRED, ParamSpec
 
-__all__ = ["GenericScheme", "ComputedTorque", "GENERIC_KIND", "COMPUTED_TORQUE_KIND"]
+__all__ = ["GenericScheme", "ComputedTorque"]
 
 _MODEL_PARAMS = (
     ParamSpec("perturbation", "float", 0.1, "relative model error of 'perturbed' [-]", 0.0),
@@ -76,9 +75,3 @@ class ComputedTorque(ControlLaw):
                            ki=gain_matrix(self.name, "ki", 0.0, dim, positive=False))
         self.model = build_model(p["model"], self.robot, p["perturbation"], p["seed"])
         self.feedforward = True
-
-
-GENERIC_KIND = LawKind("generic", "generic control scheme of eq. 5 (k, mu, G, D, models)",
-                       GenericScheme.PARAMS, GenericScheme)
-COMPUTED_TORQUE_KIND = LawKind("computed_torque", "computed torque with the Pinocchio model",
-                               ComputedTorque.PARAMS, ComputedTorque)

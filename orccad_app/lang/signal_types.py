@@ -5,7 +5,8 @@ A signal expression reads the ports a robot type declares (``auv.depth``, ``arm.
 whose components are ``robot.port[0]`` … ``robot.port[n-1]``. ``+ -`` apply to two scalars or
 two vectors of one dimension, ``*`` to scalars or a scalar and a vector, ``/`` to a vector or
 scalar divided by a scalar; ``norm(v)`` is the Euclidean norm of a vector (or ``abs`` of a
-scalar), ``abs`` and ``sqrt`` take scalars. A comparison takes two scalars.
+scalar), ``abs`` and ``sqrt`` take scalars. A comparison takes two scalars. Every robot also has ``robot.e``, the task error of the
+Robot-Task running on it (:data:`TASK_ERROR`).
 
 Errors carry the location of the offending expression; :func:`check_signal_properties` runs
 when a file is loaded, so ``orccad check``, ``compile`` and ``run`` refuse a bad property
@@ -20,7 +21,7 @@ from typing import Any, Mapping
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 
-__all__ = ["PortSignal", "signal_ports", "port_signals", "check_signal_properties",
+__all__ = ["PortSignal", "TASK_ERROR", "signal_ports", "port_signals", "check_signal_properties",
            "expr_dim", "formula_unit"]
 
 
@@ -33,6 +34,8 @@ class PortSignal:
     :param dim: 0 for a scalar (``float``) port, else the vector's length.
     :param unit: the port's unit as the robot type documents it (``[m]``), ``""`` if none.
     :param actuator: ``True`` for an actuator port (its value is the held command).
+    :param task_error: ``True`` for ``robot.e``: the task error written by the control law
+        of the Robot-Task running on the robot (see :data:`TASK_ERROR`).
     """
 
     robot: str
@@ -40,6 +43,13 @@ class PortSignal:
     dim: int
     unit: str = ""
     actuator: bool = False
+    task_error: bool = False
+
+
+TASK_ERROR = "e"
+"""``robot.e``: the task error of the Robot-Task running on the robot, the ``e`` output of its
+control law (a vector of the robot's degrees of freedom for joint-space tasks). Like a TCS
+port it holds its last value between writes and is zero before the first."""
 
 
 def _exprs(formula: ast.Formula):
@@ -77,7 +87,9 @@ def _port_signal(ref: ast.SPort, robot_types: Mapping[str, Any]) -> PortSignal:
             dim = 0 if port.spec.type == "float" else len(port.mj_names)
             return PortSignal(ref.robot, ref.port, dim, port.unit,
                               port.spec.direction == "in")
-    names = ", ".join(port.name for port in robot_type.ports)
+    if ref.port == TASK_ERROR:
+        return PortSignal(ref.robot, ref.port, robot_type.dof, task_error=True)
+    names = ", ".join([port.name for port in robot_type.ports] + [TASK_ERROR])
     raise OrccadError(f"robot '{ref.robot}' (type {robot_type.name}) has no port "
                       f"'{ref.port}'; its ports: {names}", ref.loc)
 

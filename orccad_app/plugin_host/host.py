@@ -8,13 +8,18 @@ Start-up (:meth:`PluginHost.load`):
    (comma-separated);
 2. ``check_pending()``: a hook implementation that matches no specification (a typo) is
    an error of its plugin;
-3. call the registration hooks of each plugin, then ``orccad_plugins_loaded``, through
-   :attr:`PluginHost.hooks` (:class:`~orccad_app.plugins.hooks.OrccadHooks`, one method
-   per hook).
+3. call the registration hook of each category of
+   :data:`~orccad_app.plugin_host.registry.CATEGORIES` (the one table registration is driven
+   by) for each plugin, then ``orccad_plugins_loaded``, through :attr:`PluginHost.hooks`
+   (:class:`~orccad_app.plugin_host.hooks.OrccadHooks`).
 
 A plugin that fails to import, fails validation, raises in a hook or registers an invalid
-or duplicate item is recorded in :attr:`PluginHost.failures` with its name, its
-contributions are withdrawn and it is unregistered; the other plugins keep working.
+item is recorded in :attr:`PluginHost.failures` with its name, its contributions are
+withdrawn and it is unregistered; the other plugins keep working. An item whose name another
+plugin already provides is refused alone (the failure names both plugins; the plugin stays).
+
+There is no process-wide host: whoever needs the registries loads one
+(:meth:`PluginHost.load`) and passes it on (``orccad_app.pipeline.load(path, host)``).
 """
 
 from __future__ import annotations
@@ -32,9 +37,9 @@ from orccad_app.control.kinds import LawKind, TaskFunctionKind, TrajectoryKind
 from orccad_app.control.module import ModuleKind
 from orccad_app.control.robot import RobotType
 from orccad_app.diagnostics import OrccadError
-from orccad_app.plugins import hookspecs
-from orccad_app.plugins.hooks import OrccadHooks, describe_error
-from orccad_app.plugins.registry import Registries, Registry
+from orccad_app.plugin_host import hookspecs
+from orccad_app.plugin_host.hooks import OrccadHooks, describe_error
+from orccad_app.plugin_host.registry import CATEGORIES, Registries, Registry
 
 __all__ = [
     "ENTRY_POINT_GROUP",
@@ -42,14 +47,14 @@ __all__ = [
     "PluginInfo",
     "PluginFailure",
     "PluginHost",
-    "default_host",
-    "reset_default_host",
 ]
 
 #: Entry-point group of ORCCAD plugins.
 ENTRY_POINT_GROUP = hookspecs.PROJECT
 #: Environment variable listing plugin names not to load, comma-separated.
 DISABLE_ENV = "ORCCAD_DISABLE_PLUGINS"
+
+_OWN_DISTRIBUTION = "orccad"
 
 _IMPL_DEFAULTS = dict(wrapper=False, hookwrapper=False, optionalhook=False,
                       tryfirst=False, trylast=False, specname=None)
@@ -67,15 +72,22 @@ class PluginInfo:
 
 @dataclass(frozen=True)
 class PluginFailure:
-    """Plugin ``plugin`` failed at ``stage`` (``import``, ``validation`` or a hook)."""
+    """Plugin ``plugin`` failed at ``stage`` (``import``, ``validation`` or a hook).
+
+    :param disabled: the plugin was disabled; ``False`` when only one contribution was
+        refused (a name another plugin already provides).
+    """
 
     plugin: str
     stage: str
     message: str
+    disabled: bool = True
 
     def format(self) -> str:
-        """One line for users: ``plugin 'x' disabled: <stage>: <message>``."""
-        return f"plugin {self.plugin!r} disabled: {self.stage}: {self.message}"
+        """One line for users: ``plugin 'x' disabled: <stage>: <message>`` (or ``plugin 'x':
+        <stage>: <message>`` when only a contribution was refused)."""
+        state = " disabled" if self.disabled else ""
+        return f"plugin {self.plugin!r}{state}: {self.stage}: {self.message}"
 
 
 class _Manager(pluggy.PluginManager):
@@ -87,6 +99,12 @@ class _Manager(pluggy.PluginManager):
             if inspect.isroutine(getattr(plugin, name, None)):
                 return dict(_IMPL_DEFAULTS)
         return opts
+
+
+def _third_party(entry_point: metadata.EntryPoint) -> bool:
+    """Sort key: built-in plugins (of the ``orccad`` distribution) before the others."""
+    dist = getattr(entry_point, "dist", None)
+    return dist is None or dist.name != _OWN_DISTRIBUTION
 
 
 def _blocked_from_env() -> set[str]:
@@ -107,7 +125,8 @@ class PluginHost:
             self.manager.set_blocked(name)
         self._started = False
         #: the typed facade that calls each hook plugin by plugin
-        self.hooks = OrccadHooks(self.manager, lambda name: name in self.plugins, self.disable)
+        self.hooks = OrccadHooks(self.manager, lambda name: name in self.plugins, self.disable,
+                                 self.refuse)
 
     # -- registries --------------------------------------------------------------------
 
@@ -164,8 +183,10 @@ class PluginHost:
         return host.start()
 
     def load_entry_points(self, group: str = ENTRY_POINT_GROUP) -> None:
-        """Import and register every plugin of ``group`` not blocked (first name wins)."""
-        for entry_point in metadata.entry_points(group=group):
+        """Import and register every plugin of ``group`` not blocked (first name wins): the
+        built-in plugins (the ``orccad`` distribution's) first, so that on a name clash the
+        built-in contribution is kept and the third-party one refused."""
+        for entry_point in sorted(metadata.entry_points(group=group), key=_third_party):
             name = entry_point.name
             if name in self.blocked or name in self.plugins:
                 continue
@@ -204,14 +225,9 @@ class PluginHost:
             return self
         self._started = True
         self._check_pending()
-        hooks, registries = self.hooks, self.registries
-        hooks.register_robot_types(registries.robot_types)
-        hooks.register_control_laws(registries.control_laws)
-        hooks.register_task_functions(registries.task_functions)
-        hooks.register_trajectories(registries.trajectories)
-        hooks.register_observers(registries.observers)
-        hooks.register_module_kinds(registries.module_kinds)
-        hooks.plugins_loaded(self)
+        for category in CATEGORIES:
+            self.hooks.register(category, self.registries[category.attribute])
+        self.hooks.plugins_loaded(self)
         return self
 
     def _check_pending(self) -> None:
@@ -232,23 +248,16 @@ class PluginHost:
         if registered is not None:
             self.manager.unregister(registered)
 
+    def refuse(self, plugin: str, stage: str, message: str) -> None:
+        """Record that one contribution of ``plugin`` was refused (the plugin stays)."""
+        self.failures.append(PluginFailure(plugin, stage, message, disabled=False))
+
+    def warn_failures(self, stream: Any = None) -> None:
+        """Print each failure once as ``orccad: warning: …`` (to stderr by default)."""
+        import sys
+        for failure in self.failures:
+            print(f"orccad: warning: {failure.format()}", file=stream or sys.stderr)
+
     def provider(self, category: str, name: str) -> str:
         """The plugin that provides ``name`` in registry ``category`` (e.g. ``observers``)."""
         return getattr(self.registries, category).plugin_of(name)
-
-
-_DEFAULT: PluginHost | None = None
-
-
-def default_host() -> PluginHost:
-    """The process-wide host, loaded from entry points on first use."""
-    global _DEFAULT
-    if _DEFAULT is None:
-        _DEFAULT = PluginHost.load()
-    return _DEFAULT
-
-
-def reset_default_host() -> None:
-    """Forget the process-wide host (tests, or after installing a plugin)."""
-    global _DEFAULT
-    _DEFAULT = None

@@ -8,23 +8,19 @@ stopping the others, and so that every registered item is attributed to its plug
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import pluggy
 
-from orccad_app.control.kinds import LawKind, TaskFunctionKind, TrajectoryKind
-from orccad_app.control.module import ModuleKind
-from orccad_app.control.robot import RobotType
 from orccad_app.diagnostics import OrccadError
-from orccad_app.plugins.registry import Registry
-
-if TYPE_CHECKING:
-    from orccad_app.plugins.host import PluginHost
+from orccad_app.plugin_host.registry import Category, NameClash, Registry
 
 __all__ = ["OrccadHooks", "describe_error"]
 
-#: ``on_failure(plugin, stage, message)``
+#: ``on_failure(plugin, stage, message)``: the plugin is disabled.
 FailureHandler = Callable[[str, str, str], None]
+#: ``on_clash(plugin, stage, message)``: one contribution of the plugin is refused.
+ClashHandler = Callable[[str, str, str], None]
 
 
 def describe_error(error: BaseException) -> str:
@@ -48,40 +44,21 @@ class OrccadHooks:
     """Calls the hooks of ``manager``'s plugins for which ``is_active(name)`` holds."""
 
     def __init__(self, manager: pluggy.PluginManager, is_active: Callable[[str], bool],
-                 on_failure: FailureHandler):
+                 on_failure: FailureHandler, on_clash: ClashHandler | None = None):
         self._manager = manager
         self._is_active = is_active
         self._on_failure = on_failure
+        self._on_clash = on_clash or on_failure
 
     # -- phase 1: registration ---------------------------------------------------------
 
-    def register_robot_types(self, registry: Registry[RobotType]) -> None:
-        """``orccad_register_robot_types`` of each plugin, into ``registry``."""
-        self._register("orccad_register_robot_types", registry)
-
-    def register_control_laws(self, registry: Registry[LawKind]) -> None:
-        """``orccad_register_control_laws`` of each plugin, into ``registry``."""
-        self._register("orccad_register_control_laws", registry)
-
-    def register_task_functions(self, registry: Registry[TaskFunctionKind]) -> None:
-        """``orccad_register_task_functions`` of each plugin, into ``registry``."""
-        self._register("orccad_register_task_functions", registry)
-
-    def register_trajectories(self, registry: Registry[TrajectoryKind]) -> None:
-        """``orccad_register_trajectories`` of each plugin, into ``registry``."""
-        self._register("orccad_register_trajectories", registry)
-
-    def register_observers(self, registry: Registry[ModuleKind]) -> None:
-        """``orccad_register_observers`` of each plugin, into ``registry``."""
-        self._register("orccad_register_observers", registry)
-
-    def register_module_kinds(self, registry: Registry[ModuleKind]) -> None:
-        """``orccad_register_module_kinds`` of each plugin, into ``registry``."""
-        self._register("orccad_register_module_kinds", registry)
+    def register(self, category: Category, registry: Registry[Any]) -> None:
+        """The registration hook of ``category`` for each plugin, into ``registry``."""
+        self._register(category.hook, registry)
 
     # -- phase 2: start-up complete ----------------------------------------------------
 
-    def plugins_loaded(self, host: PluginHost) -> None:
+    def plugins_loaded(self, host: object) -> None:
         """``orccad_plugins_loaded(host)`` of each plugin."""
         self._call_each("orccad_plugins_loaded", lambda: {"host": host})
 
@@ -89,11 +66,14 @@ class OrccadHooks:
 
     def _register(self, hook_name: str, registry: Registry[Any]) -> None:
         """Items are added only if the plugin's hook returned normally; the first invalid
-        or duplicate item fails the plugin."""
+        item fails the plugin; an item whose name another plugin already provides is refused
+        alone (the plugin's other contributions stay)."""
         for plugin, kwargs in self._call_each(hook_name, lambda: {"register": _Collector()}):
             for item in kwargs["register"].items:
                 try:
                     registry.add(item, plugin)
+                except NameClash as clash:
+                    self._on_clash(plugin, hook_name, clash.message)
                 except OrccadError as error:
                     self._on_failure(plugin, hook_name, error.message)
                     break

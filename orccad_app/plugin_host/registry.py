@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
 
 from orccad_app.control.kinds import LawKind, TaskFunctionKind, TrajectoryKind
@@ -16,9 +16,14 @@ from orccad_app.control.module import ModuleKind
 from orccad_app.control.robot import RobotType
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["Entry", "Registry", "Registries"]
+__all__ = ["Entry", "Registry", "Registries", "NameClash", "Category", "CATEGORIES"]
 
 T = TypeVar("T")
+
+
+class NameClash(OrccadError):
+    """A plugin registers a name another plugin already provides (only that item is
+    refused; the first provider keeps it)."""
 
 
 @dataclass(frozen=True)
@@ -52,7 +57,8 @@ class Registry(Generic[T]):
             raise OrccadError(f"{self.category} {name!r}: {problem}")
         if name in self._entries:
             other = self._entries[name].plugin
-            raise OrccadError(f"{self.category} {name!r} is already provided by plugin {other!r}")
+            raise NameClash(f"{self.category} {name!r} is already provided by plugin {other!r}; "
+                            f"plugin {plugin!r}'s {self.category} {name!r} is ignored")
         self._entries[name] = Entry(name, item, plugin)
 
     def remove_plugin(self, plugin: str) -> None:
@@ -115,33 +121,64 @@ def _observer(item: Any) -> str | None:
     return None if item.is_observer else "an observer needs at least one 'event' output port"
 
 
-@dataclass
-class Registries:
-    """The six registries the plugins fill."""
+@dataclass(frozen=True)
+class Category:
+    """One category of plugin contribution: a row of :data:`CATEGORIES`.
 
-    robot_types: Registry[RobotType]
-    control_laws: Registry[LawKind]
-    task_functions: Registry[TaskFunctionKind]
-    trajectories: Registry[TrajectoryKind]
-    observers: Registry[ModuleKind]
-    module_kinds: Registry[ModuleKind]
+    :param attribute: the registry's attribute on :class:`Registries` and the host.
+    :param hook: the registration hook that fills it (specified in :mod:`.hookspecs`).
+    :param label: what an item is called in messages (``"robot type"``).
+    :param check: ``check(item)``: an error message for an invalid item, else ``None``.
+    """
+
+    attribute: str
+    hook: str
+    label: str
+    check: Callable[[Any], str | None]
+
+
+#: Every category, in registration order: the one table registration is driven by (a new
+#: category is a row here and its hook specification in :mod:`.hookspecs`).
+CATEGORIES: tuple[Category, ...] = (
+    Category("robot_types", "orccad_register_robot_types", "robot type",
+             _instance_of(RobotType, "RobotType")),
+    Category("control_laws", "orccad_register_control_laws", "control law",
+             _instance_of(LawKind, "LawKind")),
+    Category("task_functions", "orccad_register_task_functions", "task function",
+             _instance_of(TaskFunctionKind, "TaskFunctionKind")),
+    Category("trajectories", "orccad_register_trajectories", "trajectory",
+             _instance_of(TrajectoryKind, "TrajectoryKind")),
+    Category("observers", "orccad_register_observers", "observer", _observer),
+    Category("module_kinds", "orccad_register_module_kinds", "module kind",
+             _instance_of(ModuleKind, "ModuleKind")),
+)
+
+
+class Registries:
+    """One :class:`Registry` per row of :data:`CATEGORIES`, by attribute
+    (``registries.robot_types``)."""
+
+    def __init__(self) -> None:
+        self._by_attribute: dict[str, Registry[Any]] = {
+            c.attribute: Registry(c.label, c.check) for c in CATEGORIES}
 
     @classmethod
     def empty(cls) -> Registries:
         """Fresh, empty registries with their item checks."""
-        return cls(
-            robot_types=Registry("robot type", _instance_of(RobotType, "RobotType")),
-            control_laws=Registry("control law", _instance_of(LawKind, "LawKind")),
-            task_functions=Registry("task function",
-                                    _instance_of(TaskFunctionKind, "TaskFunctionKind")),
-            trajectories=Registry("trajectory", _instance_of(TrajectoryKind, "TrajectoryKind")),
-            observers=Registry("observer", _observer),
-            module_kinds=Registry("module kind", _instance_of(ModuleKind, "ModuleKind")),
-        )
+        return cls()
+
+    def __getattr__(self, attribute: str) -> Registry[Any]:
+        try:
+            return self.__dict__["_by_attribute"][attribute]
+        except KeyError:
+            raise AttributeError(attribute) from None
+
+    def __getitem__(self, attribute: str) -> Registry[Any]:
+        return self._by_attribute[attribute]
 
     def all(self) -> list[tuple[str, Registry[Any]]]:
-        """``(attribute name, registry)`` pairs in a stable order."""
-        return [(f.name, getattr(self, f.name)) for f in fields(self)]
+        """``(attribute name, registry)`` pairs in registration order."""
+        return list(self._by_attribute.items())
 
     def remove_plugin(self, plugin: str) -> None:
         """Forget everything ``plugin`` provided, in every registry."""

@@ -1,7 +1,7 @@
 """Hook specifications of ORCCAD plugins (pluggy project ``"orccad"``).
 
 A plugin is a module (or object) registered under the entry-point group ``orccad``. It
-implements some of these hooks, marked with :data:`orccad_app.plugins.hookimpl` (functions
+implements some of these hooks, marked with :data:`orccad_app.plugin_api.hookimpl` (functions
 named ``orccad_*`` are also recognized without the marker; a misspelt hook name is an
 error reported at start-up). Every hook is called once per plugin. A plugin that raises,
 or registers something invalid, is reported with its name and disabled; the others keep
@@ -14,19 +14,22 @@ documents each one for plugin authors.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import pluggy
 
-if TYPE_CHECKING:
-    from orccad_app.plugins.host import PluginHost
+from orccad_app.plugin_host.registry import CATEGORIES
 
-__all__ = ["PROJECT", "hookspec", "Register", "REGISTRATION_HOOKS", "STARTUP_HOOKS"]
+__all__ = ["PROJECT", "hookspec", "hookimpl", "Register", "REGISTRATION_HOOKS", "STARTUP_HOOKS"]
 
 #: The pluggy project name, also the entry-point group.
 PROJECT = "orccad"
 
 hookspec = pluggy.HookspecMarker(PROJECT)
+
+#: Marks a function of a plugin as the implementation of an ORCCAD hook (plugins import it
+#: from :mod:`orccad_app.plugin_api`).
+hookimpl = pluggy.HookimplMarker(PROJECT)
 
 #: ``register(item)`` adds one item to a registry under ``item.name``.
 Register = Callable[[Any], None]
@@ -41,7 +44,7 @@ Register = Callable[[Any], None]
 
 @hookspec
 def orccad_register_robot_types(register: Register) -> None:
-    """Register robot types: :class:`orccad_app.control.RobotType` objects.
+    """Register robot types: :class:`orccad_app.plugin_api.RobotType` objects.
 
     A robot type is a physical resource described by one MJCF file (joints, limits,
     ``jointpos``/``jointvel`` sensors, ``motor`` actuators); build it with
@@ -51,16 +54,16 @@ def orccad_register_robot_types(register: Register) -> None:
 
 @hookspec
 def orccad_register_control_laws(register: Register) -> None:
-    """Register control laws: :class:`orccad_app.control.LawKind` objects.
+    """Register control laws: :class:`orccad_app.plugin_api.LawKind` objects.
 
-    A law kind names a :class:`~orccad_app.control.ControlLaw` subclass and its
+    A law kind names a :class:`~orccad_app.plugin_api.ControlLaw` subclass and its
     parameters; the Robot-Task's ``law NAME(args);`` selects it.
     """
 
 
 @hookspec
 def orccad_register_task_functions(register: Register) -> None:
-    """Register task functions: :class:`orccad_app.control.TaskFunctionKind` objects.
+    """Register task functions: :class:`orccad_app.plugin_api.TaskFunctionKind` objects.
 
     Used by ``task_function NAME(args);``; the factory receives the validated parameters
     and the robot type, and must check ``dim e`` against the robot.
@@ -69,7 +72,7 @@ def orccad_register_task_functions(register: Register) -> None:
 
 @hookspec
 def orccad_register_trajectories(register: Register) -> None:
-    """Register trajectories: :class:`orccad_app.control.TrajectoryKind` objects.
+    """Register trajectories: :class:`orccad_app.plugin_api.TrajectoryKind` objects.
 
     Used as the ``trajectory = NAME(args)`` argument of task functions.
     """
@@ -77,7 +80,7 @@ def orccad_register_trajectories(register: Register) -> None:
 
 @hookspec
 def orccad_register_observers(register: Register) -> None:
-    """Register observers: :class:`orccad_app.control.ModuleKind` objects with at least
+    """Register observers: :class:`orccad_app.plugin_api.ModuleKind` objects with at least
     one ``event`` output port.
 
     Observers watch signals and emit events that a Robot-Task maps to pre-conditions,
@@ -87,7 +90,7 @@ def orccad_register_observers(register: Register) -> None:
 
 @hookspec
 def orccad_register_module_kinds(register: Register) -> None:
-    """Register other module kinds: :class:`orccad_app.control.ModuleKind` objects.
+    """Register other module kinds: :class:`orccad_app.plugin_api.ModuleKind` objects.
 
     Module kinds are the periodic Module-Tasks of the time-constrained specification
     (``module NAME : KIND(args) period … wcet …;``).
@@ -100,24 +103,19 @@ def orccad_register_module_kinds(register: Register) -> None:
 
 
 @hookspec
-def orccad_plugins_loaded(host: PluginHost) -> None:
-    """Called once all registrations are done, with the :class:`PluginHost`.
+def orccad_plugins_loaded(host: Any) -> None:
+    """Called once all registrations are done, with the
+    :class:`~orccad_app.plugin_api.PluginHost`.
 
     Use it for checks across plugins (e.g. that a robot type you extend is present) —
-    raise :class:`~orccad_app.diagnostics.OrccadError` to report a problem; the plugin is
+    raise :class:`~orccad_app.plugin_api.OrccadError` to report a problem; the plugin is
     then disabled. Do not register items here.
     """
 
 
-#: Registration hooks, in calling order, with the host registry each fills.
-REGISTRATION_HOOKS: tuple[tuple[str, str], ...] = (
-    ("orccad_register_robot_types", "robot_types"),
-    ("orccad_register_control_laws", "control_laws"),
-    ("orccad_register_task_functions", "task_functions"),
-    ("orccad_register_trajectories", "trajectories"),
-    ("orccad_register_observers", "observers"),
-    ("orccad_register_module_kinds", "module_kinds"),
-)
+#: Registration hooks, in calling order, with the host registry each fills (from the table
+#: :data:`~orccad_app.plugin_host.registry.CATEGORIES`).
+REGISTRATION_HOOKS: tuple[tuple[str, str], ...] = tuple((c.hook, c.attribute) for c in CATEGORIES)
 
 #: Hooks of phase 2.
 STARTUP_HOOKS: tuple[str, ...] = ("orccad_plugins_loaded",)

@@ -1,0 +1,56 @@
+"""The trajectory interface: :class:`Trajectory` and its :class:`Sample`."""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Sample", "Trajectory", "frozen_array"]
+
+
+@dataclass(frozen=True)
+class Sample:
+    """Desired ``pos``, ``vel`` [/s] and ``acc`` [/s²] at one instant."""
+
+    pos: np.ndarray
+    vel: np.ndarray
+    acc: np.ndarray
+
+
+def frozen_array(values: Any) -> np.ndarray:
+    array = np.array(values, dtype=float)
+    array.setflags(write=False)
+    return array
+
+
+class Trajectory(ABC):
+    """A reference signal of dimension :attr:`dim`, immutable."""
+
+    #: kind name, e.g. ``"cosine"``
+    name: str = "trajectory"
+    #: time [s] after which the trajectory is constant, ``None`` if it never ends
+    end_time_s: float | None = None
+    #: True while the start position must come from the first measurement
+    needs_start: bool = False
+
+    @property
+    @abstractmethod
+    def dim(self) -> int:
+        """Number of components."""
+
+    @abstractmethod
+    def sample(self, t_s: float) -> Sample:
+        """Desired position, velocity and acceleration at ``t_s`` [s] from the start."""
+
+    def final(self) -> np.ndarray | None:
+        """Final position when the trajectory ends, else ``None``."""
+        if self.end_time_s is None or self.needs_start:
+            return None
+        return self.sample(self.end_time_s).pos
+
+    def with_start(self, start: np.ndarray) -> Trajectory:
+        """This trajectory starting from the measured ``start`` (no-op if not needed)."""
+        return self

@@ -1,0 +1,30 @@
+r"""The cosine reference of RR-1801 eq. 9–10."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from orccad_app.control.trajectories.base import Sample, Trajectory, frozen_array
+
+__all__ = ["Cosine"]
+
+
+class Cosine(Trajectory):
+    r""":math:`q_d = q_0 (1 + \cos \omega t)` (eq. 9–10); ``q0`` [rad], ``omega`` [rad/s]."""
+
+    name = "cosine"
+
+    def __init__(self, q0: Any, omega: float = math.pi):
+        self.q0 = frozen_array(q0)
+        self.omega = float(omega)
+
+    @property
+    def dim(self) -> int:
+        return self.q0.size
+
+    def sample(self, t_s: float) -> Sample:
+        phase = self.omega * t_s
+        return Sample(pos=self.q0 * (1.0 + math.cos(phase)),
+                      vel=-self.q0 * self.omega * math.sin(phase),
+                      acc=-self.q0 * self.omega ** 2 * math.cos(phase))
