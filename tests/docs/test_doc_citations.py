@@ -1,6 +1,6 @@
 """The code cites only documents that are in the repository: every ``docs/NAME.md`` named in
 a source file exists, and every section it names (``docs/design.md, *Reactions*``) is a
-heading of that document (or the start of one)."""
+heading of that document (or the start of one), or one of its bold labels."""
 
 from __future__ import annotations
 
@@ -26,7 +26,11 @@ def _citations():
 
 
 def _headings(doc: Path) -> set[str]:
-    return {m.group(1).strip() for m in re.finditer(r"^#+\s+(.*)$", doc.read_text("utf-8"), re.M)}
+    """The headings of a document and its bold run-in labels (``- **Fresh ports.** …``)."""
+    text = doc.read_text("utf-8")
+    headings = {m.group(1).strip() for m in re.finditer(r"^#+\s+(.*)$", text, re.M)}
+    labels = {m.group(1).strip().rstrip(".:") for m in re.finditer(r"\*\*([^*]+)\*\*", text)}
+    return headings | labels
 
 
 @pytest.mark.parametrize("source,doc,section", list(_citations()))
