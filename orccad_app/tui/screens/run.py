@@ -10,6 +10,7 @@ from textual.containers import Container, Horizontal, Vertical, VerticalScroll
 from textual.screen import Screen
 from textual.widgets import Footer, Header, Static, TabbedContent, TabPane
 
+from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.live import LiveUpdate, LogEntry
 from orccad_app.tui.messages import InputRequested, RunFailed, RunFinished, RunUpdated
 from orccad_app.tui.screens.series import SeriesScreen
@@ -176,7 +177,11 @@ class RunScreen(Screen):
         observer = self.session.observer
         shown = message.name if message.value is None else f"{message.name}({message.value})"
         if message.fault:
-            observer.inject_fault(message.name, message.value)
+            try:
+                observer.inject_fault(message.name, message.value)
+            except OrccadError as error:
+                self.notify(f"fault {message.name}: {error.message}", severity="error")
+                return
             self.notify(f"fault {message.name}={message.value} injected")
         elif message.release:
             observer.release(message.name)
