@@ -34,7 +34,7 @@ from orccad_app.control.laws.gains import adjusting_matrix, gain_matrix
 from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioModel
 from orccad_app.control.module import ModuleInstance, ModuleKind
 from orccad_app.control.params import REQUIRED, ParamSpec, resolve_params
-from orccad_app.control.plant_extension import PlantExtension
+from orccad_app.control.plant_extension import FLAG, FaultRange, PlantExtension
 from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
 from orccad_app.control.robot import IdleBehaviour, RobotPort, RobotType
 from orccad_app.control.task_functions import TaskFunction, TaskState
@@ -54,6 +54,8 @@ __all__ = [
     "IdleBehaviour",
     "ActuatorConstraint",
     "PlantExtension",
+    "FaultRange",
+    "FLAG",
     # component kinds and what they build
     "ComponentKind",
     "TrajectoryKind",

@@ -48,7 +48,8 @@ def test_run_arm_pid_json_is_done_with_every_figure(pid_report):
     assert set(task) == {"name", "start_s", "end_s", "outcome", "tracking_error"}
     assert (task["name"], task["start_s"], task["end_s"], task["outcome"]) == \
         ("TrackPID", 0.0, 4.0, "good_end")
-    assert set(task["tracking_error"]) == {"rms", "max"}
+    assert set(task["tracking_error"]) == {"rms", "max", "unit"}
+    assert task["tracking_error"]["unit"] == "rad"
     assert set(report["modules"]) == {"TrackPID.traj", "TrackPID.ctrl", "TrackPID.jl",
                                       "TrackPID.tracking_error", "TrackPID.torque_saturation"}
     for module in report["modules"].values():

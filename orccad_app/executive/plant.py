@@ -201,6 +201,7 @@ class MujocoPlant:
             faults = extension.faults if extension is not None else {}
             raise OrccadError(f"plant '{self.name}' has no fault '{fault}' "
                               f"(faults: {', '.join(faults) or 'none'})")
+        extension.check_fault(fault, value)
         if self._attached:
             self.advance_to(self._kernel.now)
         extension.inject(fault, value)

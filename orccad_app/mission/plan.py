@@ -69,6 +69,7 @@ class SiteModules:
     :param error_module: the TCS module writing the task error ``e`` (tracking error), if any.
     :param start_signal: the automaton output that (re)starts the task (``X.start``).
     :param good_end_signal: the automaton output of its good end (``X.good_end``).
+    :param error_unit: the unit of its task error (``rad``, ``m`` for a Cartesian position).
     """
 
     site: RunSite
@@ -80,6 +81,7 @@ class SiteModules:
     error_module: str | None = None
     start_signal: str | None = None
     good_end_signal: str | None = None
+    error_unit: str = "rad"
 
     @property
     def number(self) -> int:
@@ -184,9 +186,19 @@ def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, s
     error = next((names[n] for n, spec in instance.modules.items()
                   if any(p.name == "e" and p.direction == "out" for p in spec.instance.ports)),
                  None)
+    unit = _error_unit(instance)
     return SiteModules(site, instance, tuple(names.values()),
                        tuple(names[m] for m in instance.measuring), events, adjustments, error,
-                       roles.signal(RoleKind.START, task), roles.signal(RoleKind.GOOD_END, task))
+                       roles.signal(RoleKind.START, task), roles.signal(RoleKind.GOOD_END, task),
+                       unit)
+
+
+def _error_unit(instance: RobotTaskInstance) -> str:
+    """The unit of the task error ``e`` of ``instance``'s task function (``rad`` without one)."""
+    context = instance.context
+    if context.task_function is None or context.robot is None:
+        return "rad"
+    return context.task_function.build(context.robot).error_unit
 
 
 def _initial_q(instance: RobotTaskInstance) -> np.ndarray | None:

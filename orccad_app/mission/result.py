@@ -39,11 +39,11 @@ class ErrorSamples:
         if peak > self.max_abs or peak != peak:  # NaN propagates
             self.max_abs = peak
 
-    def summary(self) -> dict[str, float] | None:
-        """``{"rms": …, "max": …}``, ``None`` without samples."""
+    def summary(self, unit: str = "rad") -> dict[str, Any] | None:
+        """``{"rms": …, "max": …, "unit": unit}``, ``None`` without samples."""
         if not self.count:
             return None
-        return {"rms": math.sqrt(self.sum_sq / self.count), "max": self.max_abs}
+        return {"rms": math.sqrt(self.sum_sq / self.count), "max": self.max_abs, "unit": unit}
 
 
 @dataclass
@@ -57,6 +57,8 @@ class RobotTaskRecord:
     :param outcome: ``good_end``, the exception that ended it, ``killed`` (an enclosing
         preemption) or ``running``.
     :param errors: the task error's samples (the ``e`` output of its control law).
+    :param error_unit: their unit (the task function's: ``rad`` in joint space, ``m`` for a
+        Cartesian position).
     """
 
     name: str
@@ -65,12 +67,13 @@ class RobotTaskRecord:
     end_ns: int | None = None
     outcome: str = "running"
     errors: ErrorSamples = field(default_factory=ErrorSamples)
+    error_unit: str = "rad"
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form (``tracking_error`` is ``null`` without a control law)."""
         return {"name": self.name, "start_s": self.start_ns / 1e9,
                 "end_s": None if self.end_ns is None else self.end_ns / 1e9,
-                "outcome": self.outcome, "tracking_error": self.errors.summary()}
+                "outcome": self.outcome, "tracking_error": self.errors.summary(self.error_unit)}
 
 
 @dataclass(frozen=True)

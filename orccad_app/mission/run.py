@@ -173,6 +173,11 @@ class MissionRun:
         if fault not in faults:
             raise OrccadError(f"--inject {injection.name}: robot '{robot}' has no fault "
                               f"'{fault}' (faults: {', '.join(faults) or 'none'})")
+        try:
+            plant.extension.check_fault(fault, injection.value)
+        except OrccadError as error:
+            raise OrccadError(f"--inject {injection.name}={injection.value!r}: robot "
+                              f"'{robot}': {error.message}") from None
         if injection.time_ns >= self.until_ns:
             raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
                               f"after --until ({self.until_ns / 1e9:g} s)")
@@ -338,7 +343,7 @@ class MissionRun:
     def _start_task(self, now: int, site: SiteModules) -> None:
         for name, compute in site.fresh_computes().items():  # nominal parameters, no state
             self.sim.replace_compute(name, compute)
-        record = RobotTaskRecord(site.task, site.number, now)
+        record = RobotTaskRecord(site.task, site.number, now, error_unit=site.error_unit)
         self._running[site.number] = record
         self.records.append(record)
         for hook in self._hooks["on_task_start"]:

@@ -96,7 +96,10 @@ def to_summary(automaton: Automaton) -> str:
             lines.append(f"state {t.source} ({label}{_missions_in(automaton, t.source)})")
         effects = [_action_text(a) for a in t.actions] + [s.name for s in t.emitted]
         tail = f" / {', '.join(effects)}" if effects else ""
-        status = f" [{t.status}]" if t.status != "running" else ""
+        # the terminated state's own loop keeps the status its entry set (done, failed or
+        # aborted): labelling it would say "[done]" after a failure
+        ended = t.status != "running" and t.source != automaton.terminal
+        status = f" [{t.status}]" if ended else ""
         lines.append(f"  {guard_text(automaton, t)}{tail} -> {t.target}{status}")
     return "\n".join(lines)
 

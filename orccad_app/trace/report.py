@@ -5,7 +5,7 @@ JSON keys (docs/design.md, *Command line*):
 - ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;
 - ``robot_tasks``: per Robot-Task run ``name``, ``start_s``, ``end_s``, ``outcome``,
-  ``tracking_error`` ``{"rms", "max"}`` [rad] (``null`` without a control law);
+  ``tracking_error`` ``{"rms", "max", "unit"}`` (``rad`` or ``m``, the task function's) (``null`` without a control law);
 - ``modules``, keyed ``Task.module``: ``processor``, ``period_s``, ``wcet_s``, ``jobs``
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
   ``preemptions``, ``blocking_s``;
@@ -119,7 +119,8 @@ def _task_lines(report: dict[str, Any]) -> list[str]:
         end = "…" if task["end_s"] is None else f"{task['end_s']:.3f}"
         error = task["tracking_error"]
         figures = ("" if error is None else
-                   f"   tracking error RMS {error['rms']:.3e} rad, max {error['max']:.3e} rad")
+                   f"   tracking error RMS {error['rms']:.3e} {error['unit']}, "
+                   f"max {error['max']:.3e} {error['unit']}")
         lines.append(f"  {task['name']:<16} {task['start_s']:.3f} → {end} s  "
                      f"{task['outcome']}{figures}")
     if not report["robot_tasks"]:

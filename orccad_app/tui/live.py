@@ -28,6 +28,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
@@ -212,7 +213,14 @@ class LiveObserver(Observer):
 
     def inject_fault(self, name: str, value: Any) -> None:
         """Queue the plant fault ``ROBOT.FAULT`` (applied at the next reaction, as
-        ``orccad run --inject ROBOT.FAULT=VALUE@T`` does)."""
+        ``orccad run --inject ROBOT.FAULT=VALUE@T`` does); a value out of the fault's
+        declared range raises :class:`~orccad_app.diagnostics.OrccadError` now, as
+        ``--inject`` refuses it."""
+        robot, fault = name.split(".", 1)
+        plant = self.run.sim.plants.get(robot)
+        if plant is None or plant.extension is None:
+            raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
+        plant.extension.check_fault(fault, value)
         self._queue.append((name, value, True))
 
     def abort(self, reason: str = "stopped by the user") -> None:
@@ -242,9 +250,9 @@ class LiveObserver(Observer):
             for name, value in list(self._held.items()):
                 self.run.inject(name, value)
                 self.injected.append(InjectionRecord(t_ns, name, value, False, "user (held)"))
+        if self.pace.paused or time.perf_counter() - self._flushed_at >= self.flush_s:
+            self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
         self.pace.wait(t_ns)
-        if time.perf_counter() - self._flushed_at >= self.flush_s:
-            self.flush(t_ns)
 
     def _raise(self, t_ns: int, name: str, value: Any, fault: bool) -> None:
         self.injected.append(InjectionRecord(t_ns, name, value, fault, "user"))

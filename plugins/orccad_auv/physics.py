@@ -42,7 +42,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from orccad_app.plugin_api import PlantExtension
+from orccad_app.plugin_api import FLAG, FaultRange, PlantExtension
 
 __all__ = ["AuvPhysics", "SENSOR_DIMS", "G_MPS2"]
 
@@ -66,6 +66,10 @@ class AuvPhysics(PlantExtension):
     """See the module docstring. ``params`` are the robot type's parameter values."""
 
     sensors = {port: max(dim, 1) for port, dim in SENSOR_DIMS.items()}
+    fault_ranges = {"battery": FaultRange(0.0, 100.0), "leak": FLAG, "gps_denied": FLAG,
+                    "thrust": FaultRange(0.0, 1.0),
+                    **{f"{port}_bias": FaultRange(-1e3, 1e3) for port in _BIASED},
+                    **{f"{port}_stuck": FLAG for port in SENSOR_DIMS}}
     faults = {"battery": "set the battery charge [%]",
               "leak": "1: the hull leaks (leak_rate_kg_s of water comes in)",
               "gps_denied": "1: no GPS fix even at the surface",

@@ -32,6 +32,8 @@ class TaskFunction(ABC):
     name: str = "task_function"
     #: name of the reference the trajectory module sends (``qd`` → ports qd, qd_dot, qd_ddot)
     reference_name: str = "qd"
+    #: unit of the task error ``e`` (reports label its RMS and max with it)
+    error_unit: str = "rad"
 
     def __init__(self, trajectory: Trajectory, dim: int, dof: int):
         self.trajectory = trajectory

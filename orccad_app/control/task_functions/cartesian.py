@@ -18,6 +18,7 @@ class CartesianTracking(TaskFunction):
 
     name = "cartesian_tracking"
     reference_name = "xd"
+    error_unit = "m"
 
     def __init__(self, pin_model: Any, trajectory: Trajectory, frame: str,
                  damping: float = 0.01):
