@@ -4,7 +4,10 @@ Run from the repository root: ``python docs/make_screenshots.py``. Writes
 ``docs/tui-browser.svg`` (the mission browser), ``docs/tui-check.svg`` (``orccad check``
 results), ``docs/tui-run.svg`` (a live run of missions/arm_recovery.orc, paused while the
 tracking runs), ``docs/tui-report.svg`` (its report after ``Stop`` was raised) and, when the
-AUV mission plans, ``docs/tui-auv.svg`` (the AUV survey after a leak).
+AUV mission plans, ``docs/tui-auv.svg`` (the AUV survey after a leak); the run screen's tabs
+``tui-run-source.svg``, ``tui-run-rta.svg``, ``tui-run-tcs.svg``, the help ``tui-help.svg``,
+the run at 80×24 ``tui-run-80x24.svg`` and the editor with a diagnostic ``tui-editor.svg``.
+The snapshot tests (``tests/tui/__snapshots__``) hold the same screens at 80×24 and 160×48.
 """
 
 from __future__ import annotations
@@ -53,8 +56,17 @@ async def arm_run() -> None:
         await _until(pilot, lambda: _logged(run, "TrackPID (site 2) starts"))
         await pilot.pause(1.0)
         await pilot.press("space")
-        await pilot.pause(0.3)
+        await pilot.pause(0.5)
         app.save_screenshot("tui-run.svg", str(DOCS))
+        for key, name in (("o", "tui-run-source.svg"), ("e", "tui-run-rta.svg"),
+                          ("t", "tui-run-tcs.svg")):
+            await pilot.press(key)
+            await pilot.pause(0.3)
+            app.save_screenshot(name, str(DOCS))
+        await pilot.press("g", "question_mark")
+        await pilot.pause(0.3)
+        app.save_screenshot("tui-help.svg", str(DOCS))
+        await pilot.press("escape")
         await pilot.press("1", "m")  # Stop, then as fast as possible
         await _until(pilot, lambda: _report_shown(app))
         await pilot.pause(0.5)
@@ -69,6 +81,7 @@ async def auv_run() -> None:
             return
         await _until(pilot, lambda: _logged(run, "Dive (site 1) starts"))
         run.query_one("#injection").value = "auv.leak"
+        run.query_one("#input-value").value = "1"
         await pilot.press("i")
         await _until(pilot, lambda: _report_shown(app))
         await pilot.press("escape")
@@ -76,7 +89,31 @@ async def auv_run() -> None:
         app.save_screenshot("tui-auv.svg", str(DOCS))
 
 
+async def small_and_editor() -> None:
+    app = OrccadApp([], selected="missions/arm_recovery.orc", speed=1.0, run_now=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        run = app.screen
+        await _until(pilot, lambda: _logged(run, "TrackPID (site 2) starts"))
+        await pilot.pause(1.0)
+        await pilot.press("space")
+        await pilot.pause(0.5)
+        app.save_screenshot("tui-run-80x24.svg", str(DOCS))
+        await pilot.press("a")
+        await _until(pilot, lambda: _report_shown(app))
+    app = OrccadApp(["missions/false_property.orc"], selected="missions/false_property.orc")
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.press("ctrl+e")
+        editor = app.screen
+        area = editor.query_one("#editor")
+        area.move_cursor((26, 0))
+        area.insert("    run Plac();\n")
+        await _until(pilot, lambda: bool(editor.diagnostics))
+        await pilot.pause(0.5)
+        app.save_screenshot("tui-editor.svg", str(DOCS))
+
+
 def main() -> None:
+    asyncio.run(small_and_editor())
     asyncio.run(browser())
     asyncio.run(arm_run())
     if Path("missions/auv_survey.orc").exists():

@@ -250,9 +250,9 @@ class LiveObserver(Observer):
             for name, value in list(self._held.items()):
                 self.run.inject(name, value)
                 self.injected.append(InjectionRecord(t_ns, name, value, False, "user (held)"))
+        if self.pace.paused or time.perf_counter() - self._flushed_at >= self.flush_s:
+            self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
         self.pace.wait(t_ns)
-        if time.perf_counter() - self._flushed_at >= self.flush_s:
-            self.flush(t_ns)
 
     def _raise(self, t_ns: int, name: str, value: Any, fault: bool) -> None:
         self.injected.append(InjectionRecord(t_ns, name, value, fault, "user"))

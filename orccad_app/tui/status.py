@@ -17,7 +17,7 @@ from typing import Any
 
 from orccad_app.tui.live import PHASES, LiveUpdate
 
-__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "where_text", "rta_text", "tcs_rows",
+__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites", "tasks_in_state", "where_text", "rta_text", "tcs_rows",
            "LAG_RATIO"]
 
 LAG_RATIO = 0.8
@@ -66,11 +66,25 @@ def waiting_lines(session: Any, state: int | None) -> list[int]:
                    if loc.line > 0 and Path(loc.file or name).name == name})
 
 
-def run_site_lines(session: Any, tasks: list[tuple[str, int, int]]) -> list[int]:
-    """Lines of the ``run`` statements of the Robot-Tasks running now."""
-    running = {number for _, number, _ in tasks}
-    return sorted({site.site.stmt.loc.line for site in session.run.plan.sites
-                   if site.number in running and site.site.stmt.loc.line > 0})
+def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]]:
+    """``(task, site, phase)`` of every Robot-Task instance active in ``state`` (from the
+    automaton's labels: right from the instant the task starts)."""
+    automaton = session.run.plan.automaton
+    if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
+        return []
+    phases: dict[tuple[str, int], int] = {}
+    for label in automaton.labels[state]:
+        phase = getattr(label, "phase", None)
+        if hasattr(label, "site") and hasattr(label, "task"):
+            key = (label.task, label.site)
+            phases[key] = max(phases.get(key, 1), int(phase) if phase is not None else 1)
+    return [(task, site, phase) for (task, site), phase in sorted(phases.items(),
+                                                                  key=lambda kv: kv[0][1])]
+
+
+def run_site_lines(session: Any, state: int | None) -> list[int]:
+    """Lines of the ``run`` statements of the Robot-Tasks active in ``state``."""
+    return sorted({line for _, line in running_sites(session, state) if line > 0})
 
 
 def where_text(session: Any, state: int | None, status: str = "running") -> str:
@@ -80,7 +94,22 @@ def where_text(session: Any, state: int | None, status: str = "running") -> str:
     lines = waiting_lines(session, state)
     if not lines:
         return "starting" if state is None else "reacting"
-    return f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+    text = f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+    running = running_sites(session, state)
+    if running:
+        text += " (running " + ", ".join(f"{task} at :{line}" for task, line in running) + ")"
+    return text
+
+
+def running_sites(session: Any, state: int | None) -> list[tuple[str, int]]:
+    """``(task, line of its run statement)`` of the Robot-Tasks active in ``state``."""
+    automaton = session.run.plan.automaton
+    if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
+        return []
+    numbers = {getattr(label, "site", None) for label in automaton.labels[state]
+               if not isinstance(label, tuple)}
+    return [(site.task, site.site.stmt.loc.line) for site in session.run.plan.sites
+            if site.number in numbers]
 
 
 def _speed(session: Any, meter: SpeedMeter) -> tuple[str, str]:

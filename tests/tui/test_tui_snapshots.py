@@ -12,7 +12,8 @@ from orccad_app.tui.app import OrccadApp
 
 pytest.importorskip("pytest_textual_snapshot")
 
-SIZE = (140, 40)
+SIZES = {"80x24": (80, 24), "160x48": (160, 48)}
+"""The smallest terminal the console supports, and a large one."""
 MISSION = """\
 // A PID tracking of the cosine trajectory on the 3-DOF arm (snapshot fixture).
 robot arm : arm3dof;
@@ -49,15 +50,58 @@ def scratch(tmp_path, monkeypatch):
     return "snap.orc"
 
 
-def test_browser_source(snap_compare, scratch):
-    assert snap_compare(OrccadApp([scratch], selected=scratch), terminal_size=SIZE)
+async def _first_update(pilot) -> None:
+    """The run screen has shown the first reaction (the run is paused there)."""
+    for _ in range(400):
+        screen = pilot.app.screen
+        if getattr(screen, "last", None) is not None:
+            break
+        await pilot.pause(0.05)
+    await pilot.pause(0.3)
 
 
-def test_browser_summary(snap_compare, scratch):
+@pytest.mark.parametrize("size", SIZES)
+def test_browser_source(snap_compare, scratch, size):
+    assert snap_compare(OrccadApp([scratch], selected=scratch), terminal_size=SIZES[size])
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_browser_summary(snap_compare, scratch, size):
     assert snap_compare(OrccadApp([scratch], selected=scratch), press=["m"],
-                        terminal_size=SIZE)
+                        terminal_size=SIZES[size])
 
 
-def test_run_screen_paused_at_start(snap_compare, scratch):
+@pytest.mark.parametrize("size", SIZES)
+def test_help(snap_compare, scratch, size):
+    assert snap_compare(OrccadApp([scratch], selected=scratch), press=["question_mark"],
+                        terminal_size=SIZES[size])
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_editor(snap_compare, scratch, size):
+    async def edit(pilot):
+        await pilot.press("ctrl+e")
+        await pilot.pause(1.5)  # the diagnostics, compiled in a worker
+    assert snap_compare(OrccadApp([scratch], selected=scratch), run_before=edit,
+                        terminal_size=SIZES[size])
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_run_screen_paused_at_start(snap_compare, scratch, size):
     app = OrccadApp([scratch], selected=scratch, speed=0, run_now=True)
-    assert snap_compare(app, terminal_size=SIZE)
+    assert snap_compare(app, run_before=_first_update, terminal_size=SIZES[size])
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_run_screen_source_tab(snap_compare, scratch, size):
+    async def source(pilot):
+        await _first_update(pilot)
+        await pilot.press("o")
+        await pilot.pause(0.2)
+    app = OrccadApp([scratch], selected=scratch, speed=0, run_now=True)
+    assert snap_compare(app, run_before=source, terminal_size=SIZES[size])
+
+
+def test_empty_state(snap_compare, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert snap_compare(OrccadApp([]), terminal_size=SIZES["80x24"])

@@ -37,7 +37,7 @@ if TYPE_CHECKING:
 __all__ = ["LawOutput", "Gains", "ControlLaw", "build_model"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class LawOutput:
     """One evaluation: ``tau`` [N·m] after the actuator constraint, ``tau_unsat`` before
     it, the ``saturated`` joints mask and the task error ``e``."""
@@ -91,6 +91,7 @@ class ControlLaw(ABC):
         self.gains = Gains(*(np.zeros((robot.dof, robot.dof)),) * 3)
         self.feedforward = False
         self._configure()
+        self._prepare()
         self.reset()
 
     @abstractmethod
@@ -113,9 +114,25 @@ class ControlLaw(ABC):
         except Exception:
             self.params = old
             raise
+        self._prepare()
+
+    def _prepare(self) -> None:
+        """Precompute what :meth:`command` needs at each call (after :meth:`_configure`).
+
+        The lean path (:mod:`.fast`) serves joint tracking with diagonal gains and an
+        identity or Pinocchio model and constant torque bounds; it does the same floating-point
+        operations as the general path, so its torques are bit-identical.
+        """
+        from orccad_app.control.laws.fast import lean_path
+
+        self._lean = lean_path(self)
 
     def command(self, t_s: float, q: Any, qdot: Any, reference: Sample) -> LawOutput:
         """Torque at time ``t_s`` [s] for joint state ``q`` [rad], ``qdot`` [rad/s]."""
+        if self._lean is not None:
+            out = self._lean.command(self, t_s, q, qdot, reference)
+            if out is not None:
+                return out
         q = np.asarray(q, dtype=float)
         qdot = np.asarray(qdot, dtype=float)
         state = self.task_function.evaluate(q, qdot, reference)

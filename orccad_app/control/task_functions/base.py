@@ -13,7 +13,7 @@ from orccad_app.control.trajectories import Sample, Trajectory
 __all__ = ["TaskState", "TaskFunction"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class TaskState:
     """Eq. 2–3 terms at one instant; ``jacobian`` is (m, n), ``jacobian_inv`` (n, m)."""
 

@@ -11,7 +11,7 @@ import numpy as np
 __all__ = ["Sample", "Trajectory", "frozen_array"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Sample:
     """Desired ``pos``, ``vel`` [/s] and ``acc`` [/s²] at one instant."""
 

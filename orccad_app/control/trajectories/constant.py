@@ -22,6 +22,7 @@ class Constant(Trajectory):
         self.value = None if value is None else frozen_array(value)
         self._dim = self.value.size if self.value is not None else dim
         self.needs_start = self.value is None
+        self._zero = None if self.value is None else frozen_array(np.zeros_like(self.value))
 
     @property
     def dim(self) -> int:
@@ -36,5 +37,4 @@ class Constant(Trajectory):
         if self.value is None:
             raise InvalidParameter("constant: no value yet (give value=[...] or connect "
                                    "the trajectory module's q input)")
-        zero = np.zeros_like(self.value)
-        return Sample(pos=self.value, vel=zero, acc=zero)
+        return Sample(pos=self.value, vel=self._zero, acc=self._zero)

@@ -18,6 +18,9 @@ class Cosine(Trajectory):
     def __init__(self, q0: Any, omega: float = math.pi):
         self.q0 = frozen_array(q0)
         self.omega = float(omega)
+        # the velocity and acceleration amplitudes, computed once (same products)
+        self._vel_amp = frozen_array(-self.q0 * self.omega)
+        self._acc_amp = frozen_array(-self.q0 * self.omega ** 2)
 
     @property
     def dim(self) -> int:
@@ -25,6 +28,6 @@ class Cosine(Trajectory):
 
     def sample(self, t_s: float) -> Sample:
         phase = self.omega * t_s
-        return Sample(pos=self.q0 * (1.0 + math.cos(phase)),
-                      vel=-self.q0 * self.omega * math.sin(phase),
-                      acc=-self.q0 * self.omega ** 2 * math.cos(phase))
+        cos = math.cos(phase)
+        return Sample(pos=self.q0 * (1.0 + cos), vel=self._vel_amp * math.sin(phase),
+                      acc=self._acc_amp * cos)

@@ -30,6 +30,7 @@ class MinimumJerk(Trajectory):
             raise DimensionMismatch(f"min_jerk: start has {self.start.size} components "
                                     f"but goal has {self.goal.size}")
         self.end_time_s = self.duration
+        self._delta = None if self.start is None else frozen_array(self.goal - self.start)
         self.needs_start = self.start is None
 
     @property
@@ -53,5 +54,5 @@ class MinimumJerk(Trajectory):
         s = tau ** 3 * (10.0 - 15.0 * tau + 6.0 * tau ** 2)
         ds = 30.0 * tau ** 2 * (1.0 - tau) ** 2 / self.duration
         dds = 60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau) / self.duration ** 2
-        delta = self.goal - self.start
+        delta = self._delta
         return Sample(pos=self.start + s * delta, vel=ds * delta, acc=dds * delta)

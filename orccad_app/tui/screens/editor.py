@@ -40,10 +40,8 @@ class OrcTextArea(TextArea):
     own highlighting needs a tree-sitter grammar, which ``orc`` has not), and marking the
     lines of :attr:`error_lines`."""
 
-    def __init__(self, text: str = "", **kwargs) -> None:
-        super().__init__(text, **kwargs)
-        self.error_lines: set[int] = set()  # 1-based
-        self._lexer = OrcLexer()
+    _lexer = OrcLexer()
+    error_lines: frozenset[int] = frozenset()  # 1-based
 
     def _build_highlight_map(self) -> None:
         self._line_cache.clear()
@@ -62,7 +60,7 @@ class OrcTextArea(TextArea):
             highlights[line - 1].insert(0, (0, None, "orc.error"))
 
     def mark_errors(self, lines: set[int]) -> None:
-        self.error_lines = set(lines)
+        self.error_lines = frozenset(lines)
         self._build_highlight_map()
         self.refresh()
 

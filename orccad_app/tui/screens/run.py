@@ -15,8 +15,8 @@ from orccad_app.tui.live import LiveUpdate, LogEntry
 from orccad_app.tui.messages import InputRequested, RunFailed, RunFinished, RunUpdated
 from orccad_app.tui.screens.series import SeriesScreen
 from orccad_app.tui.session import LiveSession
-from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_text, tcs_rows,
-                                    waiting_lines)
+from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_text,
+                                    tasks_in_state, tcs_rows, waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
 from orccad_app.tui.widgets.plots import Marker, Plots
@@ -120,10 +120,10 @@ class RunScreen(Screen):
     def _where(self, update: LiveUpdate | None) -> None:
         """The source with the statements the mission waits at, the RTA and TCS tabs."""
         state = None if update is None else update.state
-        tasks = [] if update is None else update.tasks
+        tasks = tasks_in_state(self.session, state)
         self.query_one("#run-source", SourceView).show_run(
             self.session.path, self.session.text, waiting_lines(self.session, state),
-            run_site_lines(self.session, tasks))
+            run_site_lines(self.session, state))
         self.query_one("#rta-text", Static).update(rta_text(self.session, tasks))
         loads = {} if update is None else update.loads
         misses = {} if update is None else update.misses
@@ -139,7 +139,8 @@ class RunScreen(Screen):
         if update.state != getattr(self, "_shown_state", -1) or update.tasks != self._tasks:
             self._shown_state, self._tasks = update.state, update.tasks
             self._where(update)
-        self.query_one(TaskTable).show(update.tasks)
+        self.query_one(TaskTable).show(update.tasks or tasks_in_state(self.session,
+                                                                      update.state))
         self.query_one(LoadTable).show(update.loads, update.misses)
         plots = self.query_one(Plots)
         plots.add_samples(update.samples)

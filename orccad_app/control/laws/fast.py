@@ -1,0 +1,164 @@
+r"""The lean path of :meth:`ControlLaw.command`: joint tracking, diagonal gains.
+
+Most laws of a mission are joint tracking (:math:`\hat J = I`) with diagonal gains, an
+identity or Pinocchio model. For them :class:`LeanPath` evaluates eq. 5 without building a
+:class:`~orccad_app.control.task_functions.TaskState`, without the identity products, without
+the constraint's argument checks and with preallocated work arrays (Pinocchio's ``crba`` and ``nonLinearEffects`` write into the
+model's data). It performs the same floating-point operations as the general path, so the
+torques are bit-identical:
+
+- a diagonal matrix times a vector, ``K @ x``, is ``diag(K) * x`` (the off-diagonal terms
+  add exact zeros; a matrix product never returns :math:`-0`, and every consumer below
+  either adds a zero or is itself a matrix product, so the sign of a zero never shows);
+- :math:`\hat M = I` turns :math:`-\hat M \hat J^{-1} F + \hat N` into ``0 - F``;
+- the symmetric mass matrix is the upper triangle Pinocchio fills, mirrored, plus ``0.0``
+  (exactly what ``triu(M) + triu(M, 1).T`` computes).
+
+Any other law (full gains, Cartesian tracking, a perturbed model with an integral, velocity-
+dependent bounds) or an input of the wrong shape goes through the general path.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from orccad_app.control.constraints import ActuatorConstraint
+from orccad_app.control.models import IdentityModel, PinocchioModel
+from orccad_app.control.task_functions.joint import JointTracking
+from orccad_app.control.trajectories import Sample
+
+if TYPE_CHECKING:
+    from orccad_app.control.laws.base import ControlLaw, LawOutput
+
+__all__ = ["LeanPath", "lean_path"]
+
+
+def _diagonal(matrix: np.ndarray) -> np.ndarray | None:
+    """The diagonal of ``matrix`` if every other entry is zero, else ``None``."""
+    diagonal = np.diag(matrix).copy()
+    if np.count_nonzero(matrix - np.diag(diagonal)) or not np.all(np.isfinite(matrix)):
+        return None
+    return diagonal
+
+
+def lean_path(law: ControlLaw) -> LeanPath | None:
+    """The lean path of ``law``, or ``None`` when it must use the general path."""
+    if type(law.task_function) is not JointTracking:
+        return None
+    if type(law.constraint) is not ActuatorConstraint:
+        return None
+    model = law.model
+    identity = type(model) is IdentityModel
+    if not identity and type(model) is not PinocchioModel:
+        return None
+    gains = [_diagonal(g) for g in (law.gains.kp, law.gains.kv, law.gains.ki)]
+    if any(g is None for g in gains):
+        return None
+    ki_any = bool(np.any(law.gains.ki))
+    if identity and law.feedforward or not identity and ki_any:
+        return None
+    return LeanPath(law, *gains, ki_any=ki_any, identity=identity)
+
+
+class LeanPath:
+    """Precomputed gains, bounds and work arrays of one law (see the module docstring)."""
+
+    def __init__(self, law: ControlLaw, kp: np.ndarray, kv: np.ndarray, ki: np.ndarray,
+                 ki_any: bool, identity: bool):
+        dof = law.robot.dof
+        self.kp, self.kv, self.ki = kp, kv, ki
+        self.neg_ki = -ki
+        self.ki_any = ki_any
+        self.anti_windup = bool(law.params.get("anti_windup", True))
+        self.identity = identity
+        self.feedforward = law.feedforward
+        self.shape = (dof,)
+        constraint = law.constraint
+        self.constraint = constraint
+        self.tau_min, self.tau_max = constraint.tau_min, constraint.tau_max
+        self.alpha, self.neg_alpha, self.beta = constraint.alpha, -constraint.alpha, constraint.beta
+        #: bounds: constant (β = 0), per call from β q̇ (β > 0), else the constraint's own
+        self.beta_mode = ("zero" if not np.any(constraint.beta) else
+                          "full" if np.all(constraint.beta != 0.0) else "mixed")
+        self.low, self.high = constraint.bounds(np.zeros(dof))
+        self.zeros = np.zeros(dof)
+        rows, cols = np.triu_indices(dof)
+        upper = np.zeros((dof, dof), dtype=np.intp)
+        upper[rows, cols] = rows * dof + cols
+        upper[cols, rows] = rows * dof + cols
+        self.mirror = upper.reshape(-1)
+        self.mass = np.empty((dof, dof))
+        self.neg_mass = np.empty((dof, dof))
+        self.work = np.empty(dof)
+        self.work2 = np.empty(dof)
+        if not identity:
+            self.pin, self.pin_model = law.model._pin, law.model.model
+            self.pin_data, self.damping = law.model.data, law.model.damping
+
+    def command(self, law: ControlLaw, t_s: float, q: Any, qdot: Any,
+                reference: Sample) -> LawOutput | None:
+        """:meth:`ControlLaw.command` for this law (same operations, same results);
+        ``None`` for inputs of another shape (the general path then reports them)."""
+        from orccad_app.control.laws.base import LawOutput
+
+        q = np.asarray(q, dtype=float)
+        qdot = np.asarray(qdot, dtype=float)
+        if q.shape != self.shape or qdot.shape != self.shape:
+            return None
+        e = q - reference.pos
+        e_dot = qdot - reference.vel
+        self._integrate(law, e, t_s)
+        feedback = self.kp * e
+        feedback += np.multiply(self.kv, e_dot, out=self.work)
+        if self.ki_any:
+            feedback += np.multiply(self.ki, law.integral, out=self.work)
+        if self.identity:
+            tau_unsat = np.subtract(0.0, feedback)
+        else:
+            tau_unsat = self._model_torque(q, qdot, feedback, reference)
+        low, high = self._bounds(qdot)
+        tau = np.minimum(np.maximum(tau_unsat, low), high)
+        law._sat_dir = np.sign(tau_unsat - tau)
+        return LawOutput(tau=tau, tau_unsat=tau_unsat, saturated=tau != tau_unsat, e=e)
+
+    def _model_torque(self, q: np.ndarray, qdot: np.ndarray, feedback: np.ndarray,
+                      reference: Sample) -> np.ndarray:
+        """:math:`-\\hat M F + \\hat N` (and :math:`- \\hat M \\hat f`, :math:`\\hat f = -\\ddot q_d`)."""
+        upper = self.pin.crba(self.pin_model, self.pin_data, q)
+        mass = np.take(upper, self.mirror, out=self.mass.reshape(-1)).reshape(self.mass.shape)
+        mass += 0.0
+        tau_unsat = np.matmul(np.negative(mass, out=self.neg_mass), feedback)
+        bias = self.pin.nonLinearEffects(self.pin_model, self.pin_data, q, qdot)
+        nle = np.add(bias, np.multiply(self.damping, qdot, out=self.work), out=self.work)
+        tau_unsat += nle
+        if self.feedforward:
+            tau_unsat -= np.matmul(mass, np.negative(reference.acc, out=self.work),
+                                   out=self.work2)
+        return tau_unsat
+
+    def _bounds(self, qdot: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`ActuatorConstraint.bounds` (same operations)."""
+        if self.beta_mode == "zero":
+            return self.low, self.high
+        if self.beta_mode == "mixed":
+            return self.constraint.bounds(qdot)
+        back_emf = self.beta * qdot
+        low = np.maximum(self.tau_min, np.subtract(self.neg_alpha, back_emf))
+        high = np.minimum(self.tau_max, np.subtract(self.alpha, back_emf, out=back_emf))
+        high = np.maximum(high, np.minimum(low, self.tau_max))
+        return np.minimum(low, high, out=low), high
+
+    def _integrate(self, law: ControlLaw, e: np.ndarray, t_s: float) -> None:
+        t_prev = law._t_prev
+        dt = 0.0 if t_prev is None else max(t_s - t_prev, 0.0)
+        law._t_prev = t_s
+        if dt == 0.0 or not self.ki_any:
+            return
+        delta = e * dt
+        sat_dir = law._sat_dir
+        if self.anti_windup and np.count_nonzero(sat_dir):
+            push = self.neg_ki * delta * sat_dir > 0
+            delta[push] = 0.0
+        law.integral = law.integral + delta
