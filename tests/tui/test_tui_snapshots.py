@@ -82,6 +82,9 @@ def test_editor(snap_compare, scratch, size):
     async def edit(pilot):
         await pilot.press("ctrl+e")
         await pilot.pause(1.5)  # the diagnostics, compiled in a worker
+        from textual.widgets import TextArea
+        pilot.app.screen.query_one(TextArea).cursor_blink = False  # a blink is a race
+        await pilot.pause()
     assert snap_compare(OrccadApp([scratch], selected=scratch), run_before=edit,
                         terminal_size=SIZES[size])
 
