@@ -205,7 +205,7 @@ def main() -> int:
         ok = ours <= TARGETS_US[name]
         met = met and ok
         print(f"  {name:<16} {ours:10.2f} {theirs:9.2f} {ours / theirs:6.2f} "
-              f"{'<= %g' % TARGETS_US[name]:>7} {'met' if ok else 'MISSED'}")
+              f"{'<= ' + format(TARGETS_US[name], 'g'):>7} {'met' if ok else 'MISSED'}")
     return 0 if met else 2
 
 

@@ -252,7 +252,8 @@ class Simulation:
     def _idle_undriven(self) -> None:
         """Plants none of whose actuator writers is active go idle (their idle behaviour)."""
         for name, channels in self._drivers.items():
-            if not any(channel.producer.active for channel in channels):
+            if not any(channel.producer is not None and getattr(channel.producer, "active", False)
+                       for channel in channels):
                 self.plants[name].go_idle()
 
     def set_param(self, module: str, name: str, value: Any, at_ns: int | None = None) -> None:

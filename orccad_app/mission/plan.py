@@ -240,11 +240,32 @@ def plan_composition(composition: Composition,
     if not sites:
         raise OrccadError(f"mission '{mission.name}' runs no Robot-Task: nothing to execute "
                           f"(use 'orccad react' for the automaton alone)", mission.loc)
+    tick = _reaction_tick_ns(tcs, mission)
+    return MissionPlan(mission.name, composition.automaton, composition.roles, sites, tcs,
+                       list(plants.values()), tick)
+
+
+#: The automaton's periodic reaction may be at most this many times finer than the fastest
+#: Module-Task period: a finer tick would cost more reactions than the jobs themselves.
+MAX_TICKS_PER_PERIOD = 1000
+
+
+def _reaction_tick_ns(tcs: TCS, mission: ast.Mission) -> int:
+    """The gcd of the Module-Task periods [ns], the instant period of the automaton's timers;
+    refused (a cost budget, failing fast) when it is far finer than every period."""
     tick = 0
     for task in tcs.module_tasks:
         tick = gcd(tick, task.period_ns)
-    return MissionPlan(mission.name, composition.automaton, composition.roles, sites, tcs,
-                       list(plants.values()), tick)
+    fastest = min((task.period_ns for task in tcs.module_tasks), default=tick)
+    if tick and fastest // tick > MAX_TICKS_PER_PERIOD:
+        periods = sorted({task.period_ns for task in tcs.module_tasks})
+        raise OrccadError(
+            f"the Module-Task periods ({', '.join(f'{p} ns' for p in periods)}) have a "
+            f"greatest common divisor of {tick} ns, {fastest // tick}x finer than the fastest "
+            f"period: the mission's timers react at that divisor, and a run would cost that "
+            f"many reactions (at most {MAX_TICKS_PER_PERIOD}x is accepted); choose "
+            f"commensurate periods, e.g. whole milliseconds", mission.loc)
+    return tick
 
 
 def plan_mission(source: Source, mission: ast.Mission) -> MissionPlan:

@@ -30,22 +30,12 @@ from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioMod
 from orccad_app.control.params import ParamSpec, resolve_params
 from orccad_app.control.task_functions import TaskFunction, TaskState
 from orccad_app.control.trajectories import Sample
+from orccad_app.control.laws.output import LawOutput
 
 if TYPE_CHECKING:
     from orccad_app.control.robot import RobotType
 
 __all__ = ["LawOutput", "Gains", "ControlLaw", "build_model"]
-
-
-@dataclass(frozen=True, slots=True)
-class LawOutput:
-    """One evaluation: ``tau`` [N·m] after the actuator constraint, ``tau_unsat`` before
-    it, the ``saturated`` joints mask and the task error ``e``."""
-
-    tau: np.ndarray
-    tau_unsat: np.ndarray
-    saturated: np.ndarray
-    e: np.ndarray
 
 
 @dataclass(frozen=True)

@@ -27,10 +27,11 @@ import numpy as np
 from orccad_app.control.constraints import ActuatorConstraint
 from orccad_app.control.models import IdentityModel, PinocchioModel
 from orccad_app.control.task_functions.joint import JointTracking
+from orccad_app.control.laws.output import LawOutput
 from orccad_app.control.trajectories import Sample
 
-if TYPE_CHECKING:
-    from orccad_app.control.laws.base import ControlLaw, LawOutput
+if TYPE_CHECKING:  # the law object, duck-typed: base imports this module
+    ControlLaw = Any
 
 __all__ = ["LeanPath", "lean_path"]
 
@@ -101,7 +102,6 @@ class LeanPath:
                 reference: Sample) -> LawOutput | None:
         """:meth:`ControlLaw.command` for this law (same operations, same results);
         ``None`` for inputs of another shape (the general path then reports them)."""
-        from orccad_app.control.laws.base import LawOutput
 
         q = np.asarray(q, dtype=float)
         qdot = np.asarray(qdot, dtype=float)
