@@ -176,6 +176,12 @@ def run(args: argparse.Namespace) -> int:
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
     monitor = PropertyMonitor(source.program, mission, mission_run)
+    progress = None
+    if sys.stderr.isatty():  # a progress line on long runs, never in a pipe or a file
+        from orccad_app.mission.progress import ProgressLine
+
+        progress = ProgressLine(sys.stderr, mission_run.until_ns)
+        mission_run.add_observer(progress)
     if args.trace:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
                                          "seed": str(args.seed)}, sensor_ports(plan))
@@ -184,6 +190,8 @@ def run(args: argparse.Namespace) -> int:
         try:
             result = mission_run.run()
         finally:
+            if progress is not None:
+                progress.close()
             if writer is not None:
                 writer.close()
     except OSError as error:  # the trace's disk is full or gone
