@@ -27,6 +27,8 @@ class JobOwner(Protocol):
     stats: TaskStats
     job: Job | None
     """The Module-Task's unfinished job, if any."""
+    active: bool
+    """Whether the Module-Task is started (its behaviour automaton activated it)."""
 
     def compute(self, job: Job) -> None:
         """``job`` got its processor for the first time: run the compute object."""

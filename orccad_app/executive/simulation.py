@@ -252,7 +252,7 @@ class Simulation:
     def _idle_undriven(self) -> None:
         """Plants none of whose actuator writers is active go idle (their idle behaviour)."""
         for name, channels in self._drivers.items():
-            if not any(channel.producer is not None and getattr(channel.producer, "active", False)
+            if not any(channel.producer is not None and channel.producer.active
                        for channel in channels):
                 self.plants[name].go_idle()
 
