@@ -58,6 +58,11 @@ __all__ = ["MujocoPlant", "PlantDivergenceError", "PlantExtension"]
 _WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
                      mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
 _WATCHED_INDEX = np.array([int(w) for w in _WATCHED_WARNINGS])
+_WATCHED_SLICE = slice(int(_WATCHED_INDEX.min()), int(_WATCHED_INDEX.max()) + 1)
+if _WATCHED_SLICE.stop - _WATCHED_SLICE.start != len(_WATCHED_INDEX):  # not contiguous
+    _WATCHED_SLICE = slice(0, None)
+_clip = np.clip if not hasattr(np, "_core") else getattr(np._core.umath, "clip", np.clip)
+"""``np.clip``'s ufunc without its Python wrapper (same operation)."""
 
 
 _MUJOCO_WARNINGS: list[str] = []
@@ -118,6 +123,9 @@ class MujocoPlant:
         self.model = _load(xml, path)
         self.extension: PlantExtension | None = None
         self.data = mujoco.MjData(self.model)
+        # views into MuJoCo's arrays (the same memory for the life of ``data``)
+        self._qpos, self._qvel, self._ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
+        self._warning_view = self.data.warning.number[_WATCHED_SLICE]
         self.name = name
         self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
         if self.timestep_ns <= 0:
@@ -143,7 +151,7 @@ class MujocoPlant:
         self._attached = False
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
-        self._warning_total = sum(self._warnings)
+        self._warning_total = sum(self._warning_view.tolist())
         self._messages_seen = len(_MUJOCO_WARNINGS)
         self.notify: Any = None
         """``notify(signal, value)``, set by the simulation: idle changes as signals."""
@@ -180,7 +188,7 @@ class MujocoPlant:
 
     def _sensor_readers(self) -> dict[str, Any]:
         model, data = self.model, self.data
-        readers: dict[str, Any] = {"q": lambda: data.qpos.copy(), "qdot": lambda: data.qvel.copy()}
+        readers: dict[str, Any] = {"q": self._qpos.copy, "qdot": self._qvel.copy}
         for index in range(model.nsensor):
             sensor = model.sensor(index)
             if not sensor.name or sensor.name in readers or sensor.name == "tau":
@@ -323,17 +331,20 @@ class MujocoPlant:
         return tuple(self.data.warning.number[_WATCHED_INDEX].tolist())
 
     def _check(self, time_ns: int) -> None:
-        data = self.data
-        # one sum each: any NaN or infinity makes it non-finite (cheaper than isfinite().all())
-        finite = math.isfinite(data.qpos.sum() + data.qvel.sum())
-        if finite and data.warning.number[_WATCHED_INDEX].sum() == self._warning_total:
+        # one sum each, on lists (3 floats: cheaper than numpy's reductions): any NaN or
+        # infinity makes it non-finite; the watched warning counters are one view
+        if math.isfinite(sum(self._qpos.tolist()) + sum(self._qvel.tolist())) and \
+                sum(self._warning_view.tolist()) == self._warning_total:
             return
+        finite = math.isfinite(sum(self._qpos.tolist()) + sum(self._qvel.tolist()))
         counts = self._warning_counts()
         raised = [w.name for w, old, new in zip(_WATCHED_WARNINGS, self._warnings, counts)
                   if new > old]
-        what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         self._warnings = counts
-        self._warning_total = sum(counts)
+        self._warning_total = sum(self._warning_view.tolist())
+        if finite and not raised:  # another counter of the view moved: not a divergence
+            return
+        what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         said = list(dict.fromkeys(_MUJOCO_WARNINGS[self._messages_seen:]))
         self._messages_seen = len(_MUJOCO_WARNINGS)
         mujoco_said = f"; MuJoCo: {' / '.join(said)}" if said else ""
@@ -342,7 +353,9 @@ class MujocoPlant:
 
     def sample(self, port: str) -> np.ndarray:
         """The sensor ``port`` now (noise and quantization applied)."""
-        self.advance_to(self._kernel.now)
+        now = self._kernel.now
+        if now > self._time_ns:
+            self.advance_to(now)
         value = self._readers[port]()
         std = self._noise.get(port)
         if std:
@@ -374,14 +387,16 @@ class MujocoPlant:
 
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
-        self.advance_to(self._kernel.now)
+        now = self._kernel.now
+        if now > self._time_ns:
+            self.advance_to(now)
         command = np.asarray(value, dtype=float)
         if command.shape != self._low.shape:
             command = np.broadcast_to(command, self._low.shape)
-        clamped = np.clip(command, self._low, self._high)
-        if (clamped != command).any():
+        clamped = _clip(command, self._low, self._high)
+        if clamped.tolist() != command.tolist():  # NaN != NaN, as (clamped != command).any()
             self.saturations += 1
-        self.data.ctrl[:] = clamped
+        self._ctrl[:] = clamped
         if self._idle_on:
             self._idle_on = False
             if self.notify is not None and self._idle is not None:

@@ -33,10 +33,14 @@ class ErrorSamples:
         values = np.asarray(error, dtype=float).ravel()
         if not values.size:
             return
-        self.sum_sq += float(values @ values)
+        square = float(values @ values)
+        self.sum_sq += square
         self.count += values.size
-        peak = float(abs(values).max())
-        if peak > self.max_abs or peak != peak:  # NaN propagates
+        if square != square:  # a NaN component: NaN propagates
+            self.max_abs = square
+            return
+        peak = max(map(abs, values.tolist()))  # as abs(values).max() without NaN
+        if peak > self.max_abs:
             self.max_abs = peak
 
     def summary(self, unit: str = "rad") -> dict[str, Any] | None:
