@@ -131,6 +131,8 @@ class MujocoPlant:
         if self.timestep_ns <= 0:
             raise OrccadError(f"plant '{name}': timestep {self.model.opt.timestep} s is below 1 ns")
         self._readers = self._sensor_readers()
+        self._observers: dict[str, Any] = {}
+        """Per port, what :meth:`observe` returns (built at the first observation)."""
         self.resource = self._resource()
         if extension is not None:
             self.extend(extension)
@@ -211,6 +213,7 @@ class MujocoPlant:
         if self.extension is not None:
             raise OrccadError(f"plant '{self.name}' already has an extension")
         self.extension = extension
+        self._observers.clear()
         extension.bind(self.model, self.data)
         for port in extension.sensors:
             self._readers[port] = (lambda p=port: np.array(extension.read(p), dtype=float))
@@ -374,16 +377,26 @@ class MujocoPlant:
         the actuator ``tau``. The plant is brought to now only when now is on its timestep
         grid, which leaves the integration unchanged; otherwise the value is the state at the
         plant's last instant (at most one timestep old). Observing never changes a run."""
-        now = self._kernel.now if self._kernel is not None else self._time_ns
+        now = self._kernel.now if self._attached else self._time_ns
         if now > self._time_ns and now % self.timestep_ns == 0:
             self.advance_to(now)
+        observer = self._observers.get(port)
+        if observer is None:
+            observer = self._observers[port] = self._observer(port)
+        return observer()
+
+    def _observer(self, port: str) -> Any:
+        """What :meth:`observe` calls for ``port`` (chosen once per port)."""
         extension = self.extension
         if extension is not None and port in extension.sensors and hasattr(extension,
                                                                            "true_value"):
-            return np.asarray(extension.true_value(port), dtype=float)
+            return lambda: np.asarray(extension.true_value(port), dtype=float)
         if port == "tau" and port not in self._readers:
-            return self.data.ctrl.copy()
-        return np.asarray(self._readers[port](), dtype=float)
+            return self._ctrl.copy
+        reader = self._readers[port]
+        if port in ("q", "qdot") or port not in (extension.sensors if extension else ()):
+            return reader  # float64 copies of MuJoCo's arrays already
+        return lambda: np.asarray(reader(), dtype=float)
 
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""

@@ -73,6 +73,7 @@ DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
 _INTERRUPTED = "interrupted (Ctrl-C)"
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
+_NO_INPUTS: frozenset[str] = frozenset()
 
 
 class _Link(Observer):
@@ -87,6 +88,9 @@ class _Link(Observer):
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port == "e":
             self._run.task_error(module, value)
+
+    def wants_write(self, module: str, port: str) -> bool:
+        return port == "e"
 
 
 class MissionRun:
@@ -119,6 +123,7 @@ class MissionRun:
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
+        self._on_reaction = self._hooks["on_reaction"]
         plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
                               plants=plants, observers=[_Link(self), *observers])
@@ -238,17 +243,21 @@ class MissionRun:
     def _react(self, _: object) -> None:
         now = self.kernel.now
         pending = self._pending
-        if not pending and self._reacted_at == now:
-            return
-        self._pending = {}
-        self._reacted_at = now
-        if any(value is not None for value in pending.values()):
-            inputs: Any = pending
+        inputs: Any
+        if not pending:
+            if self._reacted_at == now:
+                return
+            inputs = _NO_INPUTS  # a tick: no dict or set to build
         else:
-            inputs = set(pending)
+            self._pending = {}
+            if any(value is not None for value in pending.values()):
+                inputs = pending
+            else:
+                inputs = set(pending)
+        self._reacted_at = now
         reactor = self.reactor
         reaction = reactor.react(inputs, now)
-        for hook in self._hooks["on_reaction"]:
+        for hook in self._on_reaction:
             hook(now, tuple(pending), reaction.outputs, reaction.status)
         if not reaction.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
