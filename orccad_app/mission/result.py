@@ -10,6 +10,8 @@ import numpy as np
 
 from orccad_app.executive.simulation import RunStats
 
+_dot = np.dot
+
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "RunResult", "ErrorSamples", "STATUSES"]
 
 STATUSES = ("done", "failed", "aborted", "timeout")
@@ -30,10 +32,13 @@ class ErrorSamples:
 
     def add(self, error: Any) -> None:
         """One sample (a vector of components) [rad or m]."""
-        values = np.asarray(error, dtype=float).ravel()
+        if type(error) is np.ndarray and error.ndim == 1 and error.dtype.char == "d":
+            values = error  # a control law's e: used as it is
+        else:
+            values = np.asarray(error, dtype=float).ravel()
         if not values.size:
             return
-        square = float(values @ values)
+        square = float(_dot(values, values))  # np.dot: values @ values, cheaper to call
         self.sum_sq += square
         self.count += values.size
         if square != square:  # a NaN component: NaN propagates
