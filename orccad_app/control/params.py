@@ -142,6 +142,8 @@ class ParamSpec:
         if kind == "float":
             if not _is_real(value) or math.isnan(float(value)):
                 raise self._fail(owner, "a number", value)
+            if not math.isfinite(float(value)):
+                raise self._fail(owner, "a finite number", value)
             return float(value)
         if kind == "int":
             if _is_real(value) and float(value).is_integer():

@@ -8,7 +8,8 @@ Module-Tasks in **one** TCS, idle until the behaviour automata activate them:
 - the Module-Tasks of site ``s`` of task ``X`` are named ``X.module`` (``X_s.module`` when ``X``
   is run at several sites, ``s`` the site number);
 - one plant per robot (:class:`PlantSpec`), built from its robot type's MJCF file, with the
-  sensors' default noise and quantization. **Initial state:** at rest, on the reference at
+  sensors' noise and quantization (the ports' defaults, or the values of the robot type's
+  sensor parameters: ``robot arm : arm3dof(noise_std = 1e-4);``). **Initial state:** at rest, on the reference at
   ``t = 0`` of the first Robot-Task run on that robot when its task function is a joint-space
   reference with a known start (RR-1801 §7.1 starts on the trajectory); else the model's
   ``qpos0``;
@@ -215,8 +216,8 @@ def _initial_q(instance: RobotTaskInstance) -> np.ndarray | None:
 
 
 def _plant_spec(robot: str, robot_type: Any, qpos0: np.ndarray | None) -> PlantSpec:
-    noise = {p.name: p.noise_std for p in robot_type.sensors if p.noise_std}
-    quanta = {p.name: p.quantum for p in robot_type.sensors if p.quantum}
+    noise = {port: std for port, std in robot_type.sensor_noise().items() if std}
+    quanta = {port: step for port, step in robot_type.sensor_quantization().items() if step}
     return PlantSpec(robot, str(robot_type.mjcf_path), noise, quanta, qpos0, robot_type)
 
 
