@@ -11,7 +11,9 @@ JSON keys (docs/design.md, *Command line*):
   ``preemptions``, ``blocking_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``;
-- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``;
+- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
+  ``module``, ``param``, ``old``, ``new`` and ``ramp`` (``start``, ``end``, ``duration_s``, or
+  ``null``);
 - ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
 - ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
   ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
@@ -187,9 +189,10 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
     lines += _task_lines(report)
     if report["exceptions"]:
         lines.append("Exceptions:")
-        for e in report["exceptions"]:
+        for e, record in zip(report["exceptions"], result.exceptions):
+            change = f": {record.update.text()}" if record.update is not None else ""
             lines.append(f"  {e['time_s']:.3f} s  {e['name']} (type {e['type']}"
-                         f"{', ' + e['task'] if e['task'] else ''})")
+                         f"{', ' + e['task'] if e['task'] else ''}){change}")
     if report["injections"]:
         lines += _injection_lines(report)
     if report["outputs"]:
