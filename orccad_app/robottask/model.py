@@ -261,14 +261,25 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
         try:
             value = compute(expr, inst.params, read)
             values.append(value)
-            if form.constant:  # on a throw-away instance: valid for this module
-                fresh[target.component].set_param(target.port, value)
-            else:
-                spec.convert(value, fresh[target.component].kind.name)
+            _probe(fresh[target.component], spec, target.port, value, form.constant)
         except OrccadError as error:
             raise _located(error, getattr(expr, "loc", adjust.loc)) from None
     constant = values[0] if form.constant and form.ramp is None else None
     return Adjustment(exc.name, target.component, target.port, constant, form, adjust.loc)
+
+
+def _probe(module: ModuleInstance, spec: Any, param: str, value: Any, constant: bool) -> None:
+    """Set ``value`` on a throw-away ``module``: a constant must be valid; a value computed
+    from the nominal parameters must have the parameter's type and shape (``kp`` a number or
+    one per joint), its range being checked when the update is applied."""
+    owner = module.kind.name
+    if not constant:
+        spec.convert(value, owner)
+        try:
+            spec.coerce(value, owner)
+        except OrccadError:
+            return  # out of range at the nominal values: checked when applied
+    module.set_param(param, value)
 
 
 def _priorities(modules: dict[str, ModuleSpec]) -> None:

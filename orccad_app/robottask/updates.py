@@ -111,6 +111,16 @@ def _ramp(call: ast.Call) -> Ramp:
     return Ramp(given["start"].value, given["end"].value, duration.duration_ns)
 
 
+def _refused(expr: Any) -> str:
+    if isinstance(expr, (ast.Unary, ast.Binary)):
+        return f"'{expr.op}'"
+    if isinstance(expr, (ast.LastValue, ast.PreValue, ast.PreSignal)):
+        return "signals"
+    if isinstance(expr, ast.DurationLit):
+        return "durations (only a ramp's third argument is one)"
+    return "strings or booleans (only as the whole value: adjust m.p = false)"
+
+
 def _check(expr: ast.Expr) -> None:
     """Refuse what an update expression cannot compute, with its location."""
     if isinstance(expr, (ast.Number, ast.Name, ast.ParamRef)):
@@ -130,8 +140,8 @@ def _check(expr: ast.Expr) -> None:
         _check_call(expr)
         return
     raise OrccadError("a type-1 update computes with numbers, vectors, the task's parameters, "
-                      "module parameters (ctrl.kp), + - * / and min, max, abs, clip; "
-                      "not with this", getattr(expr, "loc", None))
+                      "module parameters (ctrl.kp), + - * / and min, max, abs, clip; not "
+                      f"with {_refused(expr)}", getattr(expr, "loc", None))
 
 
 def _check_call(call: ast.Call) -> None:
@@ -158,7 +168,8 @@ def update_form(value: ast.Expr) -> UpdateForm:
     if isinstance(value, ast.Call) and value.func == "ramp":
         ramp = _ramp(value)
         return UpdateForm(None, ramp, param_reads(ramp.start) + param_reads(ramp.end))
-    _check(value)
+    if not isinstance(value, (ast.Bool, ast.String)):  # a literal is a whole value
+        _check(value)
     return UpdateForm(value, None, param_reads(value))
 
 
@@ -190,18 +201,29 @@ def _number(value: Any, loc: Any) -> Any:
 def compute(expr: ast.Expr, env: Mapping[str, Any], read: Reader) -> Any:
     """The value of the update expression ``expr`` (checked by :func:`update_form`): names
     are the task's parameters in ``env``, ``m.p`` is ``read(m, p)``."""
+    if isinstance(expr, (ast.Bool, ast.String)):
+        return expr.value
     if isinstance(expr, ast.Number):
         return float(expr.value)
     if isinstance(expr, ast.Name):
-        return _number(env[expr.name], expr.loc)
+        value = env[expr.name]
+        return _plain(value) if isinstance(value, list) else value
     if isinstance(expr, ast.ParamRef):
-        return _number(read(expr.module, expr.param), expr.loc)
+        try:
+            return read(expr.module, expr.param)
+        except OrccadError as error:
+            if error.location is None:
+                raise OrccadError(error.message, expr.loc) from None
+            raise
     if isinstance(expr, ast.Vector):
-        return _plain([compute(item, env, read) for item in expr.items])
+        items = [_operand(item, env, read) for item in expr.items]
+        if any(np.ndim(item) for item in items):
+            raise OrccadError("the items of a vector are numbers, got a vector", expr.loc)
+        return _plain(items)
     if isinstance(expr, ast.Unary):
-        return _plain(-np.asarray(compute(expr.operand, env, read)))
+        return _plain(-np.asarray(_operand(expr.operand, env, read)))
     if isinstance(expr, ast.Binary):
-        left, right = compute(expr.left, env, read), compute(expr.right, env, read)
+        left, right = _operand(expr.left, env, read), _operand(expr.right, env, read)
         try:
             with np.errstate(all="ignore"):
                 a, b = np.asarray(left), np.asarray(right)
@@ -211,9 +233,14 @@ def compute(expr: ast.Expr, env: Mapping[str, Any], read: Reader) -> Any:
             raise OrccadError(f"cannot compute this value: {error}", expr.loc) from None
         return _plain(result)
     if isinstance(expr, ast.Call):
-        args = [compute(arg.value, env, read) for arg in expr.args]
+        args = [_operand(arg.value, env, read) for arg in expr.args]
         try:
             return _call(expr, args)
         except ValueError as error:
             raise OrccadError(f"cannot compute this value: {error}", expr.loc) from None
     raise OrccadError("not a value of a type-1 update", getattr(expr, "loc", None))
+
+
+def _operand(expr: ast.Expr, env: Mapping[str, Any], read: Reader) -> Any:
+    """An operand of arithmetic or of a function: a number or a vector of numbers."""
+    return _number(compute(expr, env, read), getattr(expr, "loc", None))
