@@ -242,8 +242,7 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
     target = adjust.target
     module = inst.modules.get(target.component)
     if module is None:
-        raise OrccadError(f"adjust: no module '{target.component}' in Robot-Task "
-                          f"'{inst.task.name}'", target.loc)
+        raise OrccadError(_unknown_module(target.component, inst), target.loc)
     form = update_form(adjust.value)
     fresh = {name: spec.fresh(inst.context) for name, spec in inst.modules.items()}
     try:
@@ -253,7 +252,7 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
 
     def read(name: str, param: str) -> Any:
         if name not in fresh:
-            raise OrccadError(f"adjust: no module '{name}' in Robot-Task '{inst.task.name}'")
+            raise OrccadError(_unknown_module(name, inst))
         return fresh[name].get_param(param)
 
     values = []
@@ -266,6 +265,11 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
             raise _located(error, getattr(expr, "loc", adjust.loc)) from None
     constant = values[0] if form.constant and form.ramp is None else None
     return Adjustment(exc.name, target.component, target.port, constant, form, adjust.loc)
+
+
+def _unknown_module(name: str, inst: RobotTaskInstance) -> str:
+    return (f"unknown module '{name}' in Robot-Task '{inst.task.name}' (its modules: "
+            f"{', '.join(inst.modules)})")
 
 
 def _probe(module: ModuleInstance, spec: Any, param: str, value: Any, constant: bool) -> None:
