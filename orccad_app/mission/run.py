@@ -294,7 +294,11 @@ class MissionRun:
             if role.kind is RoleKind.ADJUST and role.task is not None:
                 site = self._running_site(role.task)
                 update = site.adjustments.get(role.name) if site is not None else None
-                change = None if update is None else self._updates.apply(update, role.name)
+                try:
+                    change = None if update is None else self._updates.apply(update, role.name)
+                except UpdateError:  # the exception happened; its update ends the run
+                    self._record(ExceptionRecord(now, role.name, 1, role.task))
+                    raise
                 self._record(ExceptionRecord(now, role.name, 1, role.task, change))
             elif role.kind is RoleKind.RAISED:
                 kind, task = self._origin(role.name)

@@ -148,7 +148,9 @@ def test_a_refused_computed_value_ends_the_run_failed_with_its_location(tmp_path
     assert (result.status, result.sim_time_ns) == ("failed", 20_000_000)
     assert result.reason == (f"{_adjust_at(path)}: type-1 update of Hold.ctrl.kp by Push at "
                              f"t = 0.02 s: pid: kp must be > 0, got -100.0")
-    assert [e.update.new for e in result.exceptions] == [150.0]  # the first one applied
+    # the first one applied; the second is recorded without an update
+    assert [(e.time_ns, e.update and e.update.new) for e in result.exceptions] == \
+        [(10_000_000, 150.0), (20_000_000, None)]
     assert plan.tcs.module("Hold.ctrl").compute.get_param("kp") == 150.0  # never clamped
 
 
