@@ -11,7 +11,9 @@ JSON keys (docs/design.md, *Command line*):
   ``preemptions``, ``blocking_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``;
-- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``;
+- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
+  ``module``, ``param``, ``old``, ``new`` and ``ramp`` (``start``, ``end``, ``duration_s``, or
+  ``null``);
 - ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
 - ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
   ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
@@ -175,6 +177,27 @@ def _injection_lines(report: dict[str, Any]) -> list[str]:
     return lines
 
 
+def _exception_lines(result: RunResult) -> list[str]:
+    """One line per exception; consecutive ones that read the same (a type-1 update repeated
+    at its bound: ``kp 800 -> 800``) as one line ``first–last s … ×N``."""
+    groups: list[tuple[float, float, str, int]] = []
+    for record in result.exceptions:
+        change = f": {record.update.text()}" if record.update is not None else ""
+        text = (f"{record.name} (type {record.type}"
+                f"{', ' + record.task if record.task else ''}){change}")
+        time_s = record.time_ns / 1e9
+        if groups and groups[-1][2] == text:
+            first, _, _, count = groups[-1]
+            groups[-1] = (first, time_s, text, count + 1)
+        else:
+            groups.append((time_s, time_s, text, 1))
+    lines = ["Exceptions:"]
+    for first, last, text, count in groups:
+        when = f"{first:.3f} s" if count == 1 else f"{first:.3f}–{last:.3f} s"
+        lines.append(f"  {when}  {text}" + (f" ×{count}" if count > 1 else ""))
+    return lines
+
+
 def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ()) -> str:
     """The human report: the story first (status, Robot-Tasks, exceptions, injections,
     outputs), then the Module-Tasks' timing, processors and bus."""
@@ -186,10 +209,7 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
              f"({ratio:.1f}× real time), seed {report['seed']}"]
     lines += _task_lines(report)
     if report["exceptions"]:
-        lines.append("Exceptions:")
-        for e in report["exceptions"]:
-            lines.append(f"  {e['time_s']:.3f} s  {e['name']} (type {e['type']}"
-                         f"{', ' + e['task'] if e['task'] else ''})")
+        lines += _exception_lines(result)
     if report["injections"]:
         lines += _injection_lines(report)
     if report["outputs"]:
