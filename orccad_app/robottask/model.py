@@ -27,6 +27,7 @@ from orccad_app.lang.walk import runs
 from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
+from orccad_app.tcs.phasing import Activation
 
 __all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
            "instantiate", "check_tasks",
@@ -56,6 +57,8 @@ class ModuleSpec:
     loc: SourceLocation
     origin: ModuleOrigin = ModuleOrigin.DECLARED
     params: dict = field(default_factory=dict)  # as given, for a fresh instance
+    activation: Activation = Activation.PERIODIC
+    """Periodic, or sporadic (``timing.period_ns`` is then its minimum inter-arrival time)."""
 
     @property
     def implicit(self) -> bool:
@@ -150,7 +153,10 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                 raise OrccadError(f"arguments of module kind '{m.kind}' must be named", m.loc)
             instance = kind.create(values, context)
             default = kind.default_timing
-            timing = Timing(m.period_ns or default.period_ns,
+            if m.min_interarrival_ns is not None and m.period_ns is not None:
+                raise OrccadError(f"module '{m.name}' is sporadic: give its minimum "
+                                  f"inter-arrival time or a period, not both", m.loc)
+            timing = Timing(m.min_interarrival_ns or m.period_ns or default.period_ns,
                             m.wcet_ns if m.wcet_ns is not None else default.wcet_ns,
                             m.bcet_ns if m.bcet_ns is not None else None)
         except OrccadError as error:
@@ -160,7 +166,9 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                               f"got {m.priority}", m.loc)
         modules[m.name] = ModuleSpec(m.name, kind, instance, timing,
                                      m.processor or DEFAULT_PROCESSOR, m.priority or 0, m.loc,
-                                     params=values)
+                                     params=values,
+                                     activation=Activation.PERIODIC
+                                     if m.min_interarrival_ns is None else Activation.SPORADIC)
     return modules
 
 

@@ -8,7 +8,8 @@ JSON keys (docs/design.md, *Command line*):
   ``tracking_error`` ``{"rms", "max", "unit"}`` (``rad`` or ``m``, the task function's) (``null`` without a control law);
 - ``modules``, keyed ``Task.module``: ``processor``, ``period_s``, ``wcet_s``, ``jobs``
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
-  ``preemptions``, ``blocking_s``;
+  ``preemptions``, ``blocking_s``; a sporadic one also ``sporadic``: ``min_interarrival_s``,
+  ``interrupts``, ``released``, ``deferred``, ``coalesced``, ``min_gap_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``;
 - ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
@@ -77,6 +78,13 @@ def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
             "response_time_mean_s": stats.response_mean_ns / 1e9,
             "deadline_misses": stats.deadline_misses, "preemptions": stats.preemptions,
             "blocking_s": stats.blocking_ns / 1e9}
+        sporadic = result.stats.sporadic.get(name)
+        if sporadic is not None:
+            found[name]["sporadic"] = {
+                "min_interarrival_s": sporadic.min_interarrival_ns / 1e9,
+                "interrupts": sporadic.interrupts, "released": sporadic.released,
+                "deferred": sporadic.deferred, "coalesced": sporadic.coalesced,
+                "min_gap_s": None if sporadic.min_gap_ns < 0 else sporadic.min_gap_ns / 1e9}
     return found
 
 
@@ -140,6 +148,13 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
                      f"{_ms(m['wcet_s']):>6} {m['jobs']:>6} {_ms(m['response_time_max_s']):>9} "
                      f"{_ms(m['response_time_mean_s']):>9} {m['deadline_misses']:>6} "
                      f"{m['preemptions']:>7}")
+    for name, m in report["modules"].items():
+        sporadic = m.get("sporadic")
+        if sporadic:
+            lines.append(f"  {name}: sporadic, min inter-arrival {_ms(sporadic['min_interarrival_s'])}"
+                         f" ms: {sporadic['interrupts']} interrupts, {sporadic['released']} "
+                         f"releases, {sporadic['deferred']} deferred, {sporadic['coalesced']} "
+                         f"coalesced")
     return lines
 
 
