@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from math import gcd
-from typing import Any
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -35,6 +35,7 @@ from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
 from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.tcs.graph import TCS
 
@@ -93,11 +94,36 @@ class SiteModules:
         """The Robot-Task's name."""
         return self.site.task
 
-    def fresh_computes(self) -> dict[str, ModuleInstance]:
+    @property
+    def arguments(self) -> tuple[RunArgument, ...]:
+        """The run site's run-time arguments (evaluated when the task starts)."""
+        return self.site.arguments
+
+    def bound(self, values: Mapping[str, Any]) -> RobotTaskInstance:
+        """The instance of this start: the checked one, or, with run-time arguments, the one
+        bound to their values (``values``: automaton output -> value in the starting
+        instant); raises :class:`~orccad_app.robottask.binding.ArgumentError`."""
+        if not self.site.arguments:
+            return self.instance
+        from orccad_app.robottask.binding import bind_arguments
+        return bind_arguments(self.instance, self.site.arguments, values)
+
+    def fresh_computes(self, instance: RobotTaskInstance | None = None
+                       ) -> dict[str, ModuleInstance]:
         """New compute objects for every module (nominal parameters: a Robot-Task run again
-        does not inherit the type-1 updates of its previous run)."""
-        specs = self.instance.modules.values()
-        return {name: spec.fresh(self.instance.context) for name, spec in zip(self.modules, specs)}
+        does not inherit the type-1 updates of its previous run); ``instance``: the bound
+        instance of this start (default: the checked one)."""
+        instance = instance or self.instance
+        specs = instance.modules.values()
+        return {name: spec.fresh(instance.context) for name, spec in zip(self.modules, specs)}
+
+    def adjustments_of(self, instance: RobotTaskInstance) -> dict[str, ParamUpdate]:
+        """The type-1 updates of ``instance`` (a bound instance of this site), in TCS names."""
+        if instance is self.instance:
+            return self.adjustments
+        names = dict(zip(instance.modules, self.modules))
+        return {e: ParamUpdate(names[a.module], a.param, a.value)
+                for e, a in instance.adjustments.items()}
 
     def wanted(self, phase: int) -> tuple[str, ...]:
         """Modules active in ``phase`` (0: not running)."""
