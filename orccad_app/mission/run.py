@@ -58,7 +58,7 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
-from orccad_app.mission.injection import Injection
+from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
@@ -158,7 +158,7 @@ class MissionRun:
                 self._hooks[hook].append(getattr(observer, hook))
 
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
-        inputs = {s.name for s in self.plan.automaton.inputs}
+        inputs = {s.name: s for s in self.plan.automaton.inputs}
         for injection in injections:
             if injection.fault:
                 self._schedule_fault(injection)
@@ -167,6 +167,7 @@ class MissionRun:
                 known = ", ".join(sorted(inputs)) or "none"
                 raise OrccadError(f"--inject {injection.name}: not an input of mission "
                                   f"'{self.plan.name}' (inputs: {known})")
+            injection = typed_injection(injection, inputs[injection.name])
             if injection.time_ns >= self.until_ns:
                 raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
                                   f"after --until ({self.until_ns / 1e9:g} s)")
