@@ -84,7 +84,7 @@ def _arithmetic(op: str, left: StaticType, right: StaticType) -> StaticType:
     if "vector" in (left.type, right.type):
         other = right if left.type == "vector" else left
         if other.type == "vector" or other.type in _NUMERIC:
-            dims = {t.dim for t in (left, right) if t.type == "vector"}
+            dims = {t.dim for t in (left, right) if t.type == "vector" and t.dim is not None}
             return StaticType("vector", dims.pop() if len(dims) == 1 else None)
         return _UNKNOWN
     if left.type in _NUMERIC and right.type in _NUMERIC:
