@@ -140,7 +140,7 @@ def value_text(value: Any) -> str:
     if isinstance(value, str):
         return '"' + value.replace('"', '\\"') + '"'
     if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
-        items = value.tolist() if hasattr(value, "tolist") else value
+        items = value.tolist() if hasattr(value, "tolist") else list(value)
         if isinstance(items, list):
             return "[" + ", ".join(value_text(v) for v in items) + "]"
         return value_text(items)
