@@ -70,6 +70,8 @@ class RobotTaskRecord:
     :param errors: the task error's samples (the ``e`` output of its control law).
     :param error_unit: their unit (the task function's: ``rad`` in joint space, ``m`` for a
         Cartesian position).
+    :param args: the actual value of each of its parameters at this start (run-time
+        arguments evaluated, defaults filled in; vectors as lists).
     """
 
     name: str
@@ -79,10 +81,11 @@ class RobotTaskRecord:
     outcome: str = "running"
     errors: ErrorSamples = field(default_factory=ErrorSamples)
     error_unit: str = "rad"
+    args: dict[str, Any] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form (``tracking_error`` is ``null`` without a control law)."""
-        return {"name": self.name, "start_s": self.start_ns / 1e9,
+        return {"name": self.name, "args": self.args, "start_s": self.start_ns / 1e9,
                 "end_s": None if self.end_ns is None else self.end_ns / 1e9,
                 "outcome": self.outcome, "tracking_error": self.errors.summary(self.error_unit)}
 

@@ -104,6 +104,11 @@ class RobotTaskInstance:
     events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
+    #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
+    robots: Mapping[str, ast.Robot] = field(default_factory=dict, repr=False)
+    host: Any = field(default=None, repr=False)
+    args: tuple[ast.Arg, ...] = ()
+    run_loc: SourceLocation | None = None
 
     @property
     def duration_s(self) -> float | None:
@@ -304,15 +309,18 @@ def _priorities(modules: dict[str, ModuleSpec]) -> None:
 
 
 def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
-                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
-                ) -> RobotTaskInstance:
-    """Check ``task`` with the arguments of one ``run`` and build its instance."""
+                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None,
+                actual: Mapping[str, Any] | None = None) -> RobotTaskInstance:
+    """Check ``task`` with the arguments of one ``run`` and build its instance; ``actual``
+    gives the values of its run-time arguments (default: the nominal binding, see
+    :func:`~orccad_app.robottask.values.task_arguments`)."""
     try:
-        params = task_arguments(task, args)
+        params = task_arguments(task, args, actual=actual)
     except OrccadError as error:
         raise _located(error, run_loc or task.loc) from None
     context = _context(task, params, robots, host)
-    inst = RobotTaskInstance(task, params, task.robot, context)
+    inst = RobotTaskInstance(task, params, task.robot, context, robots=robots, host=host,
+                             args=args, run_loc=run_loc)
     inst.modules = _declared_modules(task, params, context, host)
     _law_defaults(inst, host)
     _conditions(inst, host)

@@ -4,7 +4,8 @@ JSON keys (docs/design.md, *Command line*):
 
 - ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;
-- ``robot_tasks``: per Robot-Task run ``name``, ``start_s``, ``end_s``, ``outcome``,
+- ``robot_tasks``: per Robot-Task run ``name``, ``args`` (each parameter's actual value at
+  that start: run-time arguments evaluated, defaults filled in), ``start_s``, ``end_s``, ``outcome``,
   ``tracking_error`` ``{"rms", "max", "unit"}`` (``rad`` or ``m``, the task function's) (``null`` without a control law);
 - ``modules``, keyed ``Task.module``: ``processor``, ``period_s``, ``wcet_s``, ``jobs``
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
@@ -30,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.diagnostics import arguments_text
 from orccad_app.mission.result import RunResult
 from orccad_app.trace.recorder import plain_value
 
@@ -123,15 +125,22 @@ def _ms(seconds: float) -> str:
     return f"{seconds * 1e3:.3f}"
 
 
+def _task_label(task: dict[str, Any]) -> str:
+    """``GoTo(target=[10, 0, 15])``: the task with its actual arguments."""
+    args = task.get("args") or {}
+    return task["name"] + (f"({arguments_text(args)})" if args else "")
+
+
 def _task_lines(report: dict[str, Any]) -> list[str]:
     lines = ["Robot-Tasks:"]
+    width = max([16, *(len(_task_label(t)) for t in report["robot_tasks"] or [])])
     for task in report["robot_tasks"] or []:
         end = "…" if task["end_s"] is None else f"{task['end_s']:.3f}"
         error = task["tracking_error"]
         figures = ("" if error is None else
                    f"   tracking error RMS {error['rms']:.3e} {error['unit']}, "
                    f"max {error['max']:.3e} {error['unit']}")
-        lines.append(f"  {task['name']:<16} {task['start_s']:.3f} → {end} s  "
+        lines.append(f"  {_task_label(task):<{width}} {task['start_s']:.3f} → {end} s  "
                      f"{task['outcome']}{figures}")
     if not report["robot_tasks"]:
         lines.append("  (none started)")
