@@ -355,7 +355,7 @@ def check_tasks(program: ast.Program, host) -> TaskInstances:
     for task in program.robottasks:
         if all(p.default is not None for p in task.params):
             defaults[task.name] = instantiate(task, robots, host)
-    for mission in program.missions:
+    for mission in program.missions + program.imported_missions:
         for run in runs(mission):
             task = tasks.get(run.task)
             if task is None:
