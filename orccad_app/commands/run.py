@@ -126,39 +126,21 @@ def _injection(text: str):
     return parse_injection(text)
 
 
-def _check_values(injections, inputs) -> None:
-    """Each injected value fits its input: none for a pure input, one of the declared type
-    (finite, integers within 64 bits) for a valued one; fault values finite."""
+def _check_values(injections, inputs) -> list:
+    """Each injected value typed against its input: none for a pure input, one of the
+    declared type (finite, integers within 64 bits, a vector as [x, y, ...]) for a valued
+    one; fault values finite."""
     import math
 
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.lang.limits import MAX_INT, MIN_INT
+    from orccad_app.mission.injection import typed_injections
 
-    declared = {s.name: s for s in inputs}
     for injection in injections:
-        value, name = injection.value, injection.name
-        if isinstance(value, float) and not math.isfinite(value):
-            raise OrccadError(f"--inject {name}: the value must be a finite number, got {value}")
-        if isinstance(value, int) and not isinstance(value, bool) and \
-                not MIN_INT <= value <= MAX_INT:
-            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
-        signal = declared.get(name)
-        if injection.fault or signal is None:
-            continue  # unknown names are reported by the run, with the known inputs
-        if signal.type is None and value is not None:
-            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
-                              f"(write {name}@T)")
-        if signal.type is not None and value is None:
-            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
-                              f"{name}(value)@T")
-        if signal.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
-            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
-        if signal.type in ("float", "duration") and (isinstance(value, bool)
-                                                     or not isinstance(value, (int, float))):
-            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}, got {value!r}")
-        if signal.type == "bool" and not isinstance(value, bool):
-            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
-                              f"got {value!r}")
+        value = injection.value
+        if injection.fault and isinstance(value, float) and not math.isfinite(value):
+            raise OrccadError(f"--inject {injection.name}: the value must be a finite number, "
+                              f"got {value}")
+    return typed_injections(injections, inputs)
 
 
 def _warn_first_instant(injections) -> None:
@@ -231,7 +213,7 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     plan = plan_with_overrides(source, mission, overrides)
-    _check_values(injections, plan.automaton.inputs)
+    injections = _check_values(injections, plan.automaton.inputs)
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     if args.inject_from:
         scripted = _scripted(args.inject_from, plan)

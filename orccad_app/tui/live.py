@@ -28,7 +28,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, arguments_text
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
@@ -348,8 +348,9 @@ class LiveObserver(Observer):
     def on_param(self, t_ns: int, module: str, name: str, value: Any) -> None:
         self._log.append(LogEntry(t_ns, "param", f"{module}.{name} := {value}"))
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
-        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts"))
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        shown = f": {arguments_text(args)}" if args else ""  # its actual arguments
+        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts{shown}"))
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) ends: {outcome}"))
