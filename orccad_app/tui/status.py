@@ -113,23 +113,31 @@ def run_site_lines(session: Any, state: int | None) -> list[int]:
     return _in_file([loc for _, loc in running_sites(session, state)], session.path)
 
 
+MAX_WAITING = 4
+"""Locations shown in the status line (the Source tab, ``o``, shows them all)."""
+
+
 def where_text(session: Any, state: int | None, status: str = "running") -> str:
-    """``waiting at arm_recovery.orc:58, 77, homing.orc:26`` (or the status once the mission
-    ended), then the running Robot-Tasks and their ``run`` statements."""
+    """``waiting at arm_recovery.orc:58, 77, homing.orc:26 (running TrackPID at :48)`` (or
+    the status once the mission ended); past :data:`MAX_WAITING` locations, ``… +N``. The
+    running Robot-Tasks come first when the list is cut, so a small terminal shows them."""
     if status in ("done", "failed", "aborted"):
         return f"the mission has ended: {status}"
     waiting = _waiting(session, state)
     if not waiting:
         return "starting" if state is None else "reacting"
     name = Path(session.path).name
-    own = waiting_lines(session, state)
-    parts = ([f"{name}:{', '.join(map(str, own))}"] if own else []) + \
-        elsewhere(waiting, session.path)
-    text = f"waiting at {', '.join(parts)}"
+    own = [str(line) for line in waiting_lines(session, state)]
+    others = elsewhere(waiting, session.path)
+    cut = max(0, len(own) + len(others) - MAX_WAITING)
+    if cut:
+        own, others = own[:MAX_WAITING], others[:max(0, MAX_WAITING - len(own))]
+    parts = ([f"{name}:{', '.join(own)}"] if own else []) + others
+    text = f"waiting at {', '.join(parts)}" + (f" … +{cut}" if cut else "")
     running = running_sites(session, state)
     if running:
-        text += " (running " + ", ".join(f"{task} at {_where(loc, session.path)}"
-                                         for task, loc in running) + ")"
+        tasks = ", ".join(f"{task} at {_where(loc, session.path)}" for task, loc in running)
+        text = f"running {tasks}; {text}" if cut else f"{text} (running {tasks})"
     return text
 
 

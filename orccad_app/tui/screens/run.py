@@ -39,9 +39,9 @@ class RunScreen(Screen):
 
     BINDINGS = [
         Binding("space", "toggle_pause", "Pause/resume"),
-        Binding("r", "speed('realtime')", "1×", tooltip="real time (1×)"),
-        Binding("x", "speed('fast')", "10×", tooltip="10× real time"),
-        Binding("m", "speed('max')", "Max", tooltip="as fast as possible"),
+        Binding("r", "speed('realtime')", "1×", show=False, tooltip="real time (1×)"),
+        Binding("x", "speed('fast')", "10×", show=False, tooltip="10× real time"),
+        Binding("m", "speed('max')", "Max", show=False, tooltip="as fast as possible"),
         Binding("i", "inject", "Inject", tooltip="inject the fault or event chosen in the list"),
         Binding("h", "hold_mode", "Pulse/hold", tooltip="inputs: pulse (one instant) or hold "
                                                         "(every instant until pressed again)"),
@@ -94,7 +94,7 @@ class RunScreen(Screen):
                 yield EventLog(id="log")
         yield InputBar(self.session.inputs, self.session.events, self.session.faults,
                        id="inputs")
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         self.query_one(EventLog).border_title = "log"
