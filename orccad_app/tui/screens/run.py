@@ -117,8 +117,9 @@ class RunScreen(Screen):
         self.post_message(RunFinished(result, self.session.report()))
 
     def _status(self, update: LiveUpdate | None) -> None:
+        limit = 4 if self.size.width < 120 else 12  # where it waits: what fits on a line
         self.query_one("#run-status", Static).update(status_text(
-            self.session, update, self.meter))
+            self.session, update, self.meter, limit))
 
     def _where(self, update: LiveUpdate | None) -> None:
         """The source with the statements the mission waits at, the RTA and TCS tabs."""
