@@ -15,6 +15,7 @@ from collections import deque
 from pathlib import Path
 from typing import Any
 
+from orccad_app.reactive.labels import MissionLabel, in_missions, sub_mission_labels
 from orccad_app.tui.live import PHASES, LiveUpdate
 
 __all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites", "tasks_in_state", "where_text", "rta_text", "tcs_rows",
@@ -62,8 +63,28 @@ def waiting_lines(session: Any, state: int | None) -> list[int]:
     if not 0 <= state < len(automaton.waiting):
         return []
     name = Path(session.path).name
-    return sorted({loc.line for loc in automaton.waiting[state]
-                   if loc.line > 0 and Path(loc.file or name).name == name})
+    waiting = automaton.waiting[state]
+    lines = {loc.line for loc in waiting if loc.line > 0 and _in_file(loc, name)}
+    # a wait inside a sub-mission of another file shows at its `run mission` statement here
+    lines.update(label.call.line for label in _calls_here(session, state)
+                 if label.statements(waiting))
+    return sorted(lines)
+
+
+def _in_file(loc: Any, name: str) -> bool:
+    return Path(loc.file or name).name == name
+
+
+def _calls_here(session: Any, state: int) -> list[MissionLabel]:
+    """The sub-missions of ``state`` that a ``run mission`` of the mission's own file calls
+    from another file (their statements cannot show in this file's source)."""
+    automaton = session.run.plan.automaton
+    if not automaton.labels or not 0 <= state < len(automaton.labels):
+        return []
+    name = Path(session.path).name
+    return [label for label in sub_mission_labels(automaton.labels[state])
+            if label.call.line > 0 and _in_file(label.call, name)
+            and not _in_file(label.defined, name)]
 
 
 def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]]:
@@ -95,6 +116,13 @@ def where_text(session: Any, state: int | None, status: str = "running") -> str:
     if not lines:
         return "starting" if state is None else "reacting"
     text = f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+    automaton = session.run.plan.automaton
+    inside = in_missions(_calls_here(session, state), automaton.waiting[state])
+    if inside:
+        text += " in " + "; ".join(
+            f"{m.label.name}" + (f" at {Path(m.at[0].file).name}:"
+                                 f"{', '.join(dict.fromkeys(str(a.line) for a in m.at))}"
+                                 if m.at else "") for m in inside)
     running = running_sites(session, state)
     if running:
         text += " (running " + ", ".join(f"{task} at :{line}" for task, line in running) + ")"
@@ -108,8 +136,20 @@ def running_sites(session: Any, state: int | None) -> list[tuple[str, int]]:
         return []
     numbers = {getattr(label, "site", None) for label in automaton.labels[state]
                if not isinstance(label, tuple)}
-    return [(site.task, site.site.stmt.loc.line) for site in session.run.plan.sites
-            if site.number in numbers]
+    name = Path(session.path).name
+    calls = _calls_here(session, state)
+    found = []
+    for site in session.run.plan.sites:
+        if site.number not in numbers:
+            continue
+        loc = site.site.stmt.loc
+        if not _in_file(loc, name):  # run in a sub-mission of another file: its call here
+            owner = next((c for c in calls if c.owns(loc)), None)
+            if owner is None:
+                continue
+            loc = owner.call
+        found.append((site.task, loc.line))
+    return found
 
 
 def _speed(session: Any, meter: SpeedMeter) -> tuple[str, str]:

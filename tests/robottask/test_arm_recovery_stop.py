@@ -9,6 +9,7 @@ old race.
 
 from __future__ import annotations
 
+import shutil
 import json
 import subprocess
 import sys
@@ -45,6 +46,7 @@ def test_check_proves_the_park_properties():
 def test_the_properties_catch_a_race_that_ends_during_the_park(tmp_path):
     text = MISSION.read_text(encoding="utf-8")
     assert OLD_BRANCH_END in text
+    shutil.copytree(MISSION.parent / "lib", tmp_path / "lib")  # the sub-missions it imports
     buggy = tmp_path / "buggy.orc"
     buggy.write_text(text.replace(OLD_BRANCH_END, ""), encoding="utf-8")
     result = cli("check", str(buggy))
