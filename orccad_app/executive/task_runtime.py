@@ -2,7 +2,8 @@
 
 Job life cycle, all instants in [ns]:
 
-1. **Release** every ``period_ns`` from activation (+ ``offset_ns``). If the previous job is
+1. **Release** every ``period_ns`` from activation (+ ``offset_ns``); a sporadic Module-Task
+   is released by interrupts instead (:mod:`orccad_app.executive.sporadic`). If the previous job is
    still unfinished the release is *skipped* and counted as an overrun (the unfinished job is
    a deadline miss when it finishes late): a Module-Task never has two jobs at once.
 2. **Read** the inputs in port order at the release instant; a protocol may block the job,
@@ -30,7 +31,7 @@ from orccad_app.executive.job import (ABORTED, BLOCKED, DONE, READING, READY, WA
                                       Job, TaskStats)
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.processor import Processor
-from orccad_app.tcs.module_task import ModuleTask
+from orccad_app.tcs.module_task import Activation, ModuleTask
 
 if TYPE_CHECKING:
     from orccad_app.executive.channel import Channel
@@ -85,6 +86,8 @@ class ModuleTaskRuntime:
         init = getattr(self.task.compute, "init", None)
         if callable(init):
             self._call(init)
+        if self.task.activation is Activation.SPORADIC:
+            return  # released by interrupts (orccad_app/executive/sporadic.py)
         first = self._kernel.now + self.task.offset_ns
         self._release_entry = self._kernel.schedule(first, _RELEASE, self._release)
 
@@ -124,6 +127,13 @@ class ModuleTaskRuntime:
         now = kernel.now
         task = self.task
         self._release_entry = kernel.schedule(now + task.period_ns, _RELEASE, self._release)
+        self.release_job(now)
+
+    def release_job(self, now: int) -> None:
+        """Release a job now (a periodic release, or a sporadic one's interrupt); skipped and
+        counted as an overrun while the previous job is unfinished."""
+        kernel = self._kernel
+        task = self.task
         if self.job is not None:
             self.stats.overruns += 1
             for hook in self._hooks.on_overrun:
