@@ -125,6 +125,7 @@ class MujocoPlant:
         self.data = mujoco.MjData(self.model)
         # views into MuJoCo's arrays (the same memory for the life of ``data``)
         self._qpos, self._qvel, self._ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
+        self._option = self.model.opt
         self._warning_view = self.data.warning.number[_WATCHED_SLICE]
         self.name = name
         self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
@@ -315,7 +316,7 @@ class MujocoPlant:
 
     def _partial(self, duration_ns: int) -> None:
         """One step shorter than the timestep."""
-        option = self.model.opt
+        option = self._option
         full = option.timestep
         option.timestep = duration_ns / 1e9
         hold = self._holding()
