@@ -55,7 +55,8 @@ _BIASED = ("depth", "attitude", "velocity", "position", "altitude")
 
 def euler_zyx(quat: np.ndarray) -> np.ndarray:
     """Roll, pitch, yaw [rad] of the unit quaternion ``quat`` (w, x, y, z)."""
-    w, x, y, z = quat
+    # Python floats: the same IEEE arithmetic as on numpy scalars, without their overhead
+    w, x, y, z = quat.tolist() if isinstance(quat, np.ndarray) else quat
     roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
     pitch = math.asin(max(-1.0, min(1.0, 2.0 * (w * y - z * x))))
     yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
@@ -167,14 +168,14 @@ class AuvPhysics(PlantExtension):
     def true_value(self, port: str) -> np.ndarray:
         """The noiseless, fault-free value of sensor ``port``."""
         data, body = self.data, self.body
-        pos = data.xpos[body]
+        pos = self._xpos.tolist()
         if port == "depth":
             return np.array(-pos[2])
         if port == "attitude":
             return euler_zyx(data.xquat[body])
         if port == "velocity":
-            rot = data.xmat[body].reshape(3, 3)
-            return np.concatenate([rot.T @ data.qvel[:3], data.qvel[3:6]])
+            rot = self._xmat.reshape(3, 3)
+            return np.concatenate([rot.T @ self._qvel[:3], self._qvel[3:6]])
         if port == "position":
             return np.array([pos[0], pos[1], -pos[2]])
         if port == "altitude":
