@@ -105,6 +105,11 @@ class AuvPhysics(PlantExtension):
             model.body_mass[self.body] = float(mass)
         self.mass_kg = float(model.body_mass[self.body])
         self.gain = model.actuator_gear[:, 2].copy()
+        p = self.params  # the parameters step() reads, once (rho g V as buoyancy_n groups it)
+        self._constants = (float(p["hull_radius_m"]),
+                           p["water_density"] * G_MPS2 * p["volume_m3"], p["surface_damping"],
+                           float(p["cb_height_m"]), p["hotel_w"], p["thrust_coeff"],
+                           p["leak_rate_kg_s"])
         # views into MuJoCo's state (same memory for the life of ``data``), read every step
         self._xpos, self._xmat = data.xpos[self.body], data.xmat[self.body]
         self._xfrc, self._qvel, self._ctrl = data.xfrc_applied[self.body], data.qvel, data.ctrl
@@ -128,17 +133,15 @@ class AuvPhysics(PlantExtension):
         # expressions ``rot @ [0, 0, h]``, ``np.cross(arm, [0, 0, B])`` and
         # ``np.sum(np.abs(ctrl) ** 1.5)`` (a sequential sum for so few thrusters), so the
         # run is bit-identical; numpy's per-call overhead was most of a step.
-        p = self.params
+        radius, rho_g_v, damping, height, hotel, thrust_coeff, leak_rate = self._constants
         z = float(self._xpos[2])
         if -z > self.max_depth_m:
             self.max_depth_m = -z
-        radius = float(p["hull_radius_m"])
         fraction = min(1.0, max(0.0, (radius - z) / (2.0 * radius)))
-        buoyancy = p["water_density"] * G_MPS2 * p["volume_m3"] * fraction
+        buoyancy = rho_g_v * fraction
         up = buoyancy - G_MPS2 * self.water_kg
         if 0.0 < fraction < 1.0:  # wave-making (radiation) damping
-            up -= p["surface_damping"] * float(self._qvel[2])
-        height = float(p["cb_height_m"])
+            up -= damping * float(self._qvel[2])
         r = self._xmat.tolist()
         arm0 = ((0.0 + r[0] * 0.0) + r[1] * 0.0) + r[2] * height
         arm1 = ((0.0 + r[3] * 0.0) + r[4] * 0.0) + r[5] * height
@@ -154,10 +157,10 @@ class AuvPhysics(PlantExtension):
         for index, command in enumerate(self._ctrl.tolist()):
             term = abs(command) ** 1.5
             total = term if index == 0 else total + term
-        power = p["hotel_w"] + p["thrust_coeff"] * total * self.efficiency
+        power = hotel + thrust_coeff * total * self.efficiency
         self.energy_j += power * dt_s
         if self.leaking:
-            self.water_kg += p["leak_rate_kg_s"] * dt_s
+            self.water_kg += leak_rate * dt_s
 
     # -- sensors ---------------------------------------------------------------------------
 
