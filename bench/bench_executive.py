@@ -133,13 +133,13 @@ def profile(arm: Mission, auv: Mission) -> None:
     """Where the time goes: top functions by own time, µs per simulated millisecond."""
     for name, mission in (("arm_pid", arm), ("auv_survey", auv)):
         mission.run()  # warm-up
-        profiler = cProfile.Profile()
+        profiler = cProfile.Profile(bench_run.CLOCK)
         wall, simulated, _ = mission.run(profiler)
         stats = pstats.Stats(profiler)
         rows = sorted(stats.stats.items(), key=lambda item: -item[1][2])[:25]  # type: ignore[attr-defined]
         per_ms = simulated * 1e3
-        print(f"{name}: {simulated:g} s simulated, {wall:.3f} s wall under cProfile "
-              f"({_load()})")
+        print(f"{name}: {simulated:g} s simulated, {wall:.3f} s ({bench_run.CLOCK.__name__}) "
+              f"under cProfile ({_load()})")
         print(f"  {'µs / sim ms':>11} {'calls / sim ms':>14}  function (own time)")
         for (path, line, function), (_, calls, own, _, _) in rows:
             where = f"{Path(path).name}:{line}({function})" if line else function
@@ -159,7 +159,7 @@ def main() -> int:
         bench_run.CLOCK = time.process_time
     host = _host()
     arm, auv = Mission(ARM), Mission(AUV)
-    if args.profile:
+    if args.profile:  # with --clock cpu, cProfile itself times by CPU time
         profile(arm, auv)
         return 0
     load_before = _load()

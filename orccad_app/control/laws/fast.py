@@ -53,6 +53,21 @@ SCALAR_DOF = 8
 """Largest number of joints served by the plain-float PID path."""
 _isfinite = math.isfinite
 _array = np.array
+_SETTERS = tuple(LawOutput.__dict__[name].__set__ for name in ("tau", "tau_unsat",
+                                                                "saturated", "e"))
+
+
+def _law_output(tau: np.ndarray, tau_unsat: np.ndarray, saturated: np.ndarray,
+                e: np.ndarray) -> LawOutput:
+    """``LawOutput(tau, tau_unsat, saturated, e)`` through its slots' descriptors: the
+    frozen dataclass's ``__init__`` (``object.__setattr__`` per field) costs twice as much."""
+    out = object.__new__(LawOutput)
+    set_tau, set_unsat, set_saturated, set_e = _SETTERS
+    set_tau(out, tau)
+    set_unsat(out, tau_unsat)
+    set_saturated(out, saturated)
+    set_e(out, e)
+    return out
 
 
 def _diagonal(matrix: np.ndarray) -> np.ndarray | None:
@@ -302,5 +317,4 @@ class LeanPath:
         if integral is not None:
             law.integral = _array(integral)
         law._sat_dir = _array(sat_dir)
-        return LawOutput(tau=_array(tau), tau_unsat=_array(tau_unsat),
-                         saturated=_array(saturated), e=_array(e))
+        return _law_output(_array(tau), _array(tau_unsat), _array(saturated), _array(e))
