@@ -129,14 +129,14 @@ def _load() -> str:
     return f"load average {one:.2f} (1 min) {five:.2f} (5 min) on {os.cpu_count()} cores"
 
 
-def profile(arm: Mission, auv: Mission) -> None:
+def profile(arm: Mission, auv: Mission, count: int = 25) -> None:
     """Where the time goes: top functions by own time, µs per simulated millisecond."""
     for name, mission in (("arm_pid", arm), ("auv_survey", auv)):
         mission.run()  # warm-up
         profiler = cProfile.Profile(bench_run.CLOCK)
         wall, simulated, _ = mission.run(profiler)
         stats = pstats.Stats(profiler)
-        rows = sorted(stats.stats.items(), key=lambda item: -item[1][2])[:25]  # type: ignore[attr-defined]
+        rows = sorted(stats.stats.items(), key=lambda item: -item[1][2])[:count]  # type: ignore[attr-defined]
         per_ms = simulated * 1e3
         print(f"{name}: {simulated:g} s simulated, {wall:.3f} s ({bench_run.CLOCK.__name__}) "
               f"under cProfile ({_load()})")
@@ -150,6 +150,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--repeat", type=int, default=5, help="runs per side (best kept)")
     parser.add_argument("--profile", action="store_true", help="print where the time goes")
+    parser.add_argument("--rows", type=int, default=25, help="functions listed by --profile")
     parser.add_argument("--clock", choices=("wall", "cpu"), default="wall",
                         help="time with the wall clock (default) or the process's CPU time "
                              "(time.process_time: on a loaded machine, what each side "
@@ -160,7 +161,7 @@ def main() -> int:
     host = _host()
     arm, auv = Mission(ARM), Mission(AUV)
     if args.profile:  # with --clock cpu, cProfile itself times by CPU time
-        profile(arm, auv)
+        profile(arm, auv, args.rows)
         return 0
     load_before = _load()
     sides: dict[str, list[tuple[float, float]]] = {"arm": [], "auv": [], "lean": [], "bare": []}
@@ -192,7 +193,7 @@ def main() -> int:
                         ("lean", "lean numpy+MuJoCo loop"), ("bare", "same-law bare loop")):
         wall, rms = best[name]
         simulated = auv_simulated if name == "auv" else ARM_S
-        print(f"  {label:<24} {wall:7.3f} s wall for {simulated:7.3f} s simulated  "
+        print(f"  {label:<24} {wall:7.3f} s {args.clock:<4} for {simulated:7.3f} s simulated  "
               f"{rate[name]:8.2f} sim s / s  {wall / simulated * 1e3:6.1f} µs / sim ms  "
               + ("" if rms is None else f"RMS e {rms:.4e}"))
     met = True
