@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import shutil
+
 import pytest
 
 from orccad_app.executive import Bus, EventLog, Processor, Simulation
@@ -137,6 +139,9 @@ def _plan_file(path, replacements: dict[str, str] | None = None, tmp_path=None):
         for old, new in replacements.items():
             assert old in text, old
             text = text.replace(old, new)
+        library = path.parent / "lib"  # what the mission imports ("lib/homing.orc")
+        if library.is_dir() and not (tmp_path / "lib").exists():
+            shutil.copytree(library, tmp_path / "lib")
         return _plan_text(tmp_path, text)
     source = load(path)
     return plan_mission(source, select_mission(source, None))
