@@ -27,7 +27,7 @@ from orccad_app.reactive.engine import BOOT, Outcome, react
 from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
 
-__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL"]
+__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL", "state_budget_error"]
 
 #: Default state budget; ``orccad compile --max-states`` changes it.
 DEFAULT_MAX_STATES = 20_000
@@ -193,16 +193,20 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
         for target in _targets(tree):
             if target not in seen:
                 if len(seen) >= max_states:
-                    raise OrccadError(
-                        f"state budget exceeded: '{program.name}' has more than {max_states} "
-                        "reachable control states (raise the budget with --max-states)",
-                        program.loc)
+                    raise state_budget_error(program, max_states)
                 seen.add(target)
                 queue.append(target)
     waiting = {key: _waiting(prep, key) for key in trees}
     by_pause = _labels_by_pause(prep)
     labels = {key: _labels(by_pause, key) for key in trees}
     return minimize(program, trees, BOOT, waiting, labels, prep.data_tests, _variables(prep))
+
+
+def state_budget_error(program: ir.Program, max_states: int) -> OrccadError:
+    """The located error of a program with more than ``max_states`` reachable states."""
+    return OrccadError(f"state budget exceeded: '{program.name}' has more than {max_states} "
+                       "reachable control states (raise the budget with --max-states)",
+                       program.loc)
 
 
 def _targets(tree):
