@@ -35,15 +35,15 @@ DEFAULT_MAX_STATES = 20_000
 MAX_LEAVES_PER_STATE = 200_000
 
 
-class _NeedInput(Exception):
-    def __init__(self, signal: ir.SignalDecl):
-        self.signal = signal
-
-
 class _Oracle:
-    """Answers inputs from a fixed valuation and data tests from a depth-first prefix."""
+    """Answers inputs from a valuation and data tests from a depth-first prefix.
 
-    __slots__ = ("valuation", "prefix", "asked", "answers", "relations")
+    An input not in the valuation (nor forced by a relation) is answered *present* and noted
+    in ``new``: the run is then the one of the valuation extended with those inputs present,
+    and the compiler branches on them without running it again (:meth:`_Explorer._branch`).
+    """
+
+    __slots__ = ("valuation", "prefix", "asked", "answers", "relations", "new")
 
     def __init__(self, valuation: dict, prefix: list[bool], relations=()):
         self.valuation = valuation
@@ -51,6 +51,7 @@ class _Oracle:
         self.asked: dict[int, bool] = {}
         self.answers: list[bool] = []
         self.relations = relations
+        self.new: list[ir.SignalDecl] = []
 
     def input(self, signal: ir.SignalDecl) -> bool:
         try:
@@ -59,8 +60,11 @@ class _Oracle:
             forced = _forced(signal, self.valuation, self.relations)
             if forced is not None:
                 return forced
-            raise _NeedInput(signal) from None
-
+            if not self.new:
+                self.valuation = dict(self.valuation)
+            self.new.append(signal)
+            self.valuation[signal] = True
+            return True
 
     def data(self, number: int) -> bool:
         answer = self.asked.get(number)
@@ -70,6 +74,18 @@ class _Oracle:
             self.asked[number] = answer
             self.answers.append(answer)
         return answer
+
+
+def _next_prefix(answers: list[bool]) -> list[bool] | None:
+    """The data-test prefix of the next depth-first run after one that gave ``answers``
+    (``None`` when every combination was run)."""
+    prefix = list(answers)
+    while prefix and prefix[-1] is False:
+        prefix.pop()
+    if not prefix:
+        return None
+    prefix[-1] = False
+    return prefix
 
 
 def _forced(signal: ir.SignalDecl, valuation: dict, relations) -> bool | None:
@@ -101,32 +117,46 @@ class _Explorer:
             return Leaf(TERMINAL, (), DONE)
         return self._inputs(state, {})
 
-    def _inputs(self, state, valuation: dict):
-        runs: list[Outcome] = []
-        prefix: list[bool] = []
-        while True:
-            oracle = _Oracle(valuation, prefix, self.prep.program.relations)
-            try:
-                runs.append(react(self.prep, state, oracle))
-            except _NeedInput as need:
-                return self._branch(state, valuation, need.signal)
-            self.leaves += 1
-            if self.leaves > MAX_LEAVES_PER_STATE:
-                raise OrccadError(
-                    f"state explosion: one state of '{self.prep.program.name}' needs more than "
-                    f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
-            prefix = oracle.answers
-            while prefix and prefix[-1] is False:
-                prefix.pop()
-            if not prefix:
-                break
-            prefix[-1] = False
+    def _inputs(self, state, valuation: dict, runs: list[Outcome] | None = None,
+                prefix: list[bool] | None = None):
+        """The tree of ``state`` under input ``valuation``, going on from ``runs`` (the data
+        combinations run so far, which asked no input outside the valuation) at ``prefix``."""
+        runs = [] if runs is None else runs
+        next_prefix: list[bool] | None = [] if prefix is None else prefix
+        while next_prefix is not None:
+            oracle = _Oracle(valuation, next_prefix, self.prep.program.relations)
+            outcome = react(self.prep, state, oracle)
+            self._count(1)
+            if oracle.new:
+                return self._branch(state, valuation, runs, next_prefix, outcome, oracle, 0)
+            runs.append(outcome)
+            next_prefix = _next_prefix(oracle.answers)
         return self._trie(runs, 0)
 
-    def _branch(self, state, valuation: dict, signal: ir.SignalDecl):
-        then = self._inputs(state, {**valuation, signal: True})
-        orelse = self._inputs(state, {**valuation, signal: False})
+    def _branch(self, state, valuation: dict, runs: list[Outcome], prefix: list[bool],
+                outcome: Outcome, oracle: _Oracle, depth: int):
+        """Branch on the ``depth``-th input ``outcome`` asked first: ``outcome`` is a run of
+        the then-branch; the else-branch runs the same data combination again."""
+        signal = oracle.new[depth]
+        saved = list(runs)
+        on = {**valuation, signal: True}
+        if depth + 1 < len(oracle.new):
+            then = self._branch(state, on, runs, prefix, outcome, oracle, depth + 1)
+        else:
+            runs.append(outcome)
+            following = _next_prefix(oracle.answers)
+            then = (self._trie(runs, 0) if following is None
+                    else self._inputs(state, on, runs, following))
+        self._count(len(saved))  # the runs before hold in the else-branch too
+        orelse = self._inputs(state, {**valuation, signal: False}, saved, prefix)
         return then if then == orelse else InputTest(signal, then, orelse)
+
+    def _count(self, leaves: int) -> None:
+        self.leaves += leaves
+        if self.leaves > MAX_LEAVES_PER_STATE:
+            raise OrccadError(
+                f"state explosion: one state of '{self.prep.program.name}' needs more than "
+                f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
 
     def _trie(self, runs: list[Outcome], pos: int):
         first = runs[0]
