@@ -18,6 +18,7 @@ budget; the result is minimized by bisimulation (:mod:`.minimize`).
 from __future__ import annotations
 
 from collections import deque
+from typing import Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
@@ -205,11 +206,13 @@ class _Explorer:
             "used earlier in the same instant (test the data first, in a branch of its own)", loc)
 
 
-def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES) -> Automaton:
+def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES,
+                    progress: Callable[[int], None] | None = None) -> Automaton:
     """Compile ``program`` to a minimized deterministic automaton.
 
     Raises :class:`OrccadError` (with a location) for instantaneous loops, non-causal programs
-    and when more than ``max_states`` control states are reachable.
+    and when more than ``max_states`` control states are reachable. ``progress`` is called
+    with the number of control states explored after each one.
     """
     prep = prepare(program)
     explorer = _Explorer(prep, max_states)
@@ -220,6 +223,8 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
         state = queue.popleft()
         tree = explorer.tree(state)
         trees[state] = tree
+        if progress is not None:
+            progress(len(trees))
         for target in _targets(tree):
             if target not in seen:
                 if len(seen) >= max_states:

@@ -11,6 +11,7 @@ order) and the role of every generated signal (:class:`~.signals.SignalRoles`). 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 from orccad_app.lang import ast
 from orccad_app.reactive.automaton import Automaton
@@ -47,12 +48,14 @@ class Composition:
 
 
 def compose(program: ast.Program, mission: ast.Mission, *,
-            max_states: int = DEFAULT_MAX_STATES, lazy: bool = False) -> Composition:
+            max_states: int = DEFAULT_MAX_STATES, lazy: bool = False,
+            progress: Callable[[int], None] | None = None) -> Composition:
     """Lower and compile ``mission`` in the composed view; ``lazy``: build the automaton's
-    states as a run reaches them (what ``run``, campaigns and the TUI do)."""
+    states as a run reaches them (what ``run``, campaigns and the TUI do); ``progress``: called
+    with the number of states explored (a full compile)."""
     lowerer = ApplicationLowerer(program, mission)
     kernel = lowerer.lower()
     automaton: Automaton | LazyAutomaton = (
         LazyAutomaton(kernel, max_states=max_states) if lazy
-        else compile_program(kernel, max_states=max_states))
+        else compile_program(kernel, max_states=max_states, progress=progress))
     return Composition(mission, program, automaton, tuple(lowerer.sites), lowerer.roles)
