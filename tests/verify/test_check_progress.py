@@ -3,9 +3,9 @@ one line of stderr erased before the report; never in a pipe."""
 
 from __future__ import annotations
 
-import argparse
 import io
 
+from orccad_app.cli import build_parser
 from orccad_app.commands import check as check_command
 from orccad_app.pipeline import load, select_mission
 from orccad_app.verify.checker import check_mission
@@ -46,9 +46,7 @@ def test_on_a_terminal_the_line_is_shown_then_erased(monkeypatch, capsys):
     monkeypatch.setattr("sys.stderr", terminal)
     monkeypatch.setattr(check_command, "PROGRESS_DELAY_S", 0.0)
     monkeypatch.setattr(check_command, "PROGRESS_INTERVAL_S", 0.0)
-    args = argparse.Namespace(file=str(ROOT / "missions" / "arm_recovery.orc"), mission=None,
-                              observe=None, counterexample=None, promela=None,
-                              max_states=20_000)
+    args = build_parser().parse_args(["check", str(ROOT / "missions" / "arm_recovery.orc")])
     assert check_command.run(args) == 0
     text = terminal.getvalue()
     assert "states explored" in text and "properties done" in text
