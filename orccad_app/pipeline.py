@@ -17,6 +17,7 @@ from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
 from orccad_app.robottask.composition import Composition, compose
@@ -178,8 +179,10 @@ def require_missions(source: Source) -> tuple[ast.Mission, ...]:
 
 
 def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSED,
-                    max_states: int = DEFAULT_MAX_STATES) -> Automaton:
-    """The minimized automaton of ``mission``.
+                    max_states: int = DEFAULT_MAX_STATES,
+                    lazy: bool = False) -> Automaton | LazyAutomaton:
+    """The minimized automaton of ``mission`` (with ``lazy``: built as it runs, see
+    :mod:`orccad_app.reactive.lazy`).
 
     ``view`` is ``composed`` (the application automaton with the RTAs of its Robot-Tasks
     inlined: what is checked and run) or ``abstract`` (Robot-Tasks seen through their start
@@ -187,12 +190,14 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
     """
     if view == ABSTRACT:
         program = lower_mission(source.program, mission, AbstractApplicationLowerer)
+        if lazy:
+            return LazyAutomaton(program, max_states=max_states)
         return compile_program(program, max_states=max_states)
-    return compose_mission(source, mission, max_states=max_states).automaton
+    return compose_mission(source, mission, max_states=max_states, lazy=lazy).automaton
 
 
 def compose_mission(source: Source, mission: ast.Mission, *,
-                    max_states: int = DEFAULT_MAX_STATES) -> Composition:
+                    max_states: int = DEFAULT_MAX_STATES, lazy: bool = False) -> Composition:
     """The composed automaton of ``mission`` with its ``run`` sites and signal roles (what the
-    checker and the mission layer start from)."""
-    return compose(source.program, mission, max_states=max_states)
+    checker and the mission layer start from); ``lazy`` for a run (states built on demand)."""
+    return compose(source.program, mission, max_states=max_states, lazy=lazy)

@@ -49,7 +49,6 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, require_missions, select_mission
-    from orccad_app.verify.checker import check_mission
 
     refuse_overwriting(args.counterexample, args.file)
     refuse_overwriting(args.promela, args.file)
@@ -63,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
         return _replay(source, missions, args)
     failed, written, unproved = 0, False, 0
     for mission in missions:
-        report = check_mission(source.program, mission, max_states=args.max_states)
+        report = _checked(source, mission, args.max_states)
         unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
@@ -81,6 +80,44 @@ def run(args: argparse.Namespace) -> int:
     print(f"{'all properties hold' if not failed else f'{failed} failed'} "
           f"({total} mission{'s' if total > 1 else ''}{left})")
     return 1 if failed else 0
+
+
+#: Wall time [s] a check runs before its progress line appears, and between two updates.
+PROGRESS_DELAY_S, PROGRESS_INTERVAL_S = 1.0, 0.5
+
+
+class _Progress:
+    """``check`` on a terminal past a second: states explored, then properties done, on one
+    line of stderr erased before the mission's report."""
+
+    def __init__(self, mission: str) -> None:
+        from orccad_app.mission.progress import StatusLine
+
+        self.mission = mission
+        self.line = StatusLine(sys.stderr, delay_s=PROGRESS_DELAY_S,
+                               interval_s=PROGRESS_INTERVAL_S)
+
+    def states(self, explored: int) -> None:
+        if self.line.due():
+            self.line.show(f"checking {self.mission}: compiling, {explored} states explored")
+
+    def properties(self, done: int, total: int) -> None:
+        if self.line.due():
+            self.line.show(f"checking {self.mission}: {done} of {total} properties done")
+
+
+def _checked(source, mission, max_states: int):
+    """The report of ``mission``, with a progress line when stderr is a terminal."""
+    from orccad_app.verify.checker import check_mission
+
+    if not sys.stderr.isatty():  # never in a pipe or a file
+        return check_mission(source.program, mission, max_states=max_states)
+    progress = _Progress(mission.name)
+    try:
+        return check_mission(source.program, mission, max_states=max_states,
+                             progress=progress)
+    finally:
+        progress.line.close()
 
 
 def _replay_command(source, mission) -> str:
