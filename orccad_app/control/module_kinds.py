@@ -84,6 +84,7 @@ class _TrajectoryInstance(ModuleInstance):
         self._origin = self.task_function.trajectory.origin
         self._start: np.ndarray | None = None
         self.ref = self.task_function.reference_name
+        self._ref_dot, self._ref_ddot = f"{self.ref}_dot", f"{self.ref}_ddot"
         ports = _concrete(kind.ports, self.ref, self.task_function.dim, self.task_function.dof)
         super().__init__(kind, values, ports)
 
@@ -133,8 +134,7 @@ class _TrajectoryInstance(ModuleInstance):
             self._start = np.asarray(q, dtype=float)
             self.task_function.start_from(self._start)
         sample = self.task_function.reference(self.task_time(t_s))
-        return {self.ref: sample.pos, f"{self.ref}_dot": sample.vel,
-                f"{self.ref}_ddot": sample.acc}
+        return {self.ref: sample.pos, self._ref_dot: sample.vel, self._ref_ddot: sample.acc}
 
 
 class ControlLawModule(ModuleKind):
@@ -169,6 +169,7 @@ class _ControlLawInstance(ModuleInstance):
         self.law = self._build_law()
         self._task_function_spec: Spec = context.task_function  # type: ignore[assignment]
         self.ref = self.law.task_function.reference_name
+        self._ref_dot, self._ref_ddot = f"{self.ref}_dot", f"{self.ref}_ddot"
         ports = _concrete(kind.ports, self.ref, self.law.task_function.dim, self.law.robot.dof)
         super().__init__(kind, dict(self.law.params), ports)
         self._velocity = BackwardDifference()
@@ -228,9 +229,9 @@ class _ControlLawInstance(ModuleInstance):
         if pos is None:
             return None
         pos = np.asarray(pos, dtype=float)
-        vel = inputs.get(f"{self.ref}_dot")
+        vel = inputs.get(self._ref_dot)
         vel = self._ref_velocity.update(t_s, pos) if vel is None else np.asarray(vel, float)
-        acc = inputs.get(f"{self.ref}_ddot")
+        acc = inputs.get(self._ref_ddot)
         if acc is None:
             acc = self._ref_acceleration.update(t_s, vel)
         return Sample(pos=pos, vel=vel, acc=np.asarray(acc, dtype=float))
@@ -244,5 +245,5 @@ class _ControlLawInstance(ModuleInstance):
         qdot = inputs.get("qdot")
         qdot = self._velocity.update(t_s, q) if qdot is None else np.asarray(qdot, float)
         out = self.law.command(t_s, q, qdot, reference)
-        return {"tau": out.tau, "e": out.e, "saturated": bool(out.saturated.any())}
+        return {"tau": out.tau, "e": out.e, "saturated": True in out.saturated.tolist()}
 

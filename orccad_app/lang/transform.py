@@ -137,6 +137,13 @@ class ToAst(RobotTaskRules, Transformer):
         return ast.Program(filename=self.filename, items=tuple(flat), loc=self.loc(meta))
 
     @_rule
+    def import_decl(self, meta, path, *names):
+        return ast.Import(path=_unescape(str(path)),
+                          names=tuple(ast.ImportedName(name=str(n), loc=self.tloc(n))
+                                      for n in names),
+                          path_loc=self.tloc(path), loc=self.loc(meta))
+
+    @_rule
     def robot_decl(self, meta, name, type_, args):
         return ast.Robot(name=str(name), type=str(type_), args=args or (), loc=self.loc(meta))
 

@@ -36,6 +36,7 @@ from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
 from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.robottask.updates import UpdateForm
 from orccad_app.tcs.graph import TCS
@@ -104,11 +105,34 @@ class SiteModules:
         """The Robot-Task's name."""
         return self.site.task
 
-    def fresh_computes(self) -> dict[str, ModuleInstance]:
+    @property
+    def arguments(self) -> tuple[RunArgument, ...]:
+        """The run site's run-time arguments (evaluated when the task starts)."""
+        return self.site.arguments
+
+    def bound(self, values: Mapping[str, Any]) -> RobotTaskInstance:
+        """The instance of this start: the checked one, or, with run-time arguments, the one
+        bound to their values (``values``: automaton output -> value in the starting
+        instant); raises :class:`~orccad_app.robottask.binding.ArgumentError`."""
+        if not self.site.arguments:
+            return self.instance
+        from orccad_app.robottask.binding import bind_arguments
+        return bind_arguments(self.instance, self.site.arguments, values)
+
+    def fresh_computes(self, instance: RobotTaskInstance | None = None
+                       ) -> dict[str, ModuleInstance]:
         """New compute objects for every module (nominal parameters: a Robot-Task run again
-        does not inherit the type-1 updates of its previous run)."""
-        specs = self.instance.modules.values()
-        return {name: spec.fresh(self.instance.context) for name, spec in zip(self.modules, specs)}
+        does not inherit the type-1 updates of its previous run); ``instance``: the bound
+        instance of this start (default: the checked one)."""
+        instance = instance or self.instance
+        specs = instance.modules.values()
+        return {name: spec.fresh(instance.context) for name, spec in zip(self.modules, specs)}
+
+    def adjustments_of(self, instance: RobotTaskInstance) -> dict[str, ParamUpdate]:
+        """The type-1 updates of ``instance`` (a bound instance of this site), in TCS names."""
+        if instance is self.instance:
+            return self.adjustments
+        return _param_updates(instance, dict(zip(instance.modules, self.modules)))
 
     def wanted(self, phase: int) -> tuple[str, ...]:
         """Modules active in ``phase`` (0: not running)."""
@@ -184,6 +208,13 @@ def _prefixes(sites: tuple[RunSite, ...]) -> list[str]:
     return [f"{s.task}." if counts[s.task] == 1 else f"{s.task}_{s.number}." for s in sites]
 
 
+def _param_updates(instance: RobotTaskInstance, names: dict[str, str]) -> dict[str, ParamUpdate]:
+    """The type-1 updates of ``instance``, in TCS names (``names``: its modules -> TCS)."""
+    return {e: ParamUpdate(names[a.module], a.param, a.value, a.form, instance.params, names,
+                           a.loc)
+            for e, a in instance.adjustments.items()}
+
+
 def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, str],
                   inputs: set[str], roles: SignalRoles) -> SiteModules:
     task = site.task
@@ -192,9 +223,7 @@ def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, s
         name = f"{task}.{event}"
         if name in inputs:
             events[f"{names[module]}.{port}"] = name
-    adjustments = {e: ParamUpdate(names[a.module], a.param, a.value, a.form, instance.params,
-                                  names, a.loc)
-                   for e, a in instance.adjustments.items()}
+    adjustments = _param_updates(instance, names)
     error = next((names[n] for n, spec in instance.modules.items()
                   if any(p.name == "e" and p.direction == "out" for p in spec.instance.ports)),
                  None)

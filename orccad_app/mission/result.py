@@ -11,6 +11,8 @@ import numpy as np
 from orccad_app.executive.simulation import RunStats
 from orccad_app.jsonout import plain
 
+_dot = np.dot
+
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
            "ErrorSamples", "STATUSES"]
 
@@ -32,13 +34,20 @@ class ErrorSamples:
 
     def add(self, error: Any) -> None:
         """One sample (a vector of components) [rad or m]."""
-        values = np.asarray(error, dtype=float).ravel()
+        if type(error) is np.ndarray and error.ndim == 1 and error.dtype.char == "d":
+            values = error  # a control law's e: used as it is
+        else:
+            values = np.asarray(error, dtype=float).ravel()
         if not values.size:
             return
-        self.sum_sq += float(values @ values)
+        square = float(_dot(values, values))  # np.dot: values @ values, cheaper to call
+        self.sum_sq += square
         self.count += values.size
-        peak = float(abs(values).max())
-        if peak > self.max_abs or peak != peak:  # NaN propagates
+        if square != square:  # a NaN component: NaN propagates
+            self.max_abs = square
+            return
+        peak = max(map(abs, values.tolist()))  # as abs(values).max() without NaN
+        if peak > self.max_abs:
             self.max_abs = peak
 
     def summary(self, unit: str = "rad") -> dict[str, Any] | None:
@@ -61,6 +70,8 @@ class RobotTaskRecord:
     :param errors: the task error's samples (the ``e`` output of its control law).
     :param error_unit: their unit (the task function's: ``rad`` in joint space, ``m`` for a
         Cartesian position).
+    :param args: the actual value of each of its parameters at this start (run-time
+        arguments evaluated, defaults filled in; vectors as lists).
     """
 
     name: str
@@ -70,10 +81,11 @@ class RobotTaskRecord:
     outcome: str = "running"
     errors: ErrorSamples = field(default_factory=ErrorSamples)
     error_unit: str = "rad"
+    args: dict[str, Any] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form (``tracking_error`` is ``null`` without a control law)."""
-        return {"name": self.name, "start_s": self.start_ns / 1e9,
+        return {"name": self.name, "args": self.args, "start_s": self.start_ns / 1e9,
                 "end_s": None if self.end_ns is None else self.end_ns / 1e9,
                 "outcome": self.outcome, "tracking_error": self.errors.summary(self.error_unit)}
 

@@ -27,6 +27,7 @@ from orccad_app.lang.walk import runs
 from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
+from orccad_app.tcs.phasing import Activation
 
 __all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
            "instantiate", "check_tasks",
@@ -56,6 +57,8 @@ class ModuleSpec:
     loc: SourceLocation
     origin: ModuleOrigin = ModuleOrigin.DECLARED
     params: dict = field(default_factory=dict)  # as given, for a fresh instance
+    activation: Activation = Activation.PERIODIC
+    """Periodic, or sporadic (``timing.period_ns`` is then its minimum inter-arrival time)."""
 
     @property
     def implicit(self) -> bool:
@@ -101,6 +104,11 @@ class RobotTaskInstance:
     events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
+    #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
+    robots: Mapping[str, ast.Robot] = field(default_factory=dict, repr=False)
+    host: Any = field(default=None, repr=False)
+    args: tuple[ast.Arg, ...] = ()
+    run_loc: SourceLocation | None = None
 
     @property
     def duration_s(self) -> float | None:
@@ -150,7 +158,10 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                 raise OrccadError(f"arguments of module kind '{m.kind}' must be named", m.loc)
             instance = kind.create(values, context)
             default = kind.default_timing
-            timing = Timing(m.period_ns or default.period_ns,
+            if m.min_interarrival_ns is not None and m.period_ns is not None:
+                raise OrccadError(f"module '{m.name}' is sporadic: give its minimum "
+                                  f"inter-arrival time or a period, not both", m.loc)
+            timing = Timing(m.min_interarrival_ns or m.period_ns or default.period_ns,
                             m.wcet_ns if m.wcet_ns is not None else default.wcet_ns,
                             m.bcet_ns if m.bcet_ns is not None else None)
         except OrccadError as error:
@@ -160,7 +171,9 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                               f"got {m.priority}", m.loc)
         modules[m.name] = ModuleSpec(m.name, kind, instance, timing,
                                      m.processor or DEFAULT_PROCESSOR, m.priority or 0, m.loc,
-                                     params=values)
+                                     params=values,
+                                     activation=Activation.PERIODIC
+                                     if m.min_interarrival_ns is None else Activation.SPORADIC)
     return modules
 
 
@@ -296,15 +309,18 @@ def _priorities(modules: dict[str, ModuleSpec]) -> None:
 
 
 def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
-                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
-                ) -> RobotTaskInstance:
-    """Check ``task`` with the arguments of one ``run`` and build its instance."""
+                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None,
+                actual: Mapping[str, Any] | None = None) -> RobotTaskInstance:
+    """Check ``task`` with the arguments of one ``run`` and build its instance; ``actual``
+    gives the values of its run-time arguments (default: the nominal binding, see
+    :func:`~orccad_app.robottask.values.task_arguments`)."""
     try:
-        params = task_arguments(task, args)
+        params = task_arguments(task, args, actual=actual)
     except OrccadError as error:
         raise _located(error, run_loc or task.loc) from None
     context = _context(task, params, robots, host)
-    inst = RobotTaskInstance(task, params, task.robot, context)
+    inst = RobotTaskInstance(task, params, task.robot, context, robots=robots, host=host,
+                             args=args, run_loc=run_loc)
     inst.modules = _declared_modules(task, params, context, host)
     _law_defaults(inst, host)
     _conditions(inst, host)
@@ -339,7 +355,7 @@ def check_tasks(program: ast.Program, host) -> TaskInstances:
     for task in program.robottasks:
         if all(p.default is not None for p in task.params):
             defaults[task.name] = instantiate(task, robots, host)
-    for mission in program.missions:
+    for mission in program.missions + program.imported_missions:
         for run in runs(mission):
             task = tasks.get(run.task)
             if task is None:

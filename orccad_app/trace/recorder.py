@@ -24,7 +24,7 @@ kill          Module-Task
 param         Module-Task        parameter              the new value
 deadlock                                                the cycle of ``module.port``
 reaction                                                ``{"inputs", "outputs", "status"}``
-task_start    Robot-Task                         site
+task_start    Robot-Task                         site   its arguments ``{param: value}``
 task_end      Robot-Task                         site   the outcome
 exception     Robot-Task or ""   exception name         its type (1, 2, 3)
 update        Module-Task        parameter              ``{"exception", "task", "old", "new",
@@ -186,8 +186,8 @@ class TraceRecorder(Observer):
             self._row(t_ns, "reaction",
                       value={"inputs": list(inputs), "outputs": list(outputs), "status": status})
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
-        self._row(t_ns, "task_start", task, job=site)
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        self._row(t_ns, "task_start", task, job=site, value=args or None)
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         self._row(t_ns, "task_end", task, job=site, value=outcome)

@@ -4,11 +4,13 @@ JSON keys (docs/design.md, *Command line*):
 
 - ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;
-- ``robot_tasks``: per Robot-Task run ``name``, ``start_s``, ``end_s``, ``outcome``,
+- ``robot_tasks``: per Robot-Task run ``name``, ``args`` (each parameter's actual value at
+  that start: run-time arguments evaluated, defaults filled in), ``start_s``, ``end_s``, ``outcome``,
   ``tracking_error`` ``{"rms", "max", "unit"}`` (``rad`` or ``m``, the task function's) (``null`` without a control law);
 - ``modules``, keyed ``Task.module``: ``processor``, ``period_s``, ``wcet_s``, ``jobs``
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
-  ``preemptions``, ``blocking_s``;
+  ``preemptions``, ``blocking_s``; a sporadic one also ``sporadic``: ``min_interarrival_s``,
+  ``interrupts``, ``released``, ``deferred``, ``coalesced``, ``min_gap_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``;
 - ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
@@ -29,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.diagnostics import arguments_text
 from orccad_app.mission.result import RunResult
 from orccad_app.trace.recorder import plain_value
 
@@ -77,6 +80,13 @@ def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
             "response_time_mean_s": stats.response_mean_ns / 1e9,
             "deadline_misses": stats.deadline_misses, "preemptions": stats.preemptions,
             "blocking_s": stats.blocking_ns / 1e9}
+        sporadic = result.stats.sporadic.get(name)
+        if sporadic is not None:
+            found[name]["sporadic"] = {
+                "min_interarrival_s": sporadic.min_interarrival_ns / 1e9,
+                "interrupts": sporadic.interrupts, "released": sporadic.released,
+                "deferred": sporadic.deferred, "coalesced": sporadic.coalesced,
+                "min_gap_s": None if sporadic.min_gap_ns < 0 else sporadic.min_gap_ns / 1e9}
     return found
 
 
@@ -115,15 +125,22 @@ def _ms(seconds: float) -> str:
     return f"{seconds * 1e3:.3f}"
 
 
+def _task_label(task: dict[str, Any]) -> str:
+    """``GoTo(target=[10, 0, 15])``: the task with its actual arguments."""
+    args = task.get("args") or {}
+    return task["name"] + (f"({arguments_text(args)})" if args else "")
+
+
 def _task_lines(report: dict[str, Any]) -> list[str]:
     lines = ["Robot-Tasks:"]
+    width = max([16, *(len(_task_label(t)) for t in report["robot_tasks"] or [])])
     for task in report["robot_tasks"] or []:
         end = "…" if task["end_s"] is None else f"{task['end_s']:.3f}"
         error = task["tracking_error"]
         figures = ("" if error is None else
                    f"   tracking error RMS {error['rms']:.3e} {error['unit']}, "
                    f"max {error['max']:.3e} {error['unit']}")
-        lines.append(f"  {task['name']:<16} {task['start_s']:.3f} → {end} s  "
+        lines.append(f"  {_task_label(task):<{width}} {task['start_s']:.3f} → {end} s  "
                      f"{task['outcome']}{figures}")
     if not report["robot_tasks"]:
         lines.append("  (none started)")
@@ -140,6 +157,13 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
                      f"{_ms(m['wcet_s']):>6} {m['jobs']:>6} {_ms(m['response_time_max_s']):>9} "
                      f"{_ms(m['response_time_mean_s']):>9} {m['deadline_misses']:>6} "
                      f"{m['preemptions']:>7}")
+    for name, m in report["modules"].items():
+        sporadic = m.get("sporadic")
+        if sporadic:
+            lines.append(f"  {name}: sporadic, min inter-arrival {_ms(sporadic['min_interarrival_s'])}"
+                         f" ms: {sporadic['interrupts']} interrupts, {sporadic['released']} "
+                         f"releases, {sporadic['deferred']} deferred, {sporadic['coalesced']} "
+                         f"coalesced")
     return lines
 
 
