@@ -359,5 +359,6 @@ class LiveObserver(Observer):
 
     def on_exception(self, record: Any) -> None:
         origin = f" from {record.task}" if record.task else ""
+        change = f": {record.update.text()}" if getattr(record, "update", None) else ""
         self._log.append(LogEntry(record.time_ns, "exception",
-                                  f"{record.name} (type {record.type}){origin}"))
+                                  f"{record.name} (type {record.type}){origin}{change}"))
