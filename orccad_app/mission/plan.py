@@ -34,7 +34,7 @@ from orccad_app.reactive.automaton import Automaton
 from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
-from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.model import DEFAULT_PROCESSOR, RobotTaskInstance
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.tcs.graph import TCS
 
@@ -92,6 +92,22 @@ class SiteModules:
     def task(self) -> str:
         """The Robot-Task's name."""
         return self.site.task
+
+    @property
+    def automaton_processor(self) -> str:
+        """The processor its behaviour automaton reacts on: declared (``automaton on P``),
+        else its first module's."""
+        placement = self.instance.task.automaton
+        if placement is not None:
+            return placement.processor
+        first = next(iter(self.instance.modules.values()), None)
+        return first.processor if first is not None else DEFAULT_PROCESSOR
+
+    @property
+    def reaction_ns(self) -> int:
+        """The execution time of one reaction of its automaton [ns] (0 unless declared)."""
+        placement = self.instance.task.automaton
+        return placement.reaction_ns if placement is not None else 0
 
     def fresh_computes(self) -> dict[str, ModuleInstance]:
         """New compute objects for every module (nominal parameters: a Robot-Task run again
