@@ -69,6 +69,7 @@ class ModuleTaskRuntime:
         self._kernel = context.kernel
         self._hooks = context.hooks
         self._release_entry: list | None = None
+        self._write_listeners: list[list] = []
         self._count = 0
         self._draws: list[int] = []
         self._rng = None
@@ -249,26 +250,44 @@ class ModuleTaskRuntime:
 
     def _write(self, job: Job) -> None:
         writes = self.writes
+        count = len(writes)
+        listeners = self._write_listeners
+        if len(listeners) != count:
+            listeners = self._listen(writes)
         outputs = job.outputs
-        hooks = self._hooks
-        while job.op < len(writes):
-            port, is_event, channel = writes[job.op]
+        on_signal = self._hooks.on_signal
+        op = job.op
+        while op < count:
+            port, is_event, channel = writes[op]
             value = outputs.get(port)
             if value is None or (is_event and value is False):
-                job.op += 1
+                op += 1
                 continue
             if channel is None:
-                now = self._kernel.now
-                for hook in hooks.on_write:
-                    hook(now, self.name, port, value)
+                wanting = listeners[op]
+                if wanting:
+                    now = self._kernel.now
+                    for hook in wanting:
+                        hook(now, self.name, port, value)
                 if is_event:
-                    for hook in hooks.on_signal:
+                    now = self._kernel.now
+                    for hook in on_signal:
                         hook(now, f"{self.name}.{port}", value)
             elif not channel.write(job, value):
+                job.op = op
                 self._block(job, port, "write", channel)
                 return
-            job.op += 1
+            op += 1
+        job.op = op
         self._finish(job)
+
+    def _listen(self, writes: list[tuple[str, bool, Channel | None]]) -> list[list]:
+        """Per entry of :attr:`writes`, the ``on_write`` listeners of its port's own write
+        (empty for connections): lists kept up to date by the hooks."""
+        hooks = self._hooks
+        self._write_listeners = [hooks.write_listeners(self.name, port) if channel is None
+                                 else [] for port, _, channel in writes]
+        return self._write_listeners
 
     def _finish(self, job: Job) -> None:
         now = self._kernel.now

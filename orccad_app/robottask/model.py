@@ -24,6 +24,7 @@ from orccad_app.control.spec import module_context, resolve
 from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.walk import runs
+from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 from orccad_app.tcs.phasing import Activation
@@ -71,12 +72,23 @@ class ModuleSpec:
 
 @dataclass(frozen=True)
 class Adjustment:
-    """A type-1 exception's parameter update: ``module.param = value``."""
+    """A type-1 exception's parameter update: ``module.param = value``.
+
+    :param exception: the exception.
+    :param module: the Module-Task whose parameter changes.
+    :param param: the parameter.
+    :param value: the new value when it is a constant expression (checked), else ``None``.
+    :param form: the value as written (:class:`~orccad_app.robottask.updates.UpdateForm`):
+        an expression, possibly over other parameters' current values, or a ramp.
+    :param loc: the ``adjust`` clause (run-time errors of the update point at it).
+    """
 
     exception: str
     module: str
     param: str
     value: Any
+    form: UpdateForm | None = None
+    loc: SourceLocation | None = None
 
 
 @dataclass
@@ -92,6 +104,11 @@ class RobotTaskInstance:
     events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
+    #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
+    robots: Mapping[str, ast.Robot] = field(default_factory=dict, repr=False)
+    host: Any = field(default=None, repr=False)
+    args: tuple[ast.Arg, ...] = ()
+    run_loc: SourceLocation | None = None
 
     @property
     def duration_s(self) -> float | None:
@@ -230,17 +247,56 @@ def _conditions(inst: RobotTaskInstance, host) -> None:
 
 
 def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
-    target = exc.adjust.target
+    """Check a type-1 update on throw-away instances: the parameters it sets and reads exist;
+    a constant value (each end of a constant ramp) is valid for the parameter (type, range,
+    finiteness); a computed one has the parameter's type at the nominal values (its range is
+    checked when it is applied)."""
+    adjust = exc.adjust
+    target = adjust.target
     module = inst.modules.get(target.component)
     if module is None:
-        raise OrccadError(f"adjust: no module '{target.component}' in Robot-Task "
-                          f"'{inst.task.name}'", target.loc)
-    value = evaluate(exc.adjust.value, inst.params)
-    try:  # on a throw-away instance: the update must be valid for this module
-        module.fresh(inst.context).set_param(target.port, value)
+        raise OrccadError(_unknown_module(target.component, inst), target.loc)
+    form = update_form(adjust.value)
+    fresh = {name: spec.fresh(inst.context) for name, spec in inst.modules.items()}
+    try:
+        spec = fresh[target.component].param_spec(target.port)
     except OrccadError as error:
-        raise _located(error, exc.adjust.loc) from None
-    return Adjustment(exc.name, target.component, target.port, value)
+        raise _located(error, target.loc) from None
+
+    def read(name: str, param: str) -> Any:
+        if name not in fresh:
+            raise OrccadError(_unknown_module(name, inst))
+        return fresh[name].get_param(param)
+
+    values = []
+    for expr in form.expressions:
+        try:
+            value = compute(expr, inst.params, read)
+            values.append(value)
+            _probe(fresh[target.component], spec, target.port, value, form.constant)
+        except OrccadError as error:
+            raise _located(error, getattr(expr, "loc", adjust.loc)) from None
+    constant = values[0] if form.constant and form.ramp is None else None
+    return Adjustment(exc.name, target.component, target.port, constant, form, adjust.loc)
+
+
+def _unknown_module(name: str, inst: RobotTaskInstance) -> str:
+    return (f"unknown module '{name}' in Robot-Task '{inst.task.name}' (its modules: "
+            f"{', '.join(inst.modules)})")
+
+
+def _probe(module: ModuleInstance, spec: Any, param: str, value: Any, constant: bool) -> None:
+    """Set ``value`` on a throw-away ``module``: a constant must be valid; a value computed
+    from the nominal parameters must have the parameter's type and shape (``kp`` a number or
+    one per joint), its range being checked when the update is applied."""
+    owner = module.kind.name
+    if not constant:
+        spec.convert(value, owner)
+        try:
+            spec.coerce(value, owner)
+        except OrccadError:
+            return  # out of range at the nominal values: checked when applied
+    module.set_param(param, value)
 
 
 def _priorities(modules: dict[str, ModuleSpec]) -> None:
@@ -253,15 +309,18 @@ def _priorities(modules: dict[str, ModuleSpec]) -> None:
 
 
 def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
-                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
-                ) -> RobotTaskInstance:
-    """Check ``task`` with the arguments of one ``run`` and build its instance."""
+                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None,
+                actual: Mapping[str, Any] | None = None) -> RobotTaskInstance:
+    """Check ``task`` with the arguments of one ``run`` and build its instance; ``actual``
+    gives the values of its run-time arguments (default: the nominal binding, see
+    :func:`~orccad_app.robottask.values.task_arguments`)."""
     try:
-        params = task_arguments(task, args)
+        params = task_arguments(task, args, actual=actual)
     except OrccadError as error:
         raise _located(error, run_loc or task.loc) from None
     context = _context(task, params, robots, host)
-    inst = RobotTaskInstance(task, params, task.robot, context)
+    inst = RobotTaskInstance(task, params, task.robot, context, robots=robots, host=host,
+                             args=args, run_loc=run_loc)
     inst.modules = _declared_modules(task, params, context, host)
     _law_defaults(inst, host)
     _conditions(inst, host)
@@ -296,7 +355,7 @@ def check_tasks(program: ast.Program, host) -> TaskInstances:
     for task in program.robottasks:
         if all(p.default is not None for p in task.params):
             defaults[task.name] = instantiate(task, robots, host)
-    for mission in program.missions:
+    for mission in program.missions + program.imported_missions:
         for run in runs(mission):
             task = tasks.get(run.task)
             if task is None:
