@@ -211,6 +211,14 @@ class MissionPlan:
         """Every TCS event signal -> automaton input."""
         return {signal: name for site in self.sites for signal, name in site.events.items()}
 
+    @property
+    def processor_names(self) -> tuple[str, ...]:
+        """Every processor of the run: the Module-Tasks', then the automata's, first-seen
+        order."""
+        names = [task.processor for task in self.tcs.module_tasks]
+        names += [site.automaton_processor for site in self.sites]
+        return tuple(dict.fromkeys(names))
+
     def run_horizon_s(self, default_s: float) -> float:
         """The default simulated-time limit [s]: ``default_s``, or longer when a robot type
         declares a longer ``run_horizon_s`` (an AUV mission lasts minutes)."""
