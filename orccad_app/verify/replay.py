@@ -20,19 +20,35 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.labels import MissionLabel
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import Instant
 from orccad_app.robottask.composition import Composition
 from orccad_app.verify.checker import PropertyOutcome
 from orccad_app.verify.counterexample import Script
 
-__all__ = ["RunningTask", "ReplayStep", "Replay", "replay", "script_instants", "step_lines", "format_replay",
+__all__ = ["waiting_at", "RunningTask", "ReplayStep", "Replay", "replay", "script_instants", "step_lines", "format_replay",
            "FAILS", "LOOPS"]
 
 FAILS = "the property fails at this instant"
 """The mark of the last instant of a finite counterexample."""
 LOOPS = "from this instant on, the run repeats forever and the property never holds"
 """The mark of the first instant of a counterexample's loop."""
+
+
+def waiting_at(automaton: Automaton, state: int) -> tuple[SourceLocation, ...]:
+    """Where ``state`` of ``automaton`` waits: the statements it is paused at, then the
+    ``run mission`` statements of the sub-missions it is inside (a statement of an imported
+    file is reached from the mission's own file through them); unique, in that order."""
+    found: list[SourceLocation] = []
+    if 0 <= state < len(automaton.waiting):
+        found += automaton.waiting[state]
+    labels = automaton.labels[state] if automaton.labels and 0 <= state < len(
+        automaton.labels) else ()
+    found += sorted((label.call for label in labels
+                     if isinstance(label, MissionLabel) and label.call.line > 0),
+                    key=lambda loc: (loc.file, loc.line))
+    return tuple(dict.fromkeys(found))
 
 
 @dataclass(frozen=True)
@@ -131,8 +147,7 @@ def replay(composition: Composition, outcome: PropertyOutcome) -> Replay:
         mark = "" if index != marked else (FAILS if script.loop_start is None else LOOPS)
         steps.append(ReplayStep(index + 1, line.time_ns, line.inputs, reaction.outputs,
                                 reactor.state, reaction.status,
-                                tuple(automaton.waiting[reactor.state]
-                                      if reactor.state < len(automaton.waiting) else ()),
+                                waiting_at(automaton, reactor.state),
                                 _tasks(composition, reactor.state), mark))
     return Replay(mission, outcome.kind, outcome.name, outcome.message, tuple(steps),
                   script.loop_start, script.note)
