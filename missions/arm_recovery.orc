@@ -1,39 +1,18 @@
-// A mission that uses every statement class, with recovery paths, on the 3-DOF arm.
+// A mission that uses every statement class, with recovery paths, on the 3-DOF arm, and
+// two reusable sub-missions of missions/lib/.
 //
 // Home, then track the cosine trajectory; a lost track or a time-out is retried after
 // re-homing, at most three times; the operator may hold (suspend) or stop the mission: Stop
 // aborts the tracking (or the re-homing), parks the arm (Park runs to its end: the mission
 // finishes only then) and 0.5 s after Stop emits Stopping; a joint-limit violation is fatal
 // and 'on fatal' reports it.
+from "lib/homing.orc" import Homing;    // run Home (to the cosine's start), lib/homing.orc
+from "lib/parking.orc" import Parking;  // run Park (to rest at q = 0), lib/parking.orc
+
 robot arm : arm3dof;
 
 input Stop, Hold, Gripper : float;
 output Started, Beat, Retry : int, GaveUp, Finished, Grip : float, Fatal, Stopping;
-
-// Home brings the arm to the start of TrackPID's cosine, q_d(0) = 2 q0, from where it is.
-robottask Home(goal: vector = [1.0, 1.0, 1.0]) on arm {
-    duration 1.5 s;
-    task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.0));
-    law pid(kp = 400.0, kv = 40.0);
-    module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
-    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
-    connect arm.q       -> traj.q;          // min_jerk starts from the measured position
-    connect traj.qd     -> ctrl.qd;
-    connect traj.qd_dot -> ctrl.qd_dot;
-    connect arm.q       -> ctrl.q;
-    connect arm.qdot    -> ctrl.qdot;
-    connect ctrl.tau    -> arm.tau;
-    precondition measure at_rest(tol = 0.05) within 2 s;
-}
-
-// Park brings the arm to rest at q = 0 from wherever it is, moving or not: no pre-condition,
-// so it takes over at once from an aborted tracking. Its Module-Tasks are the law's defaults
-// (traj and ctrl, wired by name: min_jerk starts from the measured position).
-robottask Park(goal: vector = [0.0, 0.0, 0.0]) on arm {
-    duration 2 s;
-    task_function joint_tracking(trajectory = min_jerk(goal = goal, duration = 1.5));
-    law pid(kp = 400.0, kv = 40.0, ki = 10.0);
-}
 
 robottask TrackPID(q0: vector = [0.5, 0.5, 0.5], kp: float = 400.0) on arm {
     duration 4 s;
@@ -55,7 +34,7 @@ robottask TrackPID(q0: vector = [0.5, 0.5, 0.5], kp: float = 400.0) on arm {
 
 mission ArmRecovery {
     emit Started;
-    run Home();
+    run mission Homing;
     var tries := 0;
     signal Tracked {
         race {
@@ -72,7 +51,7 @@ mission ArmRecovery {
                             } catch TrackingLost, Timeout {
                                 tries := tries + 1;
                                 emit Retry(tries);
-                                run Home();
+                                run mission Homing;
                             }
                         }
                         emit GaveUp;
@@ -81,7 +60,7 @@ mission ArmRecovery {
                     }
                 } when Hold;
             } when Stop do {
-                run Park();                            // park the arm, then finish
+                run mission Parking;                   // park the arm, then finish
             }
         } || {
             loop {

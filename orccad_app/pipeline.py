@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.imports import ImportedFile, resolve_imports
 from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
@@ -40,6 +41,7 @@ class Source:
     :param tasks: the checked Robot-Task instances (one per ``run`` site), ``None`` for a file
         without Robot-Tasks (see :attr:`instances`).
     :param host: the plugin host the file was checked against (``None`` when it needed none).
+    :param imported: the files its ``import`` declarations loaded, in load order.
     """
 
     path: str
@@ -48,6 +50,19 @@ class Source:
     warnings: tuple = ()
     tasks: TaskInstances | None = None
     host: PluginHost | None = None
+    imported: tuple[ImportedFile, ...] = ()
+
+    @property
+    def digest(self) -> str:
+        """SHA-256 of the program's text: the file's and every imported file's (a change in a
+        library changes it)."""
+        import hashlib
+
+        digest = hashlib.sha256(self.text.encode())
+        for file in self.imported:
+            digest.update(f"\0{len(file.text)}\0".encode())
+            digest.update(file.text.encode())
+        return digest.hexdigest()
 
     @property
     def instances(self) -> TaskInstances:
@@ -76,7 +91,7 @@ def load(path: str | Path, host: PluginHost | None = None) -> Source:
     their failures printed once on stderr."""
     path = str(path)
     text = read_source(path)
-    program = parse(text, path)
+    program, imported = resolve_imports(parse(text, path), read_source)
     result = check(program)
     instances = None
     if program.robottasks:
@@ -87,7 +102,7 @@ def load(path: str | Path, host: PluginHost | None = None) -> Source:
         from orccad_app.lang.signal_types import check_signal_properties
         host = _plugins(host)
         check_signal_properties(program, host)
-    return Source(path, text, program, result.warnings, instances, host)
+    return Source(path, text, program, result.warnings, instances, host, imported)
 
 
 def _plugins(host: PluginHost | None) -> PluginHost:

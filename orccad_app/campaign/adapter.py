@@ -13,7 +13,6 @@ overrides: cheap) and runs one setting against fresh plants.
 
 from __future__ import annotations
 
-import hashlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -74,7 +73,7 @@ class CompiledMission:
         self.source = load(file)
         self.mission = select_mission(self.source, mission)
         self.name = self.mission.name
-        self.digest = hashlib.sha256(self.source.text.encode()).hexdigest()
+        self.digest = self.source.digest  # the file's and its imports' texts
         self.composition = compose_mission(self.source, self.mission)
 
     def plan(self, setting: RunSetting) -> Any:

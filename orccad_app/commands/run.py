@@ -3,6 +3,7 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
@@ -48,6 +49,10 @@ def register(sub) -> None:
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
                              "several specs may follow one flag, or repeat the flag")
+    parser.add_argument("--inject-from", metavar="SCRIPT",
+                        help="raise the inputs of an input script (a counterexample written by "
+                             "orccad check --counterexample) at its instants' times: one "
+                             "reaction tick apart at least (see docs/verification.md)")
     parser.add_argument("--set", action="append", default=[], dest="overrides",
                         metavar="ROBOT.PARAM=V",
                         help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
@@ -123,6 +128,16 @@ def _warn_first_instant(injections) -> None:
                   "and each look from the next instant on)", file=sys.stderr)
 
 
+def _scripted(path: str, plan) -> list:
+    """The injections of the input script ``path`` (see :mod:`orccad_app.mission.scripted`)."""
+    from orccad_app.mission.scripted import script_injections
+    from orccad_app.pipeline import read_source
+    from orccad_app.reactive.script import parse_script
+
+    instants = parse_script(read_source(path), path, plan.automaton.inputs)
+    return script_injections(instants, plan.tick_ns)
+
+
 def _processors(plan, args: argparse.Namespace) -> list:
     from orccad_app.executive.processor import Processor
 
@@ -151,6 +166,12 @@ def run(args: argparse.Namespace) -> int:
     mission = select_mission(source, args.mission)
     plan = plan_with_overrides(source, mission, overrides)
     injections = _check_values(injections, plan.automaton.inputs)
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    if args.inject_from:
+        scripted = _scripted(args.inject_from, plan)
+        injections += scripted
+        injected += [InjectionRecord(i.time_ns, i.name, i.value, False,
+                                     f"--inject-from {args.inject_from}") for i in scripted]
     writer = None
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
                   MAX_SECONDS)
@@ -182,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError(f"{args.trace}: cannot write the trace: "
                           f"{error.strerror or error}") from None
-    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    injected.sort(key=lambda record: record.time_ns)
     verdicts = monitor.results()
     if args.json:
         report = report_dict(result, injected)

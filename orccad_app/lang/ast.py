@@ -42,8 +42,8 @@ from typing import Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 from orccad_app.lang.ast_expr import (VALUE_TYPES, Arg, Binary, Bool, Call, DurationLit, Expr,
-                                      LastValue, Name, Number, PreSignal, PreValue, String,
-                                      Unary, Vector, node)
+                                      LastValue, Name, Number, ParamRef, PreSignal, PreValue,
+                                      String, Unary, Vector, node)
 from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, FCompare, Formula,
                                          FPredicate, FSignal, FStatus, FUnary, Interval,
                                          Property, SArith, SCall, SignalExpr, SNeg, SNumber,
@@ -59,9 +59,9 @@ __all__ = [
     # expressions
     "Name", "Number", "String", "Bool", "Vector", "DurationLit", "LastValue", "PreSignal",
     "PreValue", "Unary",
-    "Binary", "Call", "Arg", "Expr",
+    "Binary", "Call", "Arg", "ParamRef", "Expr",
     # declarations
-    "SignalDecl", "Direction", "Robot", "Param", "Relation",
+    "SignalDecl", "Direction", "Robot", "Param", "Relation", "Import", "ImportedName",
     # Robot-Tasks
     "PortRef", "Module", "Connect", "SignalPrecondition", "MeasurePrecondition",
     "ExceptionType", "Adjust", "ExceptionDecl", "MeasurePostcondition",
@@ -129,6 +129,25 @@ class Robot:
     name: str
     type: str
     args: tuple[Arg, ...] = ()
+    loc: SourceLocation = NOWHERE
+
+
+@_node
+class ImportedName:
+    """One name of an ``import`` list."""
+
+    name: str
+    loc: SourceLocation = NOWHERE
+
+
+@_node
+class Import:
+    """``from "PATH" import M1, M2;`` - missions of another file (``PATH`` relative to this
+    one), resolved by :mod:`orccad_app.lang.imports`."""
+
+    path: str
+    names: tuple[ImportedName, ...]
+    path_loc: SourceLocation = NOWHERE
     loc: SourceLocation = NOWHERE
 
 
@@ -425,23 +444,40 @@ class Mission:
 
 # --------------------------------------------------------------------------- root
 
-TopItem = Union[Robot, SignalDecl, Relation, RobotTask, Mission, Property, Assumption]
+TopItem = Union[Import, Robot, SignalDecl, Relation, RobotTask, Mission, Property,
+                Assumption]
 
 
 @_node
 class Program:
-    """One ``.orc`` file: every top-level item in source order, and views by kind."""
+    """One ``.orc`` file: every top-level item in source order, and views by kind.
+
+    ``library`` holds what the file's ``import`` declarations bring (the imported missions,
+    the missions and Robot-Tasks they run, the robots those run on: see
+    :mod:`orccad_app.lang.imports`); ``missions`` are the file's own, ``robottasks`` and
+    ``robots`` include the imported ones, :meth:`mission` finds both.
+    """
 
     filename: str
     items: tuple[TopItem, ...] = ()
+    library: tuple[TopItem, ...] = ()
     loc: SourceLocation = NOWHERE
 
     def _of(self, kind: type) -> tuple:
         return tuple(item for item in self.items if isinstance(item, kind))
 
+    def _imported(self, kind: type) -> tuple:
+        return tuple(item for item in self.library if isinstance(item, kind))
+
+    @property
+    def imports(self) -> tuple[Import, ...]:
+        return self._of(Import)
+
     @property
     def robots(self) -> tuple[Robot, ...]:
-        return self._of(Robot)
+        own = self._of(Robot)
+        names = {robot.name for robot in own}
+        return own + tuple(r for r in self._imported(Robot) if r.name not in names)
 
     @property
     def signals(self) -> tuple[SignalDecl, ...]:
@@ -455,11 +491,17 @@ class Program:
 
     @property
     def robottasks(self) -> tuple[RobotTask, ...]:
-        return self._of(RobotTask)
+        return self._of(RobotTask) + self._imported(RobotTask)
 
     @property
     def missions(self) -> tuple[Mission, ...]:
+        """The file's own missions (those a command can select)."""
         return self._of(Mission)
+
+    @property
+    def imported_missions(self) -> tuple[Mission, ...]:
+        """The missions ``import`` brought (runnable only as sub-missions)."""
+        return self._imported(Mission)
 
     @property
     def properties(self) -> tuple[Property, ...]:
@@ -470,8 +512,9 @@ class Program:
         return self._of(Assumption)
 
     def mission(self, name: str) -> Mission | None:
-        """The mission called ``name``, or ``None``."""
-        return next((m for m in self.missions if m.name == name), None)
+        """The mission called ``name`` (the file's own or an imported one), or ``None``."""
+        return next((m for m in self.missions + self.imported_missions if m.name == name),
+                    None)
 
     def robottask(self, name: str) -> RobotTask | None:
         """The Robot-Task called ``name``, or ``None``."""

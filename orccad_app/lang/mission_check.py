@@ -72,6 +72,9 @@ class MissionChecker:
         elif isinstance(expr, ast.Call):
             self.error(f"unknown function '{expr.func}' (missions have no functions)",
                        expr.loc)
+        elif isinstance(expr, ast.ParamRef):
+            self.error(f"'{expr.module}.{expr.param}' is a Module-Task parameter: only the "
+                       "value of a type-1 exception ('adjust') reads one", expr.loc)
         elif isinstance(expr, ast.Unary):
             self.data(expr.operand, scope)
         elif isinstance(expr, ast.Binary):

@@ -137,6 +137,13 @@ class ToAst(RobotTaskRules, Transformer):
         return ast.Program(filename=self.filename, items=tuple(flat), loc=self.loc(meta))
 
     @_rule
+    def import_decl(self, meta, path, *names):
+        return ast.Import(path=_unescape(str(path)),
+                          names=tuple(ast.ImportedName(name=str(n), loc=self.tloc(n))
+                                      for n in names),
+                          path_loc=self.tloc(path), loc=self.loc(meta))
+
+    @_rule
     def robot_decl(self, meta, name, type_, args):
         return ast.Robot(name=str(name), type=str(type_), args=args or (), loc=self.loc(meta))
 
@@ -254,6 +261,10 @@ class ToAst(RobotTaskRules, Transformer):
     @_rule
     def call_expr(self, meta, name, args):
         return ast.Call(func=str(name), args=args, loc=self.loc(meta))
+
+    @_rule
+    def param_ref(self, meta, module, param):
+        return ast.ParamRef(module=str(module), param=str(param), loc=self.loc(meta))
 
     @_rule
     def paren(self, meta, expr):

@@ -28,8 +28,9 @@ running restarts its modules; every run of a Robot-Task starts with fresh module
 (nominal parameters, no state, even when the same plan is run again) and fresh ports (its
 channels reset, :meth:`~orccad_app.executive.simulation.Simulation.reset_ports`). An output whose role
 (:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
-applies E's update to the running module (``set_param``); one whose role is a raised exception
-records it. The run stops when the mission
+applies E's update to the running module (computed in that instant, a ramp stepped at the
+module's releases: :mod:`~orccad_app.mission.updates`; a refused value ends the run
+``failed``); one whose role is a raised exception records it. The run stops when the mission
 terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
 failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
@@ -62,6 +63,7 @@ from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
@@ -73,6 +75,7 @@ _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
 _INTERRUPTED = "interrupted (Ctrl-C)"
+_NO_INPUTS: frozenset[str] = frozenset()
 
 
 class ReactionError(OrccadError):
@@ -80,7 +83,7 @@ class ReactionError(OrccadError):
     overflow…), located in the mission: the run ends ``failed``."""
 
 
-_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
+_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError, UpdateError)
 _LOCATED_FAILURES = (ArgumentError, ReactionError)
 
 
@@ -96,6 +99,9 @@ class _Link(Observer):
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port == "e":
             self._run.task_error(module, value)
+
+    def wants_write(self, module: str, port: str) -> bool:
+        return port == "e"
 
 
 class MissionRun:
@@ -128,10 +134,12 @@ class MissionRun:
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
+        self._on_reaction = self._hooks["on_reaction"]
         plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
                               plants=plants, observers=[_Link(self), *observers])
         self.kernel = self.sim.kernel
+        self._updates = TypeOneUpdates(self.kernel, plan.tcs, self.sim.hooks.on_param)
         self._signals = plan.signals
         self._roles = plan.roles
         self._error_site = {s.error_module: s.number for s in plan.sites if s.error_module}
@@ -249,20 +257,24 @@ class MissionRun:
     def _react(self, _: object) -> None:
         now = self.kernel.now
         pending = self._pending
-        if not pending and self._reacted_at == now:
-            return
-        self._pending = {}
-        self._reacted_at = now
-        if any(value is not None for value in pending.values()):
-            inputs: Any = pending
+        inputs: Any
+        if not pending:
+            if self._reacted_at == now:
+                return
+            inputs = _NO_INPUTS  # a tick: no dict or set to build
         else:
-            inputs = set(pending)
+            self._pending = {}
+            if any(value is not None for value in pending.values()):
+                inputs = pending
+            else:
+                inputs = set(pending)
+        self._reacted_at = now
         reactor = self.reactor
         try:
             reaction = reactor.react(inputs, now)
         except OrccadError as error:
             raise ReactionError(error.message, error.location, error.notes) from None
-        for hook in self._hooks["on_reaction"]:
+        for hook in self._on_reaction:
             hook(now, tuple(pending), reaction.outputs, reaction.status)
         if not reaction.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
@@ -306,9 +318,12 @@ class MissionRun:
                 site = self._running_site(role.task)
                 update = (self._adjust.get(site.number, site.adjustments).get(role.name)
                           if site is not None else None)
-                if update is not None:
-                    self.sim.set_param(update.module, update.param, update.value, at_ns=now)
-                self._record(ExceptionRecord(now, role.name, 1, role.task))
+                try:
+                    change = None if update is None else self._updates.apply(update, role.name)
+                except UpdateError:  # the exception happened; its update ends the run
+                    self._record(ExceptionRecord(now, role.name, 1, role.task))
+                    raise
+                self._record(ExceptionRecord(now, role.name, 1, role.task, change))
             elif role.kind is RoleKind.RAISED:
                 kind, task = self._origin(role.name)
                 raised[role.name] = task
@@ -352,6 +367,7 @@ class MissionRun:
             start = [m for m in wanted if m not in active]
             if start:
                 self.sim.activate(start, at_ns=now)
+                self._updates.activated(start, now)
                 active.update(start)
         self._phase = phases
 
@@ -369,6 +385,7 @@ class MissionRun:
             hook(now, site.task, site.number, args)
 
     def _end_task(self, now: int, site: SiteModules, outcome: str) -> None:
+        self._updates.stop(site.modules)
         record = self._running.pop(site.number)
         record.end_ns = now
         record.outcome = outcome

@@ -7,9 +7,10 @@ from typing import Any
 
 from orccad_app.reactive.automaton import Automaton, Transition, transitions
 from orccad_app.reactive.expr import format_expr
-from orccad_app.reactive.labels import MissionLabel
+from orccad_app.reactive.labels import MissionLabel, in_missions, sub_mission_labels
 
-__all__ = ["to_summary", "to_json", "to_dict", "to_dot", "guard_text"]
+__all__ = ["to_summary", "to_json", "to_dict", "to_dot", "guard_text", "sub_missions",
+           "mission_labels"]
 
 
 def _signal_type(signal) -> str:
@@ -54,6 +55,8 @@ def to_dict(automaton: Automaton) -> dict[str, Any]:
         states.append({
             "id": state,
             "waiting_at": [str(loc) for loc in automaton.waiting[state]],
+            "sub_missions": [m.to_dict() for m in in_missions(
+                automaton.labels[state] if automaton.labels else (), automaton.waiting[state])],
             "transitions": by_source[state],
         })
     return {
@@ -104,11 +107,14 @@ def to_summary(automaton: Automaton) -> str:
     return "\n".join(lines)
 
 
+def sub_missions(automaton: Automaton, state: int) -> list[MissionLabel]:
+    """The sub-mission instances (``run mission M``) state ``state`` is in, outermost first."""
+    return sub_mission_labels(automaton.labels[state] if automaton.labels else ())
+
+
 def mission_labels(automaton: Automaton, state: int) -> list[str]:
-    """The sub-missions (``run mission M``) state ``state`` is in, as ``M#site``."""
-    labels = automaton.labels[state] if automaton.labels else ()
-    return sorted(f"{label.mission}#{label.site}" for label in labels
-                  if isinstance(label, MissionLabel))
+    """The sub-missions state ``state`` is in, as ``M#n (file:line) inside file:line``."""
+    return [label.text() for label in sub_missions(automaton, state)]
 
 
 def _missions_in(automaton: Automaton, state: int) -> str:

@@ -133,6 +133,8 @@ class Lowerer:
         self.scope = Scope()
         for decl in (*self.inputs, *self.outputs):
             self.scope.signals[decl.name] = decl
+        self._inlining: tuple[str, ...] = (mission.name,)  # the sub-missions being inlined
+        self._instances: dict[str, int] = {}  # sub-mission -> instances so far
 
     def lower(self) -> ir.Program:
         """The whole mission; subclasses wrap the body (statuses, ``on fatal``)."""
@@ -304,7 +306,7 @@ class Lowerer:
         target = self.source.mission(s.mission)
         if target is None:
             raise OrccadError(f"unknown mission '{s.mission}'", s.mission_loc or s.loc)
-        stack = getattr(self, "_inlining", (self.mission.name,))
+        stack = self._inlining
         if target.name in stack:
             chain = " -> ".join((*stack, target.name))
             raise OrccadError(f"recursive sub-mission: {chain}", s.loc)
@@ -315,14 +317,14 @@ class Lowerer:
         inner.signals.update({d.name: d for d in (*self.inputs, *self.outputs)
                               if any(d.name == f.name for f in self.source.signals)})
         inner.signals.update(self._bind(target, s, scope))
-        self.site_count = getattr(self, "site_count", 0) + 1
-        site = self.site_count
+        self._instances[target.name] = self._instances.get(target.name, 0) + 1
+        label = MissionLabel(target.name, self._instances[target.name], target.loc, s.loc)
         self._inlining = (*stack, target.name)
         try:
             body = self.block(target.body, inner)
         finally:
             self._inlining = stack
-        return ir.Mark(MissionLabel(target.name, site), body, s.loc)
+        return ir.Mark(label, body, s.loc)
 
     def _bind(self, target: ast.Mission, s: ast.RunMission, scope: Scope) -> dict:
         """The caller's signal for each of the sub-mission's (renamed, else same name)."""

@@ -95,6 +95,8 @@ EVENT_FIELDS: dict[str, tuple[tuple[str, dict], ...]] = {
     "task_start": (("task", _STRING), ("site", _INTEGER), ("args_json", _STRING)),
     "task_end": (("task", _STRING), ("site", _INTEGER), ("outcome", _STRING)),
     "exception": (("task", _STRING), ("name", _STRING), ("type", _INTEGER)),
+    "update": (("module", _STRING), ("param", _STRING), ("exception", _STRING),
+               ("update_json", _STRING)),
 }
 """The flat fields of each ``/orccad/<event>`` topic, with their JSON types."""
 
@@ -144,6 +146,9 @@ def _event_message(event: str, module: str, port: str, job: int, value: Any,
         return {"task": module, "site": job, "outcome": str(value or "")}
     if event == "exception":
         return {"task": module, "name": port, "type": int(value or 0)}
+    if event == "update":
+        return {"module": module, "param": port, "exception": str(_get(value, "exception", "")),
+                "update_json": text}
     raise ValueError(f"unknown trace event {event!r}")
 
 
@@ -318,6 +323,9 @@ class McapTraceWriter:
         elif event == "param":
             self.log(time_ns, INFO, "executive", f"{m['module']}.{m['param']} := "
                                                  f"{m['value_json']}")
+        elif event == "update":
+            self.log(time_ns, INFO, "mission", f"type-1 update by {m['exception']}: "
+                                               f"{m['module']}.{m['param']} {m['update_json']}")
         elif event == "finish" and m["missed"]:
             self.log(time_ns, WARNING, "executive", f"{m['module']} job {m['job']} finished "
                                                     "after its deadline")

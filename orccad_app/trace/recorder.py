@@ -27,6 +27,9 @@ reaction                                                ``{"inputs", "outputs", 
 task_start    Robot-Task                         site   its arguments ``{param: value}``
 task_end      Robot-Task                         site   the outcome
 exception     Robot-Task or ""   exception name         its type (1, 2, 3)
+update        Module-Task        parameter              ``{"exception", "task", "old", "new",
+                                                        "ramp"}``: a type-1 update (``ramp``:
+                                                        ``{"start", "end", "duration_s"}`` or null)
 ============  =================  ==============  =====  ===========================================
 
 Values are strict JSON text (``json.dumps``: floats print exactly, so equal runs give equal
@@ -48,7 +51,7 @@ __all__ = ["TraceRow", "TraceWriter", "TraceRecorder", "EVENTS", "to_json", "pla
 
 EVENTS = ("release", "start", "preempt", "resume", "compute_end", "finish", "overrun", "block",
           "unblock", "read", "write", "signal", "message", "activate", "kill", "param",
-          "deadlock", "reaction", "task_start", "task_end", "exception")
+          "deadlock", "reaction", "task_start", "task_end", "exception", "update")
 """Every event name a trace may hold, in the order of the table above."""
 
 
@@ -192,3 +195,9 @@ class TraceRecorder(Observer):
     def on_exception(self, record: Any) -> None:
         self._row(record.time_ns, "exception", record.task or "", record.name,
                   value=record.type)
+        update = record.update
+        if update is not None:
+            self._row(record.time_ns, "update", update.module, update.param,
+                      value={"exception": record.name, "task": record.task,
+                             **{k: v for k, v in update.as_dict().items()
+                                if k not in ("module", "param")}})

@@ -23,6 +23,7 @@ from itertools import product
 from typing import Any, Sequence
 
 from orccad_app.reactive import ir
+from orccad_app.reactive.labels import InMission, in_missions
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.verify.data import TOP, is_clock_test
 from orccad_app.verify.model import Model, Step
@@ -35,12 +36,15 @@ _NEGATE = {"<": ">=", "<=": ">", ">": "<=", ">=": "<", "==": "!="}
 
 @dataclass(frozen=True)
 class Line:
-    """One instant of a script: the clock (ns, or None) and the inputs with their values."""
+    """One instant of a script: the clock (ns, or None) and the inputs with their values;
+    ``inside``: the sub-mission instances the mission is in after it."""
 
     time_ns: int | None
     inputs: tuple[tuple[str, Any], ...]
+    inside: tuple[InMission, ...] = ()
 
     def text(self) -> str:
+        """The instant as ``orccad react`` reads it."""
         parts = [] if self.time_ns is None else [f"@{_seconds(self.time_ns)}"]
         parts += [name if value is None else f"{name}({_literal(value)})"
                   for name, value in self.inputs]
@@ -50,7 +54,9 @@ class Line:
 @dataclass(frozen=True)
 class Script:
     """A replayable counterexample: ``lines``, of which those from ``loop_start`` on repeat
-    forever (None: a finite trace whose last instant shows the violation)."""
+    forever (None: a finite trace whose last instant shows the violation). Its text says, in
+    a comment line after each instant that changes it, which sub-mission instances the
+    mission is in (``# in Homing#2 (lib/homing.orc:8) inside arm_recovery.orc:54, …``)."""
 
     lines: tuple[Line, ...]
     loop_start: int | None
@@ -59,12 +65,17 @@ class Script:
 
     def text(self, header: Sequence[str] = ()) -> str:
         out = [f"# {h}" for h in header]
+        inside: tuple[InMission, ...] = ()
         for number, line in enumerate(self.lines):
             if number == self.loop_start:
                 out.append("# loop: the following instants repeat forever"
                            + (" (times shifted by the loop's duration)"
                               if line.time_ns is not None else ""))
             out.append(line.text())
+            if line.inside != inside:  # a comment line (not an instant) when it changes
+                inside = line.inside
+                out.append(f"# in {'; in '.join(i.text() for i in inside)}" if inside
+                           else "# out of the sub-missions")
         return "\n".join(out) + "\n"
 
 
@@ -226,6 +237,15 @@ def _react(model: Model, reactor: Reactor, step: Step, present: list[str],
     return tuple(first.items()), False
 
 
+def _inside(model: Model, step: Step) -> tuple[InMission, ...]:
+    """Where the mission is after ``step``: its sub-mission instances (and their statements
+    the state waits at)."""
+    labels = model.labels(step.target)
+    if not labels:
+        return ()
+    return in_missions(labels, model.automaton.waiting[model.control(step.target)])
+
+
 def make_script(model: Model, steps: Sequence[Step], chosen: Sequence[tuple[str, ...]],
                 loop_start: int | None) -> Script:
     """The script of the run ``steps`` (free inputs ``chosen`` present), replayed."""
@@ -243,7 +263,7 @@ def make_script(model: Model, steps: Sequence[Step], chosen: Sequence[tuple[str,
         clock = times[j] if times is not None else None
         inputs, ok = _react(model, reactor, step, present, clock)
         followed = followed and ok
-        lines.append(Line(clock, inputs))
+        lines.append(Line(clock, inputs, _inside(model, step)))
     if not followed and not note:
         note = "the replay leaves the counterexample (data values the model abstracts)"
     return Script(tuple(lines), loop_start, followed, note)
