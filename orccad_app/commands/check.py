@@ -1,4 +1,5 @@
-"""``orccad check FILE [--mission M] [--observe S1,S2,…] [--counterexample OUT] [--promela OUT]``.
+"""``orccad check FILE [--mission M] [--observe S1,S2,…] [--counterexample OUT] [--promela OUT]
+[--json]``.
 
 Parses and checks the file, compiles each mission (or the one named) in the composed view,
 then proves the built-in properties and every ``property`` that applies to it (see
@@ -6,7 +7,9 @@ then proves the built-in properties and every ``property`` that applies to it (s
 ``orccad react --composed``. ``--observe`` prints the automaton reduced to some signals
 (observational equivalence) instead. Exit status: 0 all hold, 1 a property fails, 2 bad
 input. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
-and campaigns judge them; they do not change the exit status.
+and campaigns judge them; they do not change the exit status. ``--json`` prints the verdicts
+as one object instead (each counterexample with its instants and the sub-mission instances
+the mission is in after each).
 """
 
 from __future__ import annotations
@@ -35,6 +38,8 @@ def register(sub) -> None:
                         help="write the first counterexample script to this file")
     parser.add_argument("--promela", metavar="OUT",
                         help="write the model and its properties in Promela (for SPIN)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the verdicts and counterexamples as one JSON object")
     add_max_states(parser)
     parser.set_defaults(func=run)
 
@@ -52,12 +57,16 @@ def run(args: argparse.Namespace) -> int:
     if args.observe is not None:
         return _observe(source, missions, args)
     failed, written, unproved = 0, False, 0
+    reports = []
     for mission in missions:
         report = check_mission(source.program, mission, max_states=args.max_states)
         unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
-        _print_report(source, report, len(missions) > 1)
+        if args.json:
+            reports.append(report)
+        else:
+            _print_report(source, report, len(missions) > 1)
         for outcome in report.outcomes:
             if not outcome.holds:
                 failed += 1
@@ -65,6 +74,11 @@ def run(args: argparse.Namespace) -> int:
                     emit_text(_script_text(source, mission, outcome).rstrip("\n"),
                               args.counterexample)
                     written = True
+    if args.json:
+        from orccad_app.jsonout import dumps
+        print(dumps({"file": source.path, "missions": [_report_dict(source, r) for r in reports],
+                     "failed": failed, "holds": not failed}, indent=2))
+        return 1 if failed else 0
     total = len(missions)
     left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
             if unproved else "")
@@ -104,6 +118,38 @@ def _print_report(source, report, several: bool) -> None:
     for prop in report.signal_properties:
         print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
               "judged on runs and campaigns")
+
+
+def _report_dict(source, report) -> dict:
+    """One mission's verdicts, JSON-ready (no timings: the same input gives the same text)."""
+    model, automaton = report.model, report.composition.automaton
+    mission = report.composition.mission
+    return {
+        "mission": report.composition.name,
+        "automaton_states": automaton.state_count,
+        "model_states": len(model.states),
+        "model_steps": model.step_count,
+        "counters_exact": model.exact,
+        "outcomes": [{"kind": o.kind, "name": o.name, "holds": o.holds, "message": o.message,
+                      "counterexample": None if o.holds or o.script is None else
+                      _script_dict(source, mission, o)} for o in report.outcomes],
+        "signal_properties": [p.name for p in report.signal_properties],
+    }
+
+
+def _script_dict(source, mission, outcome) -> dict:
+    script = outcome.script
+    return {
+        "replay": _replay_command(source, mission),
+        "note": script.note or None,
+        "replayed": script.replayed,
+        "loop_start": script.loop_start,
+        "instants": [{"time_s": None if line.time_ns is None else line.time_ns / 1e9,
+                      "inputs": dict(line.inputs),
+                      "inside": [where.to_dict() for where in line.inside]}
+                     for line in script.lines],
+        "script": _script_text(source, mission, outcome),
+    }
 
 
 def _write_promela(source, mission, report, path: str) -> None:

@@ -15,6 +15,8 @@ from collections import deque
 from pathlib import Path
 from typing import Any
 
+from orccad_app.reactive.labels import MissionLabel
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.tui.live import PHASES, LiveUpdate
 
 __all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites", "tasks_in_state", "where_text", "rta_text", "tcs_rows",
@@ -54,16 +56,50 @@ class SpeedMeter:
         return (s1 - s0) / running if running > 1e-3 else None
 
 
+def _mine(session: Any, loc: Any) -> bool:
+    """Whether ``loc`` is in the mission's own file (not in an imported one)."""
+    name = Path(session.path).name
+    return loc.line > 0 and Path(loc.file or name).name == name
+
+
+def _imported_calls(session: Any, state: int | None) -> list[int]:
+    """Lines of the file's ``run mission`` statements whose sub-mission, imported from
+    another file, state ``state`` is in."""
+    automaton = session.run.plan.automaton
+    if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
+        return []
+    return sorted({label.call.line for label in automaton.labels[state]
+                   if isinstance(label, MissionLabel) and _mine(session, label.call)
+                   and not _mine(session, label.defined)})
+
+
 def waiting_lines(session: Any, state: int | None) -> list[int]:
-    """Lines of the mission's file where state ``state`` of its automaton is paused."""
+    """Lines of the mission's file where state ``state`` of its automaton is paused (for a
+    state inside a sub-mission of another file: the ``run mission`` line)."""
     if state is None:
         return []
     automaton = session.run.plan.automaton
     if not 0 <= state < len(automaton.waiting):
         return []
-    name = Path(session.path).name
-    return sorted({loc.line for loc in automaton.waiting[state]
-                   if loc.line > 0 and Path(loc.file or name).name == name})
+    if not automaton.waiting[state]:
+        return []  # initial or terminated: in no statement, so in no sub-mission
+    own = {loc.line for loc in automaton.waiting[state] if _mine(session, loc)}
+    return sorted(own | set(_imported_calls(session, state)))
+
+
+def _elsewhere(session: Any, state: int | None) -> str:
+    """``homing.orc:26`` for the waiting locations in imported files (``; ``-separated)."""
+    if state is None:
+        return ""
+    automaton = session.run.plan.automaton
+    if not 0 <= state < len(automaton.waiting):
+        return ""
+    files: dict[str, set[int]] = {}
+    for loc in automaton.waiting[state]:
+        if loc.line > 0 and not _mine(session, loc):
+            files.setdefault(Path(loc.file).name, set()).add(loc.line)
+    return "; ".join(f"{name}:{', '.join(map(str, sorted(lines)))}"
+                     for name, lines in sorted(files.items()))
 
 
 def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]]:
@@ -83,32 +119,41 @@ def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]
 
 
 def run_site_lines(session: Any, state: int | None) -> list[int]:
-    """Lines of the ``run`` statements of the Robot-Tasks active in ``state``."""
-    return sorted({line for _, line in running_sites(session, state) if line > 0})
+    """Lines of the ``run`` statements of the Robot-Tasks active in ``state`` (of the
+    ``run mission`` statement, for a Robot-Task run by a sub-mission of another file)."""
+    running = running_sites(session, state)
+    lines = {loc.line for _, loc in running if _mine(session, loc)}
+    if any(not _mine(session, loc) for _, loc in running):
+        lines |= set(_imported_calls(session, state))
+    return sorted(lines)
 
 
 def where_text(session: Any, state: int | None, status: str = "running") -> str:
-    """``waiting at arm_recovery.orc:58, 77`` (or the status once the mission ended)."""
+    """``waiting at arm_recovery.orc:58, 77`` (or the status once the mission ended); the
+    locations in imported files follow (``; homing.orc:26``)."""
     if status in ("done", "failed", "aborted"):
         return f"the mission has ended: {status}"
     lines = waiting_lines(session, state)
-    if not lines:
+    elsewhere = _elsewhere(session, state)
+    if not lines and not elsewhere:
         return "starting" if state is None else "reacting"
-    text = f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+    shown = [f"{Path(session.path).name}:{', '.join(map(str, lines))}"] if lines else []
+    text = "waiting at " + "; ".join(shown + ([elsewhere] if elsewhere else []))
     running = running_sites(session, state)
     if running:
-        text += " (running " + ", ".join(f"{task} at :{line}" for task, line in running) + ")"
+        text += " (running " + ", ".join(
+            f"{task} at :{loc.line}" if _mine(session, loc)
+            else f"{task} at {Path(loc.file).name}:{loc.line}" for task, loc in running) + ")"
     return text
 
 
-def running_sites(session: Any, state: int | None) -> list[tuple[str, int]]:
-    """``(task, line of its run statement)`` of the Robot-Tasks active in ``state``."""
+def running_sites(session: Any, state: int | None) -> list[tuple[str, Any]]:
+    """``(task, location of its run statement)`` of the Robot-Tasks active in ``state``."""
     automaton = session.run.plan.automaton
     if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
         return []
-    numbers = {getattr(label, "site", None) for label in automaton.labels[state]
-               if not isinstance(label, tuple)}
-    return [(site.task, site.site.stmt.loc.line) for site in session.run.plan.sites
+    numbers = {label.site for label in automaton.labels[state] if isinstance(label, RtLabel)}
+    return [(site.task, site.site.stmt.loc) for site in session.run.plan.sites
             if site.number in numbers]
 
 

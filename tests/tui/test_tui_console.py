@@ -43,15 +43,19 @@ async def test_paused_run_shows_where_the_mission_waits_and_its_rta():
     async with app.run_test(size=SIZE) as pilot:
         run = await _paused_run(pilot, app)
         status = _text(run, "#run-status")
-        home = _line_of("    run Home();")
+        homing = _line_of("    run mission Homing;")
+        library = "missions/lib/homing.orc"
+        measure, home = _line_of("precondition measure", library), _line_of("run Home()", library)
         assert "PAUSED" in status and "speed paused" in status
-        # Home's measurement pre-condition (line 26), in the run of Home at line 58
-        assert "waiting at arm_recovery.orc:26" in status and f"Home at :{home}" in status
+        # Home's measurement pre-condition, in the run of Home of the sub-mission Homing
+        # (missions/lib/homing.orc) that arm_recovery.orc runs first
+        assert f"waiting at arm_recovery.orc:{homing}; homing.orc:{measure}" in status
+        assert f"Home at homing.orc:{home}" in status
         assert "of 60 s" in status  # progress against the horizon
         await pilot.press("o")
         assert run.query_one("#run-tabs").active == "source-tab"
         source = run.query_one("#run-source")
-        assert source.waiting == [26] and source.sites == [home]
+        assert source.waiting == [homing] and source.sites == [homing]
         await pilot.press("e")
         rta = _text(run, "#rta-text")
         assert "Home[/b] (site 0): phase 2" in rta and "▶ 2 measuring" in rta
