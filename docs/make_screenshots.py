@@ -6,7 +6,8 @@ results), ``docs/tui-run.svg`` (a live run of missions/arm_recovery.orc, paused 
 tracking runs), ``docs/tui-report.svg`` (its report after ``Stop`` was raised) and, when the
 AUV mission plans, ``docs/tui-auv.svg`` (the AUV survey after a leak); the run screen's tabs
 ``tui-run-source.svg``, ``tui-run-rta.svg``, ``tui-run-tcs.svg``, the help ``tui-help.svg``,
-the run at 80×24 ``tui-run-80x24.svg`` and the editor with a diagnostic ``tui-editor.svg``.
+the run at 80×24 ``tui-run-80x24.svg``, the editor with a diagnostic ``tui-editor.svg`` and a
+counterexample of missions/false_property.orc replayed ``tui-replay.svg``.
 The snapshot tests (``tests/tui/__snapshots__``) hold the same screens at 80×24 and 160×48.
 """
 
@@ -112,7 +113,20 @@ async def small_and_editor() -> None:
         app.save_screenshot("tui-editor.svg", str(DOCS))
 
 
+async def replay() -> None:
+    app = OrccadApp(["missions/false_property.orc"], selected="missions/false_property.orc")
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.press("c")
+        await _until(pilot, lambda: getattr(app.screen, "report", None) is not None)
+        await pilot.press("enter", "right", "right")  # placed_after_approach, instant 3
+        await pilot.pause(0.5)
+        app.clear_notifications()
+        await pilot.pause(0.2)
+        app.save_screenshot("tui-replay.svg", str(DOCS))
+
+
 def main() -> None:
+    asyncio.run(replay())
     asyncio.run(small_and_editor())
     asyncio.run(browser())
     asyncio.run(arm_run())

@@ -12,9 +12,13 @@ The CLI prints that and exits with status 2; no Python traceback reaches the use
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Any, Mapping
 
 __all__ = [
+    "value_text",
+    "arguments_text",
     "SourceLocation",
     "OrccadError",
     "Diagnostic",
@@ -125,3 +129,24 @@ def _read(path: str) -> str | None:
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
     return data.decode("utf-8", "replace")
+
+
+def value_text(value: Any) -> str:
+    """A value as the language writes it (``[10, 0, 15]``, ``2.5``, ``true``, ``"text"``)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}" if math.isfinite(value) else str(value)
+    if isinstance(value, str):
+        return '"' + value.replace('"', '\\"') + '"'
+    if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        items = value.tolist() if hasattr(value, "tolist") else list(value)
+        if isinstance(items, list):
+            return "[" + ", ".join(value_text(v) for v in items) + "]"
+        return value_text(items)
+    return str(value)
+
+
+def arguments_text(arguments: Mapping[str, Any]) -> str:
+    """``target=[10, 0, 15], speed=1.5``."""
+    return ", ".join(f"{name}={value_text(value)}" for name, value in arguments.items())

@@ -2,7 +2,7 @@
 
 A plugin (docs/plugins.md) marks its hook implementations with :data:`hookimpl` and
 registers objects built from the classes below: robot types (:class:`RobotType`, with its
-extension points :meth:`RobotType.plant_extension` and :attr:`RobotType.run_horizon_s`),
+sensor parameters :class:`SensorParam` and its extension points :meth:`RobotType.plant_extension` and :attr:`RobotType.run_horizon_s`),
 component kinds (:class:`TrajectoryKind`, :class:`TaskFunctionKind`, :class:`LawKind`) and
 Module-Task kinds (:class:`ModuleKind`), declared with :class:`ParamSpec`, :class:`PortSpec`
 and :class:`Timing`. Errors it raises are :class:`OrccadError` (or the control library's
@@ -36,7 +36,13 @@ from orccad_app.control.module import ModuleInstance, ModuleKind
 from orccad_app.control.params import REQUIRED, ParamSpec, resolve_params
 from orccad_app.control.plant_extension import FLAG, FaultRange, PlantExtension
 from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
-from orccad_app.control.robot import IdleBehaviour, RobotPort, RobotType
+from orccad_app.control.robot import (
+    IdleBehaviour,
+    RobotPort,
+    RobotType,
+    SensorParam,
+    SensorSetting,
+)
 from orccad_app.control.task_functions import TaskFunction, TaskState
 from orccad_app.control.trajectories import Sample, Trajectory
 from orccad_app.diagnostics import OrccadError
@@ -52,6 +58,8 @@ __all__ = [
     "RobotType",
     "RobotPort",
     "IdleBehaviour",
+    "SensorParam",
+    "SensorSetting",
     "ActuatorConstraint",
     "PlantExtension",
     "FaultRange",

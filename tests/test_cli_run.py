@@ -45,7 +45,8 @@ def test_run_arm_pid_json_is_done_with_every_figure(pid_report):
     assert RUN_KEYS <= set(report)
     assert (report["status"], report["reason"], report["sim_time_s"]) == ("done", None, 4.0)
     [task] = report["robot_tasks"]
-    assert set(task) == {"name", "start_s", "end_s", "outcome", "tracking_error"}
+    assert set(task) == {"name", "args", "start_s", "end_s", "outcome", "tracking_error"}
+    assert task["args"] == {"q0": [0.5, 0.5, 0.5], "kp": 400.0, "kv": 40.0}
     assert (task["name"], task["start_s"], task["end_s"], task["outcome"]) == \
         ("TrackPID", 0.0, 4.0, "good_end")
     assert set(task["tracking_error"]) == {"rms", "max", "unit"}

@@ -1,12 +1,14 @@
 """``orccad check FILE [--mission M] [--observe S1,S2,…] [--counterexample OUT] [--promela OUT]
-[--json]``.
+[--replay PROPERTY] [--json]``.
 
 Parses and checks the file, compiles each mission (or the one named) in the composed view,
 then proves the built-in properties and every ``property`` that applies to it (see
 ``docs/verification.md``). A failed property prints a counterexample as an input script for
 ``orccad react --composed``. ``--observe`` prints the automaton reduced to some signals
 (observational equivalence) instead. Exit status: 0 all hold, 1 a property fails, 2 bad
-input. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
+input. ``--replay PROPERTY`` prints that property's counterexample instant by instant (inputs,
+outputs, the statements the mission waits at, the instant where it fails) and, with
+``--counterexample OUT``, writes its script for ``orccad run --inject-from OUT``. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
 and campaigns judge them; they do not change the exit status. ``--json`` prints the verdicts
 as one object instead (each counterexample with its instants and the sub-mission instances
 the mission is in after each).
@@ -38,6 +40,11 @@ def register(sub) -> None:
                         help="write the first counterexample script to this file")
     parser.add_argument("--promela", metavar="OUT",
                         help="write the model and its properties in Promela (for SPIN)")
+    parser.add_argument("--replay", metavar="PROPERTY",
+                        help="print this property's counterexample instant by instant (inputs, "
+                             "outputs, where the mission waits, where it fails); with "
+                             "--counterexample OUT, write its script (for orccad run "
+                             "--inject-from OUT)")
     parser.add_argument("--json", action="store_true",
                         help="print the verdicts and counterexamples as one JSON object")
     add_max_states(parser)
@@ -56,6 +63,8 @@ def run(args: argparse.Namespace) -> int:
                 else list(require_missions(source)))
     if args.observe is not None:
         return _observe(source, missions, args)
+    if args.replay is not None:
+        return _replay(source, missions, args)
     failed, written, unproved = 0, False, 0
     reports = []
     for mission in missions:
@@ -150,6 +159,38 @@ def _script_dict(source, mission, outcome) -> dict:
                      for line in script.lines],
         "script": _script_text(source, mission, outcome),
     }
+
+
+def _replay(source, missions, args) -> int:
+    """``--replay PROPERTY``: exit 1 with its counterexample, 0 when it holds."""
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.verify.checker import check_mission
+    from orccad_app.verify.replay import format_replay, replay
+
+    wanted = args.replay.strip()
+    known = []
+    for mission in missions:
+        name = wanted.split(".", 1)[1] if wanted.startswith(f"{mission.name}.") else wanted
+        report = check_mission(source.program, mission, max_states=args.max_states)
+        known += [o.name for o in report.outcomes]
+        outcome = next((o for o in report.outcomes if o.name == name), None)
+        if outcome is None:
+            continue
+        if outcome.holds:
+            print(f"{outcome.kind} {mission.name}.{outcome.name} holds: no counterexample")
+            return 0
+        print(format_replay(replay(report.composition, outcome), source.path, source.text))
+        if args.counterexample:
+            emit_text(_script_text(source, mission, outcome).rstrip("\n"), args.counterexample)
+            print(f"run it against the plant: orccad run {shlex.quote(source.path)} --mission "
+                  f"{mission.name} --inject-from {shlex.quote(args.counterexample)}")
+        else:
+            print("write its script with --counterexample OUT, then run it against the plant: "
+                  f"orccad run {shlex.quote(source.path)} --mission {mission.name} "
+                  "--inject-from OUT")
+        return 1
+    raise OrccadError(f"--replay {wanted}: no such property (properties: "
+                      f"{', '.join(dict.fromkeys(known)) or 'none'})")
 
 
 def _write_promela(source, mission, report, path: str) -> None:

@@ -62,7 +62,8 @@ def _ports(ports: Any) -> list[dict[str, Any]]:
 def _item(category: str, item: Any) -> dict[str, Any]:
     """The JSON description of one registered item."""
     info: dict[str, Any] = {"summary": getattr(item, "summary", "")}
-    info["params"] = _params(getattr(item, "params", ()))
+    info["params"] = _params(getattr(item, "parameters" if category == "robot_types"
+                                     else "params", ()))
     if category == "robot_types":
         low, high = item.torque_limits
         info.update(mjcf=str(item.mjcf_path), dof=item.dof, resources=list(item.resources),

@@ -3,6 +3,7 @@
 ::
 
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
+                    [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
@@ -48,6 +49,10 @@ def register(sub) -> None:
                         help="raise input SIG (or SIG(value)) at simulated time T [s]; "
                              "ROBOT.FAULT=VALUE@T applies a plant fault (auv.leak=1@120); "
                              "several specs may follow one flag, or repeat the flag")
+    parser.add_argument("--inject-from", metavar="SCRIPT",
+                        help="raise the inputs of an input script (a counterexample written by "
+                             "orccad check --counterexample) at its instants' times: one "
+                             "reaction tick apart at least (see docs/verification.md)")
     parser.add_argument("--set", action="append", default=[], dest="overrides",
                         metavar="ROBOT.PARAM=V",
                         help="set a parameter the robot type declares (auv.cb_height_m=0.02) "
@@ -98,39 +103,21 @@ def _injection(text: str):
     return parse_injection(text)
 
 
-def _check_values(injections, inputs) -> None:
-    """Each injected value fits its input: none for a pure input, one of the declared type
-    (finite, integers within 64 bits) for a valued one; fault values finite."""
+def _check_values(injections, inputs) -> list:
+    """Each injected value typed against its input: none for a pure input, one of the
+    declared type (finite, integers within 64 bits, a vector as [x, y, ...]) for a valued
+    one; fault values finite."""
     import math
 
     from orccad_app.diagnostics import OrccadError
-    from orccad_app.lang.limits import MAX_INT, MIN_INT
+    from orccad_app.mission.injection import typed_injections
 
-    declared = {s.name: s for s in inputs}
     for injection in injections:
-        value, name = injection.value, injection.name
-        if isinstance(value, float) and not math.isfinite(value):
-            raise OrccadError(f"--inject {name}: the value must be a finite number, got {value}")
-        if isinstance(value, int) and not isinstance(value, bool) and \
-                not MIN_INT <= value <= MAX_INT:
-            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
-        signal = declared.get(name)
-        if injection.fault or signal is None:
-            continue  # unknown names are reported by the run, with the known inputs
-        if signal.type is None and value is not None:
-            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
-                              f"(write {name}@T)")
-        if signal.type is not None and value is None:
-            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
-                              f"{name}(value)@T")
-        if signal.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
-            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
-        if signal.type in ("float", "duration") and (isinstance(value, bool)
-                                                     or not isinstance(value, (int, float))):
-            raise OrccadError(f"--inject {name}: {name} carries a {signal.type}, got {value!r}")
-        if signal.type == "bool" and not isinstance(value, bool):
-            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
-                              f"got {value!r}")
+        value = injection.value
+        if injection.fault and isinstance(value, float) and not math.isfinite(value):
+            raise OrccadError(f"--inject {injection.name}: the value must be a finite number, "
+                              f"got {value}")
+    return typed_injections(injections, inputs)
 
 
 def _warn_first_instant(injections) -> None:
@@ -139,6 +126,16 @@ def _warn_first_instant(injections) -> None:
             print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
                   "first instant, where only 'immediate' tests see it (await, abort ... when "
                   "and each look from the next instant on)", file=sys.stderr)
+
+
+def _scripted(path: str, plan) -> list:
+    """The injections of the input script ``path`` (see :mod:`orccad_app.mission.scripted`)."""
+    from orccad_app.mission.scripted import script_injections
+    from orccad_app.pipeline import read_source
+    from orccad_app.reactive.script import parse_script
+
+    instants = parse_script(read_source(path), path, plan.automaton.inputs)
+    return script_injections(instants, plan.tick_ns)
 
 
 def _processors(plan, args: argparse.Namespace) -> list:
@@ -168,7 +165,13 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     plan = plan_with_overrides(source, mission, overrides)
-    _check_values(injections, plan.automaton.inputs)
+    injections = _check_values(injections, plan.automaton.inputs)
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    if args.inject_from:
+        scripted = _scripted(args.inject_from, plan)
+        injections += scripted
+        injected += [InjectionRecord(i.time_ns, i.name, i.value, False,
+                                     f"--inject-from {args.inject_from}") for i in scripted]
     writer = None
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
                   MAX_SECONDS)
@@ -200,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError(f"{args.trace}: cannot write the trace: "
                           f"{error.strerror or error}") from None
-    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    injected.sort(key=lambda record: record.time_ns)
     verdicts = monitor.results()
     if args.json:
         report = report_dict(result, injected)

@@ -17,6 +17,7 @@ from orccad_app.control.laws.pid import PID
 from orccad_app.control.laws.scheme import ComputedTorque, GenericScheme
 from orccad_app.control.module import ModuleKind
 from orccad_app.control.module_kinds import ControlLawModule, TrajectoryModule
+from orccad_app.control.multirate import ComputedTorqueFeedbackModule, DynamicModelModule
 from orccad_app.control.params import REQUIRED, ParamSpec
 from orccad_app.control.robot import RobotType
 from orccad_app.control.task_functions import CartesianTracking, JointTracking
@@ -91,5 +92,7 @@ LAW_KINDS: tuple[LawKind, ...] = (PID_KIND, GENERIC_KIND, COMPUTED_TORQUE_KIND)
 
 # -- module kinds -------------------------------------------------------------------------
 
-#: The built-in module kinds (``trajectory``, ``control_law``).
-MODULE_KINDS: tuple[ModuleKind, ...] = (TrajectoryModule(), ControlLawModule())
+#: The built-in module kinds (``trajectory``, ``control_law``, and the multi-rate computed
+#: torque's ``dynamic_model`` and ``ct_feedback``).
+MODULE_KINDS: tuple[ModuleKind, ...] = (TrajectoryModule(), ControlLawModule(),
+                                        DynamicModelModule(), ComputedTorqueFeedbackModule())

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["BackwardDifference"]
@@ -24,6 +26,9 @@ class BackwardDifference:
         """Forget past samples; the next derivative is zero."""
         self._t: float | None = None
         self._value: np.ndarray | None = None
+        self._listed: Any = None
+        """``_value.tolist()``: compared with a new sample's list (cheaper than
+        ``np.array_equal`` for a few components; NaN differs from itself in both)."""
         self._derivative: np.ndarray | None = None
 
     def update(self, t_s: float, value: np.ndarray) -> np.ndarray:
@@ -31,12 +36,14 @@ class BackwardDifference:
         value = np.asarray(value, dtype=float)
         if self._value is None or self._t is None:
             self._t, self._value = t_s, value.copy()
+            self._listed = value.tolist() if value.ndim else [value.tolist()]
             self._derivative = np.zeros_like(value)
             return self._derivative.copy()
-        if self.on_change and np.array_equal(value, self._value):
+        listed = value.tolist() if value.ndim else [value.tolist()]
+        if self.on_change and value.shape == self._value.shape and listed == self._listed:
             return self._derivative.copy()
         dt = t_s - self._t
         if dt > 0.0:
             self._derivative = (value - self._value) / dt
-            self._t, self._value = t_s, value.copy()
+            self._t, self._value, self._listed = t_s, value.copy(), listed
         return self._derivative.copy()

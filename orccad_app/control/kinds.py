@@ -77,8 +77,15 @@ class TrajectoryKind(ComponentKind):
     category = "trajectory"
 
     def create(self, params: Mapping[str, Any], resolver: Resolver | None = None) -> Trajectory:
-        """A trajectory from user parameters."""
-        return self.factory(self.resolve_params(params, resolver))
+        """A trajectory from user parameters; it remembers them (``origin``: this kind and
+        the validated values) so that a type-1 update can rebuild it with one changed."""
+        values = self.resolve_params(params, resolver)
+        trajectory = self.factory(values)
+        try:
+            trajectory.origin = Spec(self, values)
+        except AttributeError:  # a trajectory class with slots: not retunable
+            pass
+        return trajectory
 
 
 @dataclass(frozen=True)

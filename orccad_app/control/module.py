@@ -18,6 +18,8 @@ Lifecycle of an instance, as the timed executive drives it (duck-typed):
   the jobs where the event fires and absent (or ``False``) otherwise.
 - :meth:`ModuleInstance.set_param` — a type-1 exception (``adjust ctrl.kp = 200.0``)
   changes a parameter between two jobs; the value is validated like at creation.
+  :meth:`ModuleInstance.get_param` reads its current value (``adjust ctrl.kp =
+  min(ctrl.kp * 1.5, 800.0)``), :meth:`ModuleInstance.param_spec` its declaration.
 
 Time given to ``compute`` is the executive clock ``t_s`` [s]; modules that need the time
 since their own start (trajectories, integrators) measure it from their first job after
@@ -146,6 +148,19 @@ class ModuleInstance(ABC):
         ``inputs`` maps input port names to values; an unconnected or never-written port
         is absent (or ``None``). Outputs not in the returned dict are not written.
         """
+
+    def param_spec(self, name: str) -> ParamSpec:
+        """The declaration of the settable parameter ``name``; raises naming the known ones.
+
+        Subclasses whose instances have more settable parameters than their kind's (the
+        control law's gains, a trajectory's parameters) extend it with :meth:`get_param`
+        and :meth:`set_param`."""
+        return self.kind.param(name)
+
+    def get_param(self, name: str) -> Any:
+        """The current value of parameter ``name`` (a type-1 update reads it)."""
+        spec = self.param_spec(name)
+        return self.params.get(name, spec.default)
 
     def set_param(self, name: str, value: Any) -> None:
         """Change parameter ``name`` (type-1 exception); validated like at creation."""

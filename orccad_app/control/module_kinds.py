@@ -23,11 +23,12 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.control.errors import ControlError
+from orccad_app.control.errors import ControlError, DimensionMismatch, InvalidParameter
+from orccad_app.control.kinds import Spec
 from orccad_app.control.estimation import BackwardDifference
 from orccad_app.control.laws.base import ControlLaw
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
-from orccad_app.control.params import ParamSpec
+from orccad_app.control.params import ParamSpec, close_matches
 from orccad_app.control.task_functions import TaskFunction
 from orccad_app.control.trajectories import Sample
 
@@ -80,23 +81,60 @@ class _TrajectoryInstance(ModuleInstance):
     def __init__(self, kind: ModuleKind, values: dict[str, Any], context: ModuleContext):
         self._context = context
         self.task_function = _task_function(kind.name, context)
+        self._origin = self.task_function.trajectory.origin
+        self._start: np.ndarray | None = None
         self.ref = self.task_function.reference_name
+        self._ref_dot, self._ref_ddot = f"{self.ref}_dot", f"{self.ref}_ddot"
         ports = _concrete(kind.ports, self.ref, self.task_function.dim, self.task_function.dof)
         super().__init__(kind, values, ports)
 
     def init(self) -> None:
         super().init()
         self.task_function = _task_function(self.kind.name, self._context)
+        self._origin = self.task_function.trajectory.origin
+        self._start = None
+
+    def param_spec(self, name: str) -> ParamSpec:
+        """The trajectory's parameters (``traj.omega`` of ``cosine``) are the module's."""
+        origin = self._origin
+        specs = {} if origin is None else {s.name: s for s in origin.kind.params
+                                           if s.type != "trajectory"}
+        if name not in specs:
+            what = "a trajectory without parameters" if origin is None else \
+                f"trajectory {origin.name!r}"
+            raise InvalidParameter(f"module kind 'trajectory' ({what}) has no parameter "
+                                   f"{name!r}{close_matches(name, list(specs))}; its "
+                                   f"parameters: {', '.join(specs) or 'none'}")
+        return specs[name]
+
+    def get_param(self, name: str) -> Any:
+        self.param_spec(name)
+        return self._origin.params[name]
+
+    def set_param(self, name: str, value: Any) -> None:
+        """Rebuild the trajectory with ``name`` changed (validated); its time goes on from the
+        module's start, and a measured start position is kept."""
+        self.param_spec(name)
+        origin = self._origin
+        trajectory = origin.kind.create({**origin.params, name: value})
+        if not trajectory.needs_start and trajectory.dim != self.task_function.dim:
+            raise DimensionMismatch(f"trajectory {origin.name!r}: {name} gives "
+                                    f"{trajectory.dim} components, the task has "
+                                    f"{self.task_function.dim}")
+        self.task_function.trajectory = trajectory
+        if self._start is not None:
+            self.task_function.start_from(self._start)
+        self._origin = trajectory.origin
 
     def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
         if self.task_function.trajectory.needs_start:
             q = inputs.get("q")
             if q is None:
                 return {}
-            self.task_function.start_from(np.asarray(q, dtype=float))
+            self._start = np.asarray(q, dtype=float)
+            self.task_function.start_from(self._start)
         sample = self.task_function.reference(self.task_time(t_s))
-        return {self.ref: sample.pos, f"{self.ref}_dot": sample.vel,
-                f"{self.ref}_ddot": sample.acc}
+        return {self.ref: sample.pos, self._ref_dot: sample.vel, self._ref_ddot: sample.acc}
 
 
 class ControlLawModule(ModuleKind):
@@ -129,7 +167,9 @@ class _ControlLawInstance(ModuleInstance):
         self._context = context
         self._overrides = overrides
         self.law = self._build_law()
+        self._task_function_spec: Spec = context.task_function  # type: ignore[assignment]
         self.ref = self.law.task_function.reference_name
+        self._ref_dot, self._ref_ddot = f"{self.ref}_dot", f"{self.ref}_ddot"
         ports = _concrete(kind.ports, self.ref, self.law.task_function.dim, self.law.robot.dof)
         super().__init__(kind, dict(self.law.params), ports)
         self._velocity = BackwardDifference()
@@ -148,19 +188,50 @@ class _ControlLawInstance(ModuleInstance):
         for estimator in (self._velocity, self._ref_velocity, self._ref_acceleration):
             estimator.reset()
 
+    def _task_function_params(self) -> dict[str, ParamSpec]:
+        spec = self._context.task_function
+        return {} if spec is None else {s.name: s for s in spec.kind.params
+                                        if s.type != "trajectory"}
+
+    def param_spec(self, name: str) -> ParamSpec:
+        """The law's parameters (``kp``…), then the task function's (``damping``…)."""
+        law = {spec.name: spec for spec in self.law.PARAMS}
+        found = law.get(name) or self._task_function_params().get(name)
+        if found is None:
+            known = [*law, *self._task_function_params()]
+            raise InvalidParameter(f"module 'control_law' (law {self.law.name!r}) has no "
+                                   f"parameter {name!r}{close_matches(name, known)}; its "
+                                   f"parameters: {', '.join(known)}")
+        return found
+
+    def get_param(self, name: str) -> Any:
+        spec = self.param_spec(name)
+        if name in self.law.params:
+            return self.law.params[name]
+        return self._task_function_spec.params.get(name, spec.default)
+
     def set_param(self, name: str, value: Any) -> None:
-        """Retune the law (type-1 exception); validated against the law's parameters."""
-        self.law.set_param(name, value)
-        self.params = dict(self.law.params)
+        """Retune the law (type-1 exception), validated against the law's parameters; or
+        rebuild its task function with one of its parameters changed (``damping``)."""
+        self.param_spec(name)
+        if any(spec.name == name for spec in self.law.PARAMS):
+            self.law.set_param(name, value)
+            self.params = dict(self.law.params)
+            return
+        spec = self._task_function_spec
+        values = spec.kind.resolve_params({**spec.params, name: value})
+        self.law.task_function = spec.kind.factory(values, self.law.robot)
+        self.law._prepare()
+        self._task_function_spec = Spec(spec.kind, values)
 
     def _reference(self, t_s: float, inputs: Mapping[str, Any]) -> Sample | None:
         pos = inputs.get(self.ref)
         if pos is None:
             return None
         pos = np.asarray(pos, dtype=float)
-        vel = inputs.get(f"{self.ref}_dot")
+        vel = inputs.get(self._ref_dot)
         vel = self._ref_velocity.update(t_s, pos) if vel is None else np.asarray(vel, float)
-        acc = inputs.get(f"{self.ref}_ddot")
+        acc = inputs.get(self._ref_ddot)
         if acc is None:
             acc = self._ref_acceleration.update(t_s, vel)
         return Sample(pos=pos, vel=vel, acc=np.asarray(acc, dtype=float))
@@ -174,5 +245,5 @@ class _ControlLawInstance(ModuleInstance):
         qdot = inputs.get("qdot")
         qdot = self._velocity.update(t_s, q) if qdot is None else np.asarray(qdot, float)
         out = self.law.command(t_s, q, qdot, reference)
-        return {"tau": out.tau, "e": out.e, "saturated": bool(out.saturated.any())}
+        return {"tau": out.tau, "e": out.e, "saturated": True in out.saturated.tolist()}
 

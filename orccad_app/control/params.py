@@ -134,6 +134,11 @@ class ParamSpec:
         self._check_range(converted, owner)
         return converted
 
+    def convert(self, value: Any, owner: str) -> Any:
+        """``value`` converted to this parameter's type (finite, right shape), its range not
+        checked: what a value computed later must at least be."""
+        return self._convert(value, owner)
+
     def _fail(self, owner: str, expected: str, value: Any) -> InvalidParameter:
         return InvalidParameter(f"{owner}: {self.name} must be {expected}, got {value!r}")
 
@@ -142,6 +147,8 @@ class ParamSpec:
         if kind == "float":
             if not _is_real(value) or math.isnan(float(value)):
                 raise self._fail(owner, "a number", value)
+            if not math.isfinite(float(value)):
+                raise self._fail(owner, "a finite number", value)
             return float(value)
         if kind == "int":
             if _is_real(value) and float(value).is_integer():
@@ -164,9 +171,9 @@ class ParamSpec:
         return self._convert_array(value, owner)
 
     def _convert_array(self, value: Any, owner: str) -> Any:
-        if self.type == "float|vector" and _is_real(value):
-            return float(value)
-        if self.type == "matrix" and _is_real(value):
+        if self.type in ("float|vector", "matrix") and _is_real(value):
+            if not math.isfinite(float(value)):
+                raise self._fail(owner, "finite", value)
             return float(value)
         try:
             array = np.array(value, dtype=float)

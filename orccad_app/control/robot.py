@@ -34,7 +34,7 @@ from orccad_app.control.ports import PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
 from orccad_app.control.plant_extension import PlantExtension
 
-__all__ = ["RobotPort", "RobotType", "IdleBehaviour"]
+__all__ = ["RobotPort", "RobotType", "IdleBehaviour", "SensorSetting", "SensorParam"]
 
 
 class IdleBehaviour(enum.Enum):
@@ -50,6 +50,49 @@ class IdleBehaviour(enum.Enum):
     HOLD = "hold"
     """A holding law: gravity (and Coriolis) compensation plus a stiff PD at the position
     when the robot went idle, clamped to the torque limits."""
+
+
+class SensorSetting(enum.Enum):
+    """What a :class:`SensorParam` sets on its sensor ports."""
+
+    NOISE_STD = "noise_std"
+    """Standard deviation of the additive Gaussian noise, drawn from the run's seed."""
+    QUANTIZATION = "quantization"
+    """Quantization step: the measured value is rounded to a multiple of it (0: none)."""
+
+
+@dataclass(frozen=True)
+class SensorParam:
+    """A robot type parameter that sets the noise or the quantization of sensor ports.
+
+    Declared by a plugin in :attr:`RobotType.sensor_params`; set from a mission
+    (``robot arm : arm3dof(noise_std = 1e-4);``), from the command line
+    (``orccad run --set arm.noise_std=1e-4``) or varied by a campaign like any robot
+    type parameter. Its value is a real ``>= 0`` (``<= maximum`` when given) in ``unit``,
+    the unit of its ports.
+
+    :param name: the parameter's name (``noise_std``).
+    :param ports: the sensor ports it sets (``("q",)``).
+    :param setting: noise or quantization (:class:`SensorSetting`).
+    :param default: its value when not set [unit].
+    :param unit: the unit of the value and of the ports (``[rad]``).
+    :param doc: what it models (``encoder noise on q``).
+    :param maximum: the largest accepted value [unit], ``None`` for no bound.
+    """
+
+    name: str
+    ports: tuple[str, ...]
+    setting: SensorSetting
+    default: float
+    unit: str
+    doc: str
+    maximum: float | None = None
+
+    @property
+    def spec(self) -> ParamSpec:
+        """The parameter as a :class:`ParamSpec`: a finite real in ``[0, maximum]``."""
+        return ParamSpec(self.name, "float", float(self.default), f"{self.doc} {self.unit}",
+                         minimum=0.0, maximum=self.maximum)
 
 
 @dataclass(frozen=True)
@@ -100,10 +143,54 @@ class RobotType:
     idle_gains: tuple[float, float] = (400.0, 40.0)
     """``(kp [N·m/rad], kv [N·m·s/rad])`` of the ``hold`` idle behaviour."""
 
+    sensor_params: tuple[SensorParam, ...] = ()
+    """Parameters setting the noise and quantization of sensor ports (:class:`SensorParam`)."""
+    sensor_values: Mapping[str, float] = field(default_factory=dict)
+    """The values given to :attr:`sensor_params` (by :meth:`configure`)."""
+
     run_horizon_s: ClassVar[float] = 0.0
     """Extension point: the default simulated-time limit of ``orccad run`` for missions on
     this robot [s] (0: the command's default, 60 s); a subclass sets it (an AUV mission
     lasts minutes)."""
+
+    def __post_init__(self) -> None:
+        sensors = {port.name for port in self.sensors}
+        names = {spec.name for spec in self.params}
+        for param in self.sensor_params:
+            if param.name in names:
+                raise ControlError(f"robot type {self.name!r}: parameter {param.name!r} is "
+                                   f"declared twice")
+            names.add(param.name)
+            for port in param.ports:
+                if port not in sensors:
+                    raise ControlError(
+                        f"robot type {self.name!r}: sensor parameter {param.name!r} names "
+                        f"no sensor port {port!r} (sensors: {', '.join(sorted(sensors))})")
+            param.spec.coerce(param.default, f"robot type {self.name!r}")
+
+    @property
+    def parameters(self) -> tuple[ParamSpec, ...]:
+        """Every parameter of the type: :attr:`params`, then the :attr:`sensor_params`."""
+        return self.params + tuple(param.spec for param in self.sensor_params)
+
+    def sensor_noise(self) -> dict[str, float]:
+        """Sensor port -> standard deviation of its noise [port unit]: the ports' defaults,
+        then the :attr:`sensor_params` (their values, or their defaults)."""
+        return self._sensor_setting(SensorSetting.NOISE_STD,
+                                    {p.name: p.noise_std for p in self.sensors})
+
+    def sensor_quantization(self) -> dict[str, float]:
+        """Sensor port -> quantization step [port unit] (0: none), as :meth:`sensor_noise`."""
+        return self._sensor_setting(SensorSetting.QUANTIZATION,
+                                    {p.name: p.quantum or 0.0 for p in self.sensors})
+
+    def _sensor_setting(self, setting: SensorSetting,
+                        values: dict[str, float]) -> dict[str, float]:
+        for param in self.sensor_params:
+            if param.setting is setting:
+                value = float(self.sensor_values.get(param.name, param.default))
+                values.update(dict.fromkeys(param.ports, value))
+        return values
 
     def plant_extension(self) -> PlantExtension | None:
         """Extension point: a fresh :class:`PlantExtension` for one run's plant (extra
@@ -140,9 +227,13 @@ class RobotType:
                            f"{close_matches(name, names)}; its ports: {', '.join(names)}")
 
     def configure(self, params: Mapping[str, Any]) -> RobotType:
-        """This type with type parameters (``robot auv : auv(battery_wh = 400.0)``)."""
-        values = resolve_params(self.name, self.params, params)
-        return replace(self, param_values=values)
+        """This type with type parameters (``robot auv : auv(battery_wh = 400.0)``) and sensor
+        parameters (``robot arm : arm3dof(noise_std = 1e-4)``), checked against
+        :attr:`parameters` (unknown names, types, ranges, finiteness)."""
+        values = resolve_params(self.name, self.parameters, params)
+        sensors = {param.name for param in self.sensor_params}
+        return replace(self, param_values={k: v for k, v in values.items() if k not in sensors},
+                       sensor_values={k: v for k, v in values.items() if k in sensors})
 
     def pinocchio_model(self) -> Any:
         """A fresh ``pinocchio.Model`` built from :attr:`mjcf_path` (``buildModelFromMJCF``).

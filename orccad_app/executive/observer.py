@@ -63,6 +63,12 @@ class Observer:
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         """``module`` writes ``value`` on its output ``port`` (end of its compute phase)."""
 
+    def wants_write(self, module: str, port: str) -> bool:
+        """Whether :meth:`on_write` is to be called for ``module.port`` (default: every
+        port). Asked once per port before the run: an observer that only follows some ports
+        saves a call per write of the others."""
+        return True
+
     def on_signal(self, t_ns: int, name: str, value: Any) -> None:
         """A signal occurs: an event port ``module.port`` written with a value that is neither
         ``None`` nor ``False``, or a signal posted with ``Simulation.post_signal``."""

@@ -58,6 +58,11 @@ __all__ = ["MujocoPlant", "PlantDivergenceError", "PlantExtension"]
 _WATCHED_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
                      mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADCTRL)
 _WATCHED_INDEX = np.array([int(w) for w in _WATCHED_WARNINGS])
+_WATCHED_SLICE = slice(int(_WATCHED_INDEX.min()), int(_WATCHED_INDEX.max()) + 1)
+if _WATCHED_SLICE.stop - _WATCHED_SLICE.start != len(_WATCHED_INDEX):  # not contiguous
+    _WATCHED_SLICE = slice(0, None)
+_clip = np.clip if not hasattr(np, "_core") else getattr(np._core.umath, "clip", np.clip)
+"""``np.clip``'s ufunc without its Python wrapper (same operation)."""
 
 
 _MUJOCO_WARNINGS: list[str] = []
@@ -118,11 +123,16 @@ class MujocoPlant:
         self.model = _load(xml, path)
         self.extension: PlantExtension | None = None
         self.data = mujoco.MjData(self.model)
+        # views into MuJoCo's arrays (the same memory for the life of ``data``)
+        self._qpos, self._qvel, self._ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
+        self._warning_view = self.data.warning.number[_WATCHED_SLICE]
         self.name = name
         self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
         if self.timestep_ns <= 0:
             raise OrccadError(f"plant '{name}': timestep {self.model.opt.timestep} s is below 1 ns")
         self._readers = self._sensor_readers()
+        self._observers: dict[str, Any] = {}
+        """Per port, what :meth:`observe` returns (built at the first observation)."""
         self.resource = self._resource()
         if extension is not None:
             self.extend(extension)
@@ -143,7 +153,7 @@ class MujocoPlant:
         self._attached = False
         self._streams: dict[str, np.random.Generator] = {}
         self._warnings = self._warning_counts()
-        self._warning_total = sum(self._warnings)
+        self._warning_total = sum(self._warning_view.tolist())
         self._messages_seen = len(_MUJOCO_WARNINGS)
         self.notify: Any = None
         """``notify(signal, value)``, set by the simulation: idle changes as signals."""
@@ -180,7 +190,7 @@ class MujocoPlant:
 
     def _sensor_readers(self) -> dict[str, Any]:
         model, data = self.model, self.data
-        readers: dict[str, Any] = {"q": lambda: data.qpos.copy(), "qdot": lambda: data.qvel.copy()}
+        readers: dict[str, Any] = {"q": self._qpos.copy, "qdot": self._qvel.copy}
         for index in range(model.nsensor):
             sensor = model.sensor(index)
             if not sensor.name or sensor.name in readers or sensor.name == "tau":
@@ -203,6 +213,7 @@ class MujocoPlant:
         if self.extension is not None:
             raise OrccadError(f"plant '{self.name}' already has an extension")
         self.extension = extension
+        self._observers.clear()
         extension.bind(self.model, self.data)
         for port in extension.sensors:
             self._readers[port] = (lambda p=port: np.array(extension.read(p), dtype=float))
@@ -323,17 +334,20 @@ class MujocoPlant:
         return tuple(self.data.warning.number[_WATCHED_INDEX].tolist())
 
     def _check(self, time_ns: int) -> None:
-        data = self.data
-        # one sum each: any NaN or infinity makes it non-finite (cheaper than isfinite().all())
-        finite = math.isfinite(data.qpos.sum() + data.qvel.sum())
-        if finite and data.warning.number[_WATCHED_INDEX].sum() == self._warning_total:
+        # one sum each, on lists (3 floats: cheaper than numpy's reductions): any NaN or
+        # infinity makes it non-finite; the watched warning counters are one view
+        if math.isfinite(sum(self._qpos.tolist()) + sum(self._qvel.tolist())) and \
+                sum(self._warning_view.tolist()) == self._warning_total:
             return
+        finite = math.isfinite(sum(self._qpos.tolist()) + sum(self._qvel.tolist()))
         counts = self._warning_counts()
         raised = [w.name for w, old, new in zip(_WATCHED_WARNINGS, self._warnings, counts)
                   if new > old]
-        what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         self._warnings = counts
-        self._warning_total = sum(counts)
+        self._warning_total = sum(self._warning_view.tolist())
+        if finite and not raised:  # another counter of the view moved: not a divergence
+            return
+        what = ", ".join(raised) if raised else "non-finite qpos/qvel"
         said = list(dict.fromkeys(_MUJOCO_WARNINGS[self._messages_seen:]))
         self._messages_seen = len(_MUJOCO_WARNINGS)
         mujoco_said = f"; MuJoCo: {' / '.join(said)}" if said else ""
@@ -342,7 +356,9 @@ class MujocoPlant:
 
     def sample(self, port: str) -> np.ndarray:
         """The sensor ``port`` now (noise and quantization applied)."""
-        self.advance_to(self._kernel.now)
+        now = self._kernel.now
+        if now > self._time_ns:
+            self.advance_to(now)
         value = self._readers[port]()
         std = self._noise.get(port)
         if std:
@@ -361,27 +377,39 @@ class MujocoPlant:
         the actuator ``tau``. The plant is brought to now only when now is on its timestep
         grid, which leaves the integration unchanged; otherwise the value is the state at the
         plant's last instant (at most one timestep old). Observing never changes a run."""
-        now = self._kernel.now if self._kernel is not None else self._time_ns
+        now = self._kernel.now if self._attached else self._time_ns
         if now > self._time_ns and now % self.timestep_ns == 0:
             self.advance_to(now)
+        observer = self._observers.get(port)
+        if observer is None:
+            observer = self._observers[port] = self._observer(port)
+        return observer()
+
+    def _observer(self, port: str) -> Any:
+        """What :meth:`observe` calls for ``port`` (chosen once per port)."""
         extension = self.extension
         if extension is not None and port in extension.sensors and hasattr(extension,
                                                                            "true_value"):
-            return np.asarray(extension.true_value(port), dtype=float)
+            return lambda: np.asarray(extension.true_value(port), dtype=float)
         if port == "tau" and port not in self._readers:
-            return self.data.ctrl.copy()
-        return np.asarray(self._readers[port](), dtype=float)
+            return self._ctrl.copy
+        reader = self._readers[port]
+        if port in ("q", "qdot") or port not in (extension.sensors if extension else ()):
+            return reader  # float64 copies of MuJoCo's arrays already
+        return lambda: np.asarray(reader(), dtype=float)
 
     def actuate(self, port: str, value: Any) -> None:
         """Hold ``value`` on the actuator ``port`` (``tau``) from now on, clamped."""
-        self.advance_to(self._kernel.now)
+        now = self._kernel.now
+        if now > self._time_ns:
+            self.advance_to(now)
         command = np.asarray(value, dtype=float)
         if command.shape != self._low.shape:
             command = np.broadcast_to(command, self._low.shape)
-        clamped = np.clip(command, self._low, self._high)
-        if (clamped != command).any():
+        clamped = _clip(command, self._low, self._high)
+        if clamped.tolist() != command.tolist():  # NaN != NaN, as (clamped != command).any()
             self.saturations += 1
-        self.data.ctrl[:] = clamped
+        self._ctrl[:] = clamped
         if self._idle_on:
             self._idle_on = False
             if self.notify is not None and self._idle is not None:

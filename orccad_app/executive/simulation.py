@@ -20,7 +20,7 @@ connection between different processors crosses ``bus`` (a zero-time :class:`Bus
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
 from orccad_app.diagnostics import OrccadError
@@ -33,6 +33,7 @@ from orccad_app.executive.job import Job, TaskStats
 from orccad_app.executive.kernel import EventClass, Kernel
 from orccad_app.executive.observer import Observer
 from orccad_app.executive.processor import Processor, ProcessorStats
+from orccad_app.executive.sporadic import SporadicStats, sporadic_releases
 from orccad_app.executive.task_runtime import ModuleTaskRuntime
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import PhysicalResource
@@ -62,6 +63,7 @@ class RunStats:
     :param tasks: per Module-Task.
     :param processors: per processor.
     :param bus: the bus's, if any connection crosses it.
+    :param sporadic: per sporadic Module-Task, its interrupts and releases.
     """
 
     time_ns: int
@@ -69,6 +71,7 @@ class RunStats:
     tasks: dict[str, TaskStats]
     processors: dict[str, ProcessorStats]
     bus: BusStats | None
+    sporadic: dict[str, SporadicStats] = field(default_factory=dict)
 
 
 class Simulation:
@@ -108,6 +111,10 @@ class Simulation:
         """Paced runs: per processed instant, how late it ran behind the wall clock [s]
         (0 when on time)."""
         self._wire()
+        self.sporadic = sporadic_releases(tcs, self.kernel, self.tasks)
+        """The interrupt wiring of the sporadic Module-Tasks (``None`` without any)."""
+        if self.sporadic is not None:
+            self.add_observer(self.sporadic)
 
     # -- construction ------------------------------------------------------------------------
 
@@ -289,6 +296,17 @@ class Simulation:
                               f"compute(t_s, inputs) method")
         runtime.task.compute = compute
 
+    def interrupt(self, module: str, at_ns: int | None = None) -> None:
+        """An interrupt of the sporadic ``module`` at ``at_ns`` (default now): released then,
+        or deferred to its minimum inter-arrival (:mod:`orccad_app.executive.sporadic`)."""
+        releases = self.sporadic.releases if self.sporadic is not None else {}
+        if module not in releases:
+            self._runtimes([module])
+            raise OrccadError(f"module-task '{module}' is periodic: only a sporadic one takes "
+                              f"interrupts (sporadic: {', '.join(releases) or 'none'})")
+        release = releases[module]
+        self.at(at_ns, lambda _: release.interrupt())
+
     def post_signal(self, name: str, value: Any = True, at_ns: int | None = None) -> None:
         """Surface an external signal (operator input, timer) to observers at ``at_ns``."""
         def emit(sim: Simulation) -> None:
@@ -363,7 +381,9 @@ class Simulation:
         return RunStats(self.kernel.now, self.kernel.events_processed,
                         {name: rt.stats for name, rt in self.tasks.items()},
                         {name: p.stats for name, p in self.processors.items()},
-                        self.bus.stats if self.bus is not None else None)
+                        self.bus.stats if self.bus is not None else None,
+                        {} if self.sporadic is None else
+                        {name: r.stats for name, r in self.sporadic.releases.items()})
 
     def check_deadlock(self, job: Job) -> None:
         """Raise :class:`~orccad_app.executive.deadlock.DeadlockError` if ``job`` closes a

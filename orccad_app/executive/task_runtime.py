@@ -2,7 +2,8 @@
 
 Job life cycle, all instants in [ns]:
 
-1. **Release** every ``period_ns`` from activation (+ ``offset_ns``). If the previous job is
+1. **Release** every ``period_ns`` from activation (+ ``offset_ns``); a sporadic Module-Task
+   is released by interrupts instead (:mod:`orccad_app.executive.sporadic`). If the previous job is
    still unfinished the release is *skipped* and counted as an overrun (the unfinished job is
    a deadline miss when it finishes late): a Module-Task never has two jobs at once.
 2. **Read** the inputs in port order at the release instant; a protocol may block the job,
@@ -30,7 +31,7 @@ from orccad_app.executive.job import (ABORTED, BLOCKED, DONE, READING, READY, WA
                                       Job, TaskStats)
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.processor import Processor
-from orccad_app.tcs.module_task import ModuleTask
+from orccad_app.tcs.module_task import Activation, ModuleTask
 
 if TYPE_CHECKING:
     from orccad_app.executive.channel import Channel
@@ -68,6 +69,7 @@ class ModuleTaskRuntime:
         self._kernel = context.kernel
         self._hooks = context.hooks
         self._release_entry: list | None = None
+        self._write_listeners: list[list] = []
         self._count = 0
         self._draws: list[int] = []
         self._rng = None
@@ -84,6 +86,8 @@ class ModuleTaskRuntime:
         init = getattr(self.task.compute, "init", None)
         if callable(init):
             self._call(init)
+        if self.task.activation is Activation.SPORADIC:
+            return  # released by interrupts (orccad_app/executive/sporadic.py)
         first = self._kernel.now + self.task.offset_ns
         self._release_entry = self._kernel.schedule(first, _RELEASE, self._release)
 
@@ -123,6 +127,13 @@ class ModuleTaskRuntime:
         now = kernel.now
         task = self.task
         self._release_entry = kernel.schedule(now + task.period_ns, _RELEASE, self._release)
+        self.release_job(now)
+
+    def release_job(self, now: int) -> None:
+        """Release a job now (a periodic release, or a sporadic one's interrupt); skipped and
+        counted as an overrun while the previous job is unfinished."""
+        kernel = self._kernel
+        task = self.task
         if self.job is not None:
             self.stats.overruns += 1
             for hook in self._hooks.on_overrun:
@@ -239,26 +250,44 @@ class ModuleTaskRuntime:
 
     def _write(self, job: Job) -> None:
         writes = self.writes
+        count = len(writes)
+        listeners = self._write_listeners
+        if len(listeners) != count:
+            listeners = self._listen(writes)
         outputs = job.outputs
-        hooks = self._hooks
-        while job.op < len(writes):
-            port, is_event, channel = writes[job.op]
+        on_signal = self._hooks.on_signal
+        op = job.op
+        while op < count:
+            port, is_event, channel = writes[op]
             value = outputs.get(port)
             if value is None or (is_event and value is False):
-                job.op += 1
+                op += 1
                 continue
             if channel is None:
-                now = self._kernel.now
-                for hook in hooks.on_write:
-                    hook(now, self.name, port, value)
+                wanting = listeners[op]
+                if wanting:
+                    now = self._kernel.now
+                    for hook in wanting:
+                        hook(now, self.name, port, value)
                 if is_event:
-                    for hook in hooks.on_signal:
+                    now = self._kernel.now
+                    for hook in on_signal:
                         hook(now, f"{self.name}.{port}", value)
             elif not channel.write(job, value):
+                job.op = op
                 self._block(job, port, "write", channel)
                 return
-            job.op += 1
+            op += 1
+        job.op = op
         self._finish(job)
+
+    def _listen(self, writes: list[tuple[str, bool, Channel | None]]) -> list[list]:
+        """Per entry of :attr:`writes`, the ``on_write`` listeners of its port's own write
+        (empty for connections): lists kept up to date by the hooks."""
+        hooks = self._hooks
+        self._write_listeners = [hooks.write_listeners(self.name, port) if channel is None
+                                 else [] for port, _, channel in writes]
+        return self._write_listeners
 
     def _finish(self, job: Job) -> None:
         now = self._kernel.now

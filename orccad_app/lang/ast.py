@@ -42,8 +42,8 @@ from typing import Union
 
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 from orccad_app.lang.ast_expr import (VALUE_TYPES, Arg, Binary, Bool, Call, DurationLit, Expr,
-                                      LastValue, Name, Number, PreSignal, PreValue, String,
-                                      Unary, Vector, node)
+                                      LastValue, Name, Number, ParamRef, PreSignal, PreValue,
+                                      String, Unary, Vector, node)
 from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, FCompare, Formula,
                                          FPredicate, FSignal, FStatus, FUnary, Interval,
                                          Property, SArith, SCall, SignalExpr, SNeg, SNumber,
@@ -59,7 +59,7 @@ __all__ = [
     # expressions
     "Name", "Number", "String", "Bool", "Vector", "DurationLit", "LastValue", "PreSignal",
     "PreValue", "Unary",
-    "Binary", "Call", "Arg", "Expr",
+    "Binary", "Call", "Arg", "ParamRef", "Expr",
     # declarations
     "SignalDecl", "Direction", "Robot", "Param", "Relation", "Import", "ImportedName",
     # Robot-Tasks

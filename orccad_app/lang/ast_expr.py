@@ -11,7 +11,7 @@ from typing import TypeVar, Union, dataclass_transform
 from orccad_app.diagnostics import NOWHERE, SourceLocation
 
 __all__ = ["node", "VALUE_TYPES", "PreSignal", "PreValue", "Name", "Number", "String", "Bool", "Vector", "DurationLit",
-           "LastValue", "Unary", "Binary", "Arg", "Call", "Expr"]
+           "LastValue", "Unary", "Binary", "Arg", "Call", "ParamRef", "Expr"]
 
 _Node = TypeVar("_Node", bound=type)
 
@@ -130,6 +130,17 @@ class Call:
 
 
 @node
+class ParamRef:
+    """``module.param``: the current value of a Module-Task parameter of the same Robot-Task,
+    read only by the value of a type-1 exception (``adjust ctrl.kp = min(ctrl.kp * 1.5,
+    800.0)``)."""
+
+    module: str
+    param: str
+    loc: SourceLocation = NOWHERE
+
+
+@node
 class PreSignal:
     """``pre(S)``: S was present in the previous instant (a presence test)."""
 
@@ -146,4 +157,4 @@ class PreValue:
 
 
 Expr = Union[Name, Number, String, Bool, Vector, DurationLit, LastValue, PreSignal, PreValue,
-             Unary, Binary, Call]
+             Unary, Binary, Call, ParamRef]

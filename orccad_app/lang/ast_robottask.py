@@ -44,7 +44,9 @@ class PortRef:
 class Module:
     """``module NAME : KIND(args) period .. wcet .. [bcet ..] on CPU priority N;``.
 
-    Omitted timing parts are ``None`` (the law's defaults apply).
+    Omitted timing parts are ``None`` (the law's defaults apply). ``sporadic min_interarrival
+    D`` instead of ``period`` makes it sporadic (``min_interarrival_ns``: released by
+    interrupts, at least that far apart).
     """
 
     name: str
@@ -56,6 +58,7 @@ class Module:
     processor: str | None = None
     priority: int | None = None
     loc: SourceLocation = NOWHERE
+    min_interarrival_ns: int | None = None
 
 
 @node

@@ -53,6 +53,22 @@ def _names(expr) -> Iterable[ast.Name]:
                 yield from _names(item)
 
 
+def _param_refs(expr) -> Iterable[ast.ParamRef]:
+    """Every ``module.param`` read in ``expr``."""
+    if isinstance(expr, ast.ParamRef):
+        yield expr
+        return
+    if isinstance(expr, ast.Arg):
+        yield from _param_refs(expr.value)
+        return
+    for field in getattr(expr, "__dataclass_fields__", ()):
+        value = getattr(expr, field)
+        for item in value if isinstance(value, tuple) else (value,):
+            if hasattr(item, "__dataclass_fields__") and not isinstance(
+                    item, ast.PortRef | SourceLocation):
+                yield from _param_refs(item)
+
+
 def _task_expressions(task: ast.RobotTask):
     """Every expression of a Robot-Task body (not its parameter defaults)."""
     for call in (task.task_function, task.law):
@@ -92,7 +108,15 @@ def check_robottask(task: ast.RobotTask, robots: dict[str, ast.Robot],
         if exc.adjust is not None and exc.adjust.target.component not in modules:
             problems.error(f"unknown module '{exc.adjust.target.component}' in robottask "
                            f"'{task.name}'", exc.adjust.target.loc)
+    adjusts = {id(exc.adjust.value) for exc in task.exceptions if exc.adjust is not None}
     for expr in _task_expressions(task):
+        for ref in _param_refs(expr):
+            if id(expr) not in adjusts:
+                problems.error(f"'{ref.module}.{ref.param}' is a Module-Task parameter: only "
+                               f"the value of a type-1 exception ('adjust') reads one", ref.loc)
+            elif ref.module not in modules:
+                problems.error(f"unknown module '{ref.module}' in robottask '{task.name}'",
+                               ref.loc)
         for name in _names(expr):
             if name.name not in params:
                 problems.error(f"unknown name '{name.name}' in robottask '{task.name}'",

@@ -12,6 +12,7 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.walk import nodes, runs
 from orccad_app.lang.declarations import check_type
+from orccad_app.lang.run_args import argument_problem, runtime_reads
 from orccad_app.lang.scope import (Binding, ConditionKind, NameKind, Problems, Scope,
                                    classify_condition, signal_leaves)
 
@@ -71,6 +72,9 @@ class MissionChecker:
         elif isinstance(expr, ast.Call):
             self.error(f"unknown function '{expr.func}' (missions have no functions)",
                        expr.loc)
+        elif isinstance(expr, ast.ParamRef):
+            self.error(f"'{expr.module}.{expr.param}' is a Module-Task parameter: only the "
+                       "value of a type-1 exception ('adjust') reads one", expr.loc)
         elif isinstance(expr, ast.Unary):
             self.data(expr.operand, scope)
         elif isinstance(expr, ast.Binary):
@@ -197,9 +201,9 @@ class MissionChecker:
         if task is None:
             self.error(f"unknown Robot-Task '{stmt.task}'", stmt.task_loc)
             return
-        self._run_args(stmt, task)
+        self._run_args(stmt, task, scope)
 
-    def _run_args(self, stmt: ast.Run, task: ast.RobotTask) -> None:
+    def _run_args(self, stmt: ast.Run, task: ast.RobotTask, scope: Scope) -> None:
         given: dict[str, ast.Arg] = {}
         for index, arg in enumerate(stmt.args):
             if arg.name is None:
@@ -215,10 +219,29 @@ class MissionChecker:
             if name in given:
                 self.error(f"parameter '{name}' given twice", arg.loc)
             given[name] = arg
+            self._runtime_arg(task, name, arg, scope)
         for param in task.params:
             if param.default is None and param.name not in given:
                 self.error(f"missing argument '{param.name}' of Robot-Task '{task.name}'",
                            stmt.task_loc)
+
+    def _runtime_arg(self, task: ast.RobotTask, name: str, arg: ast.Arg, scope: Scope) -> None:
+        """A run-time argument: typed against the parameter as far as the compiler sees."""
+        param = task.param(name)
+        reads = runtime_reads(arg.value)
+        if param is None or not reads or any(
+                scope.lookup(r.name if isinstance(r, ast.Name) else r.signal) is None
+                for r in reads):
+            return  # a constant (checked with the control scheme), or an undeclared name
+
+        def lookup(signal_or_var: str):
+            binding = scope.lookup(signal_or_var)
+            return None if binding is None else binding.decl
+
+        problem = argument_problem(param, arg.value, lookup)
+        if problem is not None:
+            self.error(f"Robot-Task '{task.name}': {problem}", arg.loc, previous=param.loc,
+                       what="parameter declared")
 
     def _if(self, stmt: ast.If, scope: Scope) -> None:
         self.condition(stmt.condition, scope)

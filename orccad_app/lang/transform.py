@@ -263,6 +263,10 @@ class ToAst(RobotTaskRules, Transformer):
         return ast.Call(func=str(name), args=args, loc=self.loc(meta))
 
     @_rule
+    def param_ref(self, meta, module, param):
+        return ast.ParamRef(module=str(module), param=str(param), loc=self.loc(meta))
+
+    @_rule
     def paren(self, meta, expr):
         return expr
 

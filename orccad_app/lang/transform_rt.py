@@ -99,6 +99,10 @@ class RobotTaskRules:
         return ("priority", int(token), self.loc(meta))
 
     @rule
+    def clause_sporadic(self, meta, token):
+        return ("min_interarrival_ns", self.ns(token), self.loc(meta))
+
+    @rule
     def rt_connect(self, meta, source, target, protocol):
         name = ast.DEFAULT_PROTOCOL if protocol is None else _check_protocol(
             protocol, self.tloc(protocol))

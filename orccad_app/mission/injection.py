@@ -1,19 +1,25 @@
 """Inputs raised at given instants of a run: ``--inject SIG@T`` and plant faults.
 
-``SIG@T`` and ``SIG(value)@T`` raise the automaton input ``SIG`` at ``T`` seconds;
+``SIG@T`` and ``SIG(value)@T`` raise the automaton input ``SIG`` at ``T`` seconds; the value
+is written as in the language (``3``, ``2.5``, ``true``, ``[10, 0, 15]`` for a vector) and
+typed against the input's declaration by :func:`typed_injection` (an ``int`` fits a ``float``;
+numbers finite, integers within 64 bits): a pure input takes no value, a valued one needs one,
+and a value of another type is refused, never converted;
 ``ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``, ``auv.battery=5%@60``: a trailing ``%`` is
 dropped, the fault's unit applies) applies the fault ``FAULT`` of robot ``ROBOT``'s plant.
 """
 
 from __future__ import annotations
 
+import math
 import re
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import Any, Iterable
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.lang.limits import MAX_INT, MIN_INT
 
-__all__ = ["Injection", "parse_injection"]
+__all__ = ["Injection", "parse_injection", "typed_injection", "typed_injections"]
 
 _INJECTION = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:\((.*)\))?\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
 _FAULT = re.compile(r"^\s*([A-Za-z_]\w*\.[A-Za-z_]\w*)\s*=\s*([^@]*?)\s*@\s*([0-9.eE+-]+)\s*s?\s*$")
@@ -79,7 +85,77 @@ def _fault_injection(text: str, name: str, raw: str, when: str) -> Injection:
 def _value(raw: str) -> Any:
     if raw in ("true", "false"):
         return raw == "true"
+    if raw.startswith("[") or raw.endswith("]"):
+        if not (raw.startswith("[") and raw.endswith("]")):
+            raise ValueError(raw)
+        items = [item.strip() for item in raw[1:-1].split(",")]
+        if items == [""]:
+            return ()
+        return tuple(float(item) for item in items)  # ValueError for an empty item
     try:
         return int(raw)
     except ValueError:
         return float(raw)
+
+
+def _real(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _typed_value(name: str, kind: str, value: Any) -> Any:
+    """``value`` as input ``name`` of type ``kind`` carries it; raises naming what fits."""
+    if kind == "vector":
+        if not isinstance(value, (tuple, list)) or not all(_real(v) for v in value):
+            raise OrccadError(f"--inject {name}: {name} carries a vector: write "
+                              f"{name}([x, y, ...])@T, got {value!r}")
+        if not all(math.isfinite(v) for v in value):
+            raise OrccadError(f"--inject {name}: every component must be a finite number, "
+                              f"got {list(value)}")
+        return tuple(float(v) for v in value)
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
+                              f"got {value!r}")
+        return value
+    if kind == "int":
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
+        if not MIN_INT <= value <= MAX_INT:
+            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
+        return value
+    if kind in ("float", "duration"):
+        if not _real(value):
+            raise OrccadError(f"--inject {name}: {name} carries a {kind}, got {value!r}")
+        if not math.isfinite(value):
+            raise OrccadError(f"--inject {name}: the value must be a finite number, "
+                              f"got {value}")
+        return float(value) if kind == "float" else value
+    raise OrccadError(f"--inject {name}: inputs of type {kind} cannot be injected from the "
+                      "command line")
+
+
+def typed_injection(injection: Injection, signal: Any) -> Injection:
+    """``injection`` with its value typed against ``signal``, the input's declaration (an
+    object with ``name`` and ``type``, ``None`` for a pure signal); raises
+    :class:`OrccadError` when it does not fit."""
+    if injection.fault:
+        return injection
+    name, value = injection.name, injection.value
+    if signal.type is None:
+        if value is not None:
+            raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
+                              f"(write {name}@T)")
+        return injection
+    if value is None:
+        example = "[x, y, ...]" if signal.type == "vector" else "value"
+        raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
+                          f"{name}({example})@T")
+    return replace(injection, value=_typed_value(name, signal.type, value))
+
+
+def typed_injections(injections: Iterable[Injection], inputs: Iterable[Any]) -> list[Injection]:
+    """Every injection typed against the declared ``inputs``; plant faults and names that
+    are not inputs are left as they are (the run reports those with the known names)."""
+    declared = {s.name: s for s in inputs}
+    return [typed_injection(i, declared[i.name]) if i.name in declared and not i.fault else i
+            for i in injections]

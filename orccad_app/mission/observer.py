@@ -25,8 +25,9 @@ class MissionObserver(Observer):
         """The automaton reacted at ``t_ns`` to ``inputs``, emitting ``outputs``; ``status``
         is the mission's (``running``, ``done``, ``failed``, ``aborted``)."""
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
-        """Robot-Task ``task`` started at run site ``site``."""
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        """Robot-Task ``task`` started at run site ``site`` with ``args`` (parameter ->
+        actual value: run-time arguments evaluated, defaults filled in, vectors as lists)."""
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         """Robot-Task ``task`` of site ``site`` ended with ``outcome`` (``good_end``, the

@@ -3,7 +3,8 @@
 ``orccad run`` and campaigns change a planned mission without editing its source:
 
 - ``--set ROBOT.PARAM=VALUE`` (:class:`ParamOverride`): a parameter the robot *type* declares
-  (``auv.cb_height_m=0.02``), as if written in the robot declaration
+  (``auv.cb_height_m=0.02``), or one of its sensor parameters (``arm.noise_std=1e-4``: noise
+  and quantization of sensor ports), as if written in the robot declaration
   ``robot auv : auv(cb_height_m = 0.02);`` — checked against the type's declared range;
 - ``--set ROBOT.PORT.noise_std=VALUE`` (:class:`NoiseOverride`): the standard deviation of
   the Gaussian noise of sensor port ``PORT`` [the port's unit] (``auv.depth.noise_std=0.05``);
@@ -200,7 +201,7 @@ def robot_declarations(robots: Mapping[str, Any], host: Any,
 def _check_param(robot_type: Any, item: ParamOverride) -> None:
     from orccad_app.control.params import close_matches
 
-    specs = {spec.name: spec for spec in robot_type.params}
+    specs = {spec.name: spec for spec in robot_type.parameters}
     spec = specs.get(item.param)
     if spec is None:
         raise OrccadError(f"--set {item.text()}: robot type '{robot_type.name}' declares no "

@@ -8,7 +8,8 @@ Module-Tasks in **one** TCS, idle until the behaviour automata activate them:
 - the Module-Tasks of site ``s`` of task ``X`` are named ``X.module`` (``X_s.module`` when ``X``
   is run at several sites, ``s`` the site number);
 - one plant per robot (:class:`PlantSpec`), built from its robot type's MJCF file, with the
-  sensors' default noise and quantization. **Initial state:** at rest, on the reference at
+  sensors' noise and quantization (the ports' defaults, or the values of the robot type's
+  sensor parameters: ``robot arm : arm3dof(noise_std = 1e-4);``). **Initial state:** at rest, on the reference at
   ``t = 0`` of the first Robot-Task run on that robot when its task function is a joint-space
   reference with a known start (RR-1801 §7.1 starts on the trajectory); else the model's
   ``qpos0``;
@@ -20,12 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from math import gcd
-from typing import Any
+from typing import Any, Mapping
 
 import numpy as np
 
 from orccad_app.control.module import ModuleInstance
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.executive.plant import MujocoPlant, PlantExtension
 from orccad_app.lang import ast
 from orccad_app.mission.tcs_bridge import add_instance, robot_resource
@@ -35,7 +36,9 @@ from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
 from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
+from orccad_app.robottask.updates import UpdateForm
 from orccad_app.tcs.graph import TCS
 
 __all__ = ["SiteModules", "ParamUpdate", "PlantSpec", "MissionPlan", "plan_mission",
@@ -48,12 +51,21 @@ class ParamUpdate:
 
     :param module: the TCS Module-Task.
     :param param: the parameter.
-    :param value: its new value.
+    :param value: its new value when constant (``None`` when computed or a ramp).
+    :param form: the value as written: an expression over the current parameters, or a ramp
+        (:class:`~orccad_app.robottask.updates.UpdateForm`); ``None``: ``value``.
+    :param env: the Robot-Task's parameters (names in the expression).
+    :param modules: the task's module names -> TCS Module-Tasks (``ctrl`` -> ``X.ctrl``).
+    :param loc: the ``adjust`` clause.
     """
 
     module: str
     param: str
     value: Any
+    form: UpdateForm | None = None
+    env: Mapping[str, Any] = field(default_factory=dict)
+    modules: Mapping[str, str] = field(default_factory=dict)
+    loc: SourceLocation | None = None
 
 
 @dataclass
@@ -93,11 +105,34 @@ class SiteModules:
         """The Robot-Task's name."""
         return self.site.task
 
-    def fresh_computes(self) -> dict[str, ModuleInstance]:
+    @property
+    def arguments(self) -> tuple[RunArgument, ...]:
+        """The run site's run-time arguments (evaluated when the task starts)."""
+        return self.site.arguments
+
+    def bound(self, values: Mapping[str, Any]) -> RobotTaskInstance:
+        """The instance of this start: the checked one, or, with run-time arguments, the one
+        bound to their values (``values``: automaton output -> value in the starting
+        instant); raises :class:`~orccad_app.robottask.binding.ArgumentError`."""
+        if not self.site.arguments:
+            return self.instance
+        from orccad_app.robottask.binding import bind_arguments
+        return bind_arguments(self.instance, self.site.arguments, values)
+
+    def fresh_computes(self, instance: RobotTaskInstance | None = None
+                       ) -> dict[str, ModuleInstance]:
         """New compute objects for every module (nominal parameters: a Robot-Task run again
-        does not inherit the type-1 updates of its previous run)."""
-        specs = self.instance.modules.values()
-        return {name: spec.fresh(self.instance.context) for name, spec in zip(self.modules, specs)}
+        does not inherit the type-1 updates of its previous run); ``instance``: the bound
+        instance of this start (default: the checked one)."""
+        instance = instance or self.instance
+        specs = instance.modules.values()
+        return {name: spec.fresh(instance.context) for name, spec in zip(self.modules, specs)}
+
+    def adjustments_of(self, instance: RobotTaskInstance) -> dict[str, ParamUpdate]:
+        """The type-1 updates of ``instance`` (a bound instance of this site), in TCS names."""
+        if instance is self.instance:
+            return self.adjustments
+        return _param_updates(instance, dict(zip(instance.modules, self.modules)))
 
     def wanted(self, phase: int) -> tuple[str, ...]:
         """Modules active in ``phase`` (0: not running)."""
@@ -173,6 +208,13 @@ def _prefixes(sites: tuple[RunSite, ...]) -> list[str]:
     return [f"{s.task}." if counts[s.task] == 1 else f"{s.task}_{s.number}." for s in sites]
 
 
+def _param_updates(instance: RobotTaskInstance, names: dict[str, str]) -> dict[str, ParamUpdate]:
+    """The type-1 updates of ``instance``, in TCS names (``names``: its modules -> TCS)."""
+    return {e: ParamUpdate(names[a.module], a.param, a.value, a.form, instance.params, names,
+                           a.loc)
+            for e, a in instance.adjustments.items()}
+
+
 def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, str],
                   inputs: set[str], roles: SignalRoles) -> SiteModules:
     task = site.task
@@ -181,8 +223,7 @@ def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, s
         name = f"{task}.{event}"
         if name in inputs:
             events[f"{names[module]}.{port}"] = name
-    adjustments = {e: ParamUpdate(names[a.module], a.param, a.value)
-                   for e, a in instance.adjustments.items()}
+    adjustments = _param_updates(instance, names)
     error = next((names[n] for n, spec in instance.modules.items()
                   if any(p.name == "e" and p.direction == "out" for p in spec.instance.ports)),
                  None)
@@ -215,8 +256,8 @@ def _initial_q(instance: RobotTaskInstance) -> np.ndarray | None:
 
 
 def _plant_spec(robot: str, robot_type: Any, qpos0: np.ndarray | None) -> PlantSpec:
-    noise = {p.name: p.noise_std for p in robot_type.sensors if p.noise_std}
-    quanta = {p.name: p.quantum for p in robot_type.sensors if p.quantum}
+    noise = {port: std for port, std in robot_type.sensor_noise().items() if std}
+    quanta = {port: step for port, step in robot_type.sensor_quantization().items() if step}
     return PlantSpec(robot, str(robot_type.mjcf_path), noise, quanta, qpos0, robot_type)
 
 

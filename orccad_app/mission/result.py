@@ -9,8 +9,12 @@ from typing import Any
 import numpy as np
 
 from orccad_app.executive.simulation import RunStats
+from orccad_app.jsonout import plain
 
-__all__ = ["RobotTaskRecord", "ExceptionRecord", "RunResult", "ErrorSamples", "STATUSES"]
+_dot = np.dot
+
+__all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
+           "ErrorSamples", "STATUSES"]
 
 STATUSES = ("done", "failed", "aborted", "timeout")
 """Final statuses: the mission ended normally, by an uncaught type-2 exception (or a run-time
@@ -30,13 +34,20 @@ class ErrorSamples:
 
     def add(self, error: Any) -> None:
         """One sample (a vector of components) [rad or m]."""
-        values = np.asarray(error, dtype=float).ravel()
+        if type(error) is np.ndarray and error.ndim == 1 and error.dtype.char == "d":
+            values = error  # a control law's e: used as it is
+        else:
+            values = np.asarray(error, dtype=float).ravel()
         if not values.size:
             return
-        self.sum_sq += float(values @ values)
+        square = float(_dot(values, values))  # np.dot: values @ values, cheaper to call
+        self.sum_sq += square
         self.count += values.size
-        peak = float(abs(values).max())
-        if peak > self.max_abs or peak != peak:  # NaN propagates
+        if square != square:  # a NaN component: NaN propagates
+            self.max_abs = square
+            return
+        peak = max(map(abs, values.tolist()))  # as abs(values).max() without NaN
+        if peak > self.max_abs:
             self.max_abs = peak
 
     def summary(self, unit: str = "rad") -> dict[str, Any] | None:
@@ -59,6 +70,8 @@ class RobotTaskRecord:
     :param errors: the task error's samples (the ``e`` output of its control law).
     :param error_unit: their unit (the task function's: ``rad`` in joint space, ``m`` for a
         Cartesian position).
+    :param args: the actual value of each of its parameters at this start (run-time
+        arguments evaluated, defaults filled in; vectors as lists).
     """
 
     name: str
@@ -68,12 +81,64 @@ class RobotTaskRecord:
     outcome: str = "running"
     errors: ErrorSamples = field(default_factory=ErrorSamples)
     error_unit: str = "rad"
+    args: dict[str, Any] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form (``tracking_error`` is ``null`` without a control law)."""
-        return {"name": self.name, "start_s": self.start_ns / 1e9,
+        return {"name": self.name, "args": self.args, "start_s": self.start_ns / 1e9,
                 "end_s": None if self.end_ns is None else self.end_ns / 1e9,
                 "outcome": self.outcome, "tracking_error": self.errors.summary(self.error_unit)}
+
+
+@dataclass(frozen=True)
+class RampRecord:
+    """A ramp of a type-1 update: from ``start`` to ``end`` over ``duration_ns`` [ns]."""
+
+    start: Any
+    end: Any
+    duration_ns: int
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"start": plain(self.start), "end": plain(self.end),
+                "duration_s": self.duration_ns / 1e9}
+
+
+@dataclass(frozen=True)
+class UpdateRecord:
+    """What a type-1 exception changed (RR-1801 §3.4.2).
+
+    :param module: the TCS Module-Task (``TrackPID.ctrl``).
+    :param param: its parameter (``kp``).
+    :param old: the value before the update.
+    :param new: the value set at the update instant (a ramp's start).
+    :param ramp: the ramp, if the update is one (the value then moves to its end).
+    """
+
+    module: str
+    param: str
+    old: Any
+    new: Any
+    ramp: RampRecord | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"module": self.module, "param": self.param, "old": plain(self.old),
+                "new": plain(self.new), "ramp": None if self.ramp is None else self.ramp.as_dict()}
+
+    def text(self) -> str:
+        """``TrackPID.ctrl.kp 400 -> 600`` or ``… ki 0 -> ramp 0 -> 50 over 1 s``."""
+        head = f"{self.module}.{self.param} {_short(self.old)} -> "
+        if self.ramp is None:
+            return head + _short(self.new)
+        ramp = self.ramp
+        return head + (f"ramp {_short(ramp.start)} -> {_short(ramp.end)} over "
+                       f"{ramp.duration_ns / 1e9:g} s")
+
+
+def _short(value: Any) -> str:
+    value = plain(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(f"{v:g}" for v in value) + "]"
+    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 @dataclass(frozen=True)
@@ -84,16 +149,23 @@ class ExceptionRecord:
     :param name: the exception (``TrackingLost``, ``Timeout``, ``at_rest_timeout``).
     :param type: 1 (adjust), 2 (abort the task) or 3 (fatal), RR-1801 §3.4.2.
     :param task: the Robot-Task that raised it, ``None`` for the mission's own (``within``).
+    :param update: for type 1, the parameter update it applied.
     """
 
     time_ns: int
     name: str
     type: int
     task: str | None
+    update: UpdateRecord | None = None
 
     def as_dict(self) -> dict[str, Any]:
-        return {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type,
-                "task": self.task}
+        """The JSON form; a type-1 exception's also has ``update``
+        (:meth:`UpdateRecord.as_dict`, ``null`` when no task of its was running)."""
+        record = {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type,
+                  "task": self.task}
+        if self.type == 1:
+            record["update"] = None if self.update is None else self.update.as_dict()
+        return record
 
 
 @dataclass

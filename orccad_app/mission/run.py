@@ -28,8 +28,9 @@ running restarts its modules; every run of a Robot-Task starts with fresh module
 (nominal parameters, no state, even when the same plan is run again) and fresh ports (its
 channels reset, :meth:`~orccad_app.executive.simulation.Simulation.reset_ports`). An output whose role
 (:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
-applies E's update to the running module (``set_param``); one whose role is a raised exception
-records it. The run stops when the mission
+applies E's update to the running module (computed in that instant, a ramp stepped at the
+module's releases: :mod:`~orccad_app.mission.updates`; a refused value ends the run
+``failed``); one whose role is a raised exception records it. The run stops when the mission
 terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
 failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
@@ -58,11 +59,13 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
-from orccad_app.mission.injection import Injection
+from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
+from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
@@ -72,7 +75,16 @@ _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
 _INTERRUPTED = "interrupted (Ctrl-C)"
-_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError)
+_NO_INPUTS: frozenset[str] = frozenset()
+
+
+class ReactionError(OrccadError):
+    """A run-time error of the automaton (a value read before it was ever emitted, an
+    overflow…), located in the mission: the run ends ``failed``."""
+
+
+_RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError, UpdateError)
+_LOCATED_FAILURES = (ArgumentError, ReactionError)
 
 
 class _Link(Observer):
@@ -87,6 +99,9 @@ class _Link(Observer):
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port == "e":
             self._run.task_error(module, value)
+
+    def wants_write(self, module: str, port: str) -> bool:
+        return port == "e"
 
 
 class MissionRun:
@@ -119,10 +134,12 @@ class MissionRun:
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
+        self._on_reaction = self._hooks["on_reaction"]
         plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
                               plants=plants, observers=[_Link(self), *observers])
         self.kernel = self.sim.kernel
+        self._updates = TypeOneUpdates(self.kernel, plan.tcs, self.sim.hooks.on_param)
         self._signals = plan.signals
         self._roles = plan.roles
         self._error_site = {s.error_module: s.number for s in plan.sites if s.error_module}
@@ -134,6 +151,7 @@ class MissionRun:
         self._phase: dict[int, Phase] = {}
         self._active: dict[int, set[str]] = {s.number: set() for s in plan.sites}
         self._running: dict[int, RobotTaskRecord] = {}
+        self._adjust: dict[int, dict] = {}  # site -> type-1 updates of its current start
         self.records: list[RobotTaskRecord] = []
         self.exceptions: list[ExceptionRecord] = []
         self.outputs: list[tuple[int, str, Any]] = []
@@ -148,7 +166,7 @@ class MissionRun:
                 self._hooks[hook].append(getattr(observer, hook))
 
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
-        inputs = {s.name for s in self.plan.automaton.inputs}
+        inputs = {s.name: s for s in self.plan.automaton.inputs}
         for injection in injections:
             if injection.fault:
                 self._schedule_fault(injection)
@@ -157,6 +175,7 @@ class MissionRun:
                 known = ", ".join(sorted(inputs)) or "none"
                 raise OrccadError(f"--inject {injection.name}: not an input of mission "
                                   f"'{self.plan.name}' (inputs: {known})")
+            injection = typed_injection(injection, inputs[injection.name])
             if injection.time_ns >= self.until_ns:
                 raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
                                   f"after --until ({self.until_ns / 1e9:g} s)")
@@ -238,17 +257,24 @@ class MissionRun:
     def _react(self, _: object) -> None:
         now = self.kernel.now
         pending = self._pending
-        if not pending and self._reacted_at == now:
-            return
-        self._pending = {}
-        self._reacted_at = now
-        if any(value is not None for value in pending.values()):
-            inputs: Any = pending
+        inputs: Any
+        if not pending:
+            if self._reacted_at == now:
+                return
+            inputs = _NO_INPUTS  # a tick: no dict or set to build
         else:
-            inputs = set(pending)
+            self._pending = {}
+            if any(value is not None for value in pending.values()):
+                inputs = pending
+            else:
+                inputs = set(pending)
+        self._reacted_at = now
         reactor = self.reactor
-        reaction = reactor.react(inputs, now)
-        for hook in self._hooks["on_reaction"]:
+        try:
+            reaction = reactor.react(inputs, now)
+        except OrccadError as error:
+            raise ReactionError(error.message, error.location, error.notes) from None
+        for hook in self._on_reaction:
             hook(now, tuple(pending), reaction.outputs, reaction.status)
         if not reaction.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
@@ -262,7 +288,7 @@ class MissionRun:
             phases = self._phases()
         else:
             phases = self._phase
-        self._update_sites(now, emitted, raised, phases)
+        self._update_sites(now, emitted, raised, phases, reaction.values)
         if self.reactor.finished:
             self.kernel.stop()
 
@@ -290,10 +316,14 @@ class MissionRun:
                 continue
             if role.kind is RoleKind.ADJUST and role.task is not None:
                 site = self._running_site(role.task)
-                update = site.adjustments.get(role.name) if site is not None else None
-                if update is not None:
-                    self.sim.set_param(update.module, update.param, update.value, at_ns=now)
-                self._record(ExceptionRecord(now, role.name, 1, role.task))
+                update = (self._adjust.get(site.number, site.adjustments).get(role.name)
+                          if site is not None else None)
+                try:
+                    change = None if update is None else self._updates.apply(update, role.name)
+                except UpdateError:  # the exception happened; its update ends the run
+                    self._record(ExceptionRecord(now, role.name, 1, role.task))
+                    raise
+                self._record(ExceptionRecord(now, role.name, 1, role.task, change))
             elif role.kind is RoleKind.RAISED:
                 kind, task = self._origin(role.name)
                 raised[role.name] = task
@@ -315,7 +345,7 @@ class MissionRun:
             hook(record)
 
     def _update_sites(self, now: int, emitted: set[str], raised: dict[str, str | None],
-                      phases: dict[int, Phase]) -> None:
+                      phases: dict[int, Phase], values: dict[str, Any]) -> None:
         for site in self.plan.sites:
             number = site.number
             old = self._phase.get(number, 0)
@@ -325,7 +355,7 @@ class MissionRun:
                 self._end_task(now, site, _outcome(site, emitted, raised))
             starting = new > 0 and (old == 0 or restart)
             if starting:
-                self._start_task(now, site)
+                self._start_task(now, site, values)
             active = self._active[number]
             wanted = site.wanted(new)
             stop = [m for m in site.modules if m in active and (restart or m not in wanted)]
@@ -337,19 +367,25 @@ class MissionRun:
             start = [m for m in wanted if m not in active]
             if start:
                 self.sim.activate(start, at_ns=now)
+                self._updates.activated(start, now)
                 active.update(start)
         self._phase = phases
 
-    def _start_task(self, now: int, site: SiteModules) -> None:
-        for name, compute in site.fresh_computes().items():  # nominal parameters, no state
+    def _start_task(self, now: int, site: SiteModules, values: dict[str, Any]) -> None:
+        instance = site.bound(values)  # the run-time arguments' values, checked
+        for name, compute in site.fresh_computes(instance).items():  # no state, no update
             self.sim.replace_compute(name, compute)
-        record = RobotTaskRecord(site.task, site.number, now, error_unit=site.error_unit)
+        self._adjust[site.number] = site.adjustments_of(instance)
+        args = plain_arguments(instance.params)
+        record = RobotTaskRecord(site.task, site.number, now, error_unit=site.error_unit,
+                                 args=args)
         self._running[site.number] = record
         self.records.append(record)
         for hook in self._hooks["on_task_start"]:
-            hook(now, site.task, site.number)
+            hook(now, site.task, site.number, args)
 
     def _end_task(self, now: int, site: SiteModules, outcome: str) -> None:
+        self._updates.stop(site.modules)
         record = self._running.pop(site.number)
         record.end_ns = now
         record.outcome = outcome
@@ -366,6 +402,9 @@ class MissionRun:
             self.sim.run(self.until_ns, realtime=self.realtime)
         except _RUN_FAILURES as error:
             status, reason = "failed", error.message
+        except _LOCATED_FAILURES as error:
+            where = f"{error.location}: " if error.location is not None else ""
+            status, reason = "failed", where + error.message
         except KeyboardInterrupt:
             status, reason = "aborted", _INTERRUPTED
         wall = time.perf_counter() - wall_start

@@ -18,11 +18,14 @@ Module-Tasks and connections of a :class:`~orccad_app.tcs.graph.TCS`:
 from __future__ import annotations
 
 from orccad_app.control.module import PortSpec
+from orccad_app.diagnostics import OrccadError
 from orccad_app.control.robot import RobotType
 from orccad_app.robottask.model import RobotTaskInstance
 from orccad_app.tcs.graph import TCS
-from orccad_app.tcs.module_task import ModuleTask, PhysicalResource
+from orccad_app.tcs.module_task import Activation, ModuleTask, PhysicalResource
 from orccad_app.tcs.port import Port
+from orccad_app.tcs.protocol import Protocol
+from orccad_app.executive.sporadic import PUSHED_ON_WRITE
 
 __all__ = ["tcs_port", "robot_resource", "instance_module_tasks", "add_instance", "task_tcs"]
 
@@ -47,7 +50,8 @@ def instance_module_tasks(instance: RobotTaskInstance, prefix: str = "") -> dict
         timing = spec.timing
         tasks[name] = ModuleTask(prefix + name, timing.period_ns, timing.wcet_ns, spec.instance,
                                  ports, processor=spec.processor, priority=spec.priority,
-                                 bcet_ns=timing.bcet_ns, kind=spec.kind.name, location=spec.loc)
+                                 bcet_ns=timing.bcet_ns, kind=spec.kind.name, location=spec.loc,
+                                 activation=spec.activation)
     return tasks
 
 
@@ -66,7 +70,26 @@ def add_instance(tcs: TCS, instance: RobotTaskInstance, prefix: str = "") -> dic
     for c in instance.connections:
         tcs.connect(end(c.source, c.source_port), end(c.target, c.target_port), c.protocol,
                     c.loc)
+    _check_interrupted(instance)
     return names
+
+
+def _check_interrupted(instance: RobotTaskInstance) -> None:
+    """A sporadic module needs an input whose writes interrupt it: written by another module
+    on its processor, or across the bus under a protocol that sends each write."""
+    modules = instance.modules
+    for name, spec in modules.items():
+        if spec.activation is not Activation.SPORADIC:
+            continue
+        if not any(c.target == name and c.source in modules
+                   and (modules[c.source].processor == spec.processor
+                        or Protocol(c.protocol) in PUSHED_ON_WRITE)
+                   for c in instance.connections):
+            raise OrccadError(f"sporadic module '{name}' has no input whose writes can release "
+                              f"it: connect an output of another module to it (on another "
+                              f"processor: over asyn/asyn, asyn/syn or asyn/synF, which send "
+                              f"each write); robot sensors are sampled, never written",
+                              spec.loc)
 
 
 def task_tcs(instance: RobotTaskInstance) -> TCS:

@@ -56,6 +56,7 @@ class PropertyRecorder(MissionObserver):
         self._keys = sorted(set(keys))
         self._ports = sorted(set(ports))
         self._status = "running"
+        self._letters: dict[tuple, frozenset] = {}
         self.letters: list[frozenset] = []
         """One letter per instant (reaction)."""
         self.sample_events: list[set] = []
@@ -65,7 +66,12 @@ class PropertyRecorder(MissionObserver):
 
     def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
                     status: str) -> None:
-        letter = self._letter(set(inputs) | set(outputs), status)
+        # a letter depends on the signals, the status change and the state (its labels):
+        # memoized, the periodic ticks of a long task all share one
+        key = (inputs, outputs, status, self._status, self._run.reactor.state)
+        letter = self._letters.get(key)
+        if letter is None:
+            letter = self._letters[key] = self._letter(set(inputs) | set(outputs), status)
         self._status = status
         self.letters.append(letter)
         index = t_ns // self.period_ns
@@ -76,6 +82,9 @@ class PropertyRecorder(MissionObserver):
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port == "e" and module in self._error_robot:
             self._errors[self._error_robot[module]] = np.array(value, dtype=float)
+
+    def wants_write(self, module: str, port: str) -> bool:
+        return port == "e" and module in self._error_robot
 
     def _new_sample(self) -> None:
         self.sample_events.append(set())

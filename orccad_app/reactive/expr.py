@@ -46,6 +46,36 @@ def _checked(value: Any) -> Any:
     return value
 
 
+_VECTORS = (tuple, list)
+
+
+def _elementwise(op: Callable[[Any, Any], Any], left: Any, right: Any) -> tuple:
+    """``op`` on vectors component by component (a number with a vector: with each
+    component); vectors of different sizes are a run-time error."""
+    if isinstance(left, _VECTORS) and isinstance(right, _VECTORS):
+        if len(left) != len(right):
+            raise ValueError(f"vectors of different sizes ({len(left)} and {len(right)})")
+        return tuple(_checked(op(a, b)) for a, b in zip(left, right))
+    if isinstance(left, _VECTORS):
+        return tuple(_checked(op(a, right)) for a in left)
+    return tuple(_checked(op(left, b)) for b in right)
+
+
+def _arithmetic(op: Callable[[Any, Any], Any]) -> Callable[[Any, Any], Any]:
+    """``op`` checked (:func:`_checked`), and component-wise on vectors (``+ - * /``)."""
+    def apply(left: Any, right: Any) -> Any:
+        if isinstance(left, _VECTORS) or isinstance(right, _VECTORS):
+            return _elementwise(op, left, right)
+        return _checked(op(left, right))
+    return apply
+
+
+def _negate(value: Any) -> Any:
+    if isinstance(value, _VECTORS):
+        return tuple(_checked(-v) for v in value)
+    return _checked(-value)
+
+
 class Unset(LookupError):
     """A variable or a signal value was read before it was ever given a value."""
 
@@ -113,7 +143,7 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
     if kind is ir.Unary:
         inner = compile_expr(expr.operand)
         if expr.op == "-":
-            return lambda store: _checked(-inner(store))
+            return lambda store: _negate(inner(store))
         return lambda store: not inner(store)
     left, right = compile_expr(expr.left), compile_expr(expr.right)
     if expr.op == "and":
@@ -122,7 +152,8 @@ def compile_expr(expr: ir.Expr) -> Callable[[Store], Any]:
         return lambda store: bool(left(store)) or bool(right(store))
     op = _BINARY[expr.op]
     if expr.op in _ARITHMETIC:
-        return lambda store: _checked(op(left(store), right(store)))
+        arithmetic = _arithmetic(op)
+        return lambda store: arithmetic(left(store), right(store))
     return lambda store: op(left(store), right(store))
 
 

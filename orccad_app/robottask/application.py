@@ -38,6 +38,8 @@ from orccad_app.reactive.lower import Lowerer, Scope
 from orccad_app.robottask.conflicts import check_resources
 from orccad_app.robottask.labels import RtLabel
 from orccad_app.robottask.rta import TaskSignals, record_raisers, rta_body, task_signals
+from orccad_app.robottask.run_arguments import (RunArgument, argument_signal, argument_type,
+                                                runtime_arguments)
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
 __all__ = ["ApplicationLowerer", "AbstractApplicationLowerer", "RunSite", "COMPOSED", "ABSTRACT",
@@ -64,12 +66,14 @@ class RunSite:
     :param robottask: the Robot-Task it runs.
     :param stmt: the ``run`` statement (arguments, location).
     :param on_fatal: the statement lies in the mission's ``on fatal`` block.
+    :param arguments: its run-time arguments (evaluated when the task starts).
     """
 
     number: int
     robottask: ast.RobotTask
     stmt: ast.Run
     on_fatal: bool = False
+    arguments: tuple[RunArgument, ...] = ()
 
     @property
     def task(self) -> str:
@@ -103,6 +107,7 @@ class ApplicationLowerer(Lowerer):
         self.extra_inputs: list[ir.SignalDecl] = []
         self.extra_outputs: list[ir.SignalDecl] = []
         self.task_sigs: dict[str, TaskSignals] = {}
+        self.arg_signals: dict[tuple[str, str], ir.SignalDecl] = {}
         self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
         self.handlers: list[dict[str, ir.TrapDecl]] = []
         loc = mission.loc
@@ -201,18 +206,41 @@ class ApplicationLowerer(Lowerer):
         task = self.tasks.get(s.task)
         if task is None:
             raise OrccadError(f"unknown Robot-Task '{s.task}'", s.task_loc or s.loc)
-        site = RunSite(len(self.sites), task, s, self.in_on_fatal)
+        if self.view == COMPOSED:  # the task's own signals first, in the declaration order
+            self.signals_of(task)
+        else:
+            self.outcomes_of(task)
+        arguments, emits = self._arguments(task, s, scope)
+        site = RunSite(len(self.sites), task, s, self.in_on_fatal, arguments)
         self.sites.append(site)
         if self.view == COMPOSED:
             body = rta_body(self.signals_of(task), site.number, self.raise_, self.fatal)
         else:
             body = self._abstract_run(task, site.number, s.loc)
+        body = d.seq(*emits, body)
         if s.within_ns is None:
             return body
         done = ir.TrapDecl("_within", s.loc)
         watchdog = d.seq(d.await_duration(ir.Const(s.within_ns, s.loc), s.loc),
                          self.raise_("Timeout", s.loc))
         return ir.Trap(done, ir.Par((d.seq(body, ir.Exit(done, s.loc)), watchdog), s.loc), s.loc)
+
+    def _arguments(self, task: ast.RobotTask, s: ast.Run, scope: Scope
+                   ) -> tuple[tuple[RunArgument, ...], list[ir.Stmt]]:
+        """The run-time arguments of a run site, and the emissions of their values in the
+        instant the task starts (the outputs ``X.arg.P``)."""
+        arguments, emits = [], []
+        for param, arg in runtime_arguments(task, s):
+            key = (task.name, param.name)
+            decl = self.arg_signals.get(key)
+            if decl is None:
+                decl = self._add(ir.SignalDecl(argument_signal(*key), ir.OUTPUT,
+                                               argument_type(param), param.loc))
+                self.arg_signals[key] = decl
+                self.roles.add(decl.name, RoleKind.ARGUMENT, task.name, param.name)
+            arguments.append(RunArgument(param.name, arg.value, arg.loc, decl.name))
+            emits.append(ir.Emit(decl, self.expr(arg.value, scope), arg.loc))
+        return tuple(arguments), emits
 
     def _abstract_run(self, task: ast.RobotTask, site: int, loc: SourceLocation) -> ir.Stmt:
         signals = self.outcomes_of(task)

@@ -24,8 +24,10 @@ from orccad_app.control.spec import module_context, resolve
 from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.walk import runs
+from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, evaluate, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
+from orccad_app.tcs.phasing import Activation
 
 __all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
            "instantiate", "check_tasks",
@@ -55,6 +57,8 @@ class ModuleSpec:
     loc: SourceLocation
     origin: ModuleOrigin = ModuleOrigin.DECLARED
     params: dict = field(default_factory=dict)  # as given, for a fresh instance
+    activation: Activation = Activation.PERIODIC
+    """Periodic, or sporadic (``timing.period_ns`` is then its minimum inter-arrival time)."""
 
     @property
     def implicit(self) -> bool:
@@ -68,12 +72,23 @@ class ModuleSpec:
 
 @dataclass(frozen=True)
 class Adjustment:
-    """A type-1 exception's parameter update: ``module.param = value``."""
+    """A type-1 exception's parameter update: ``module.param = value``.
+
+    :param exception: the exception.
+    :param module: the Module-Task whose parameter changes.
+    :param param: the parameter.
+    :param value: the new value when it is a constant expression (checked), else ``None``.
+    :param form: the value as written (:class:`~orccad_app.robottask.updates.UpdateForm`):
+        an expression, possibly over other parameters' current values, or a ramp.
+    :param loc: the ``adjust`` clause (run-time errors of the update point at it).
+    """
 
     exception: str
     module: str
     param: str
     value: Any
+    form: UpdateForm | None = None
+    loc: SourceLocation | None = None
 
 
 @dataclass
@@ -89,6 +104,11 @@ class RobotTaskInstance:
     events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
+    #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
+    robots: Mapping[str, ast.Robot] = field(default_factory=dict, repr=False)
+    host: Any = field(default=None, repr=False)
+    args: tuple[ast.Arg, ...] = ()
+    run_loc: SourceLocation | None = None
 
     @property
     def duration_s(self) -> float | None:
@@ -138,7 +158,10 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                 raise OrccadError(f"arguments of module kind '{m.kind}' must be named", m.loc)
             instance = kind.create(values, context)
             default = kind.default_timing
-            timing = Timing(m.period_ns or default.period_ns,
+            if m.min_interarrival_ns is not None and m.period_ns is not None:
+                raise OrccadError(f"module '{m.name}' is sporadic: give its minimum "
+                                  f"inter-arrival time or a period, not both", m.loc)
+            timing = Timing(m.min_interarrival_ns or m.period_ns or default.period_ns,
                             m.wcet_ns if m.wcet_ns is not None else default.wcet_ns,
                             m.bcet_ns if m.bcet_ns is not None else None)
         except OrccadError as error:
@@ -148,7 +171,9 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
                               f"got {m.priority}", m.loc)
         modules[m.name] = ModuleSpec(m.name, kind, instance, timing,
                                      m.processor or DEFAULT_PROCESSOR, m.priority or 0, m.loc,
-                                     params=values)
+                                     params=values,
+                                     activation=Activation.PERIODIC
+                                     if m.min_interarrival_ns is None else Activation.SPORADIC)
     return modules
 
 
@@ -222,17 +247,56 @@ def _conditions(inst: RobotTaskInstance, host) -> None:
 
 
 def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
-    target = exc.adjust.target
+    """Check a type-1 update on throw-away instances: the parameters it sets and reads exist;
+    a constant value (each end of a constant ramp) is valid for the parameter (type, range,
+    finiteness); a computed one has the parameter's type at the nominal values (its range is
+    checked when it is applied)."""
+    adjust = exc.adjust
+    target = adjust.target
     module = inst.modules.get(target.component)
     if module is None:
-        raise OrccadError(f"adjust: no module '{target.component}' in Robot-Task "
-                          f"'{inst.task.name}'", target.loc)
-    value = evaluate(exc.adjust.value, inst.params)
-    try:  # on a throw-away instance: the update must be valid for this module
-        module.fresh(inst.context).set_param(target.port, value)
+        raise OrccadError(_unknown_module(target.component, inst), target.loc)
+    form = update_form(adjust.value)
+    fresh = {name: spec.fresh(inst.context) for name, spec in inst.modules.items()}
+    try:
+        spec = fresh[target.component].param_spec(target.port)
     except OrccadError as error:
-        raise _located(error, exc.adjust.loc) from None
-    return Adjustment(exc.name, target.component, target.port, value)
+        raise _located(error, target.loc) from None
+
+    def read(name: str, param: str) -> Any:
+        if name not in fresh:
+            raise OrccadError(_unknown_module(name, inst))
+        return fresh[name].get_param(param)
+
+    values = []
+    for expr in form.expressions:
+        try:
+            value = compute(expr, inst.params, read)
+            values.append(value)
+            _probe(fresh[target.component], spec, target.port, value, form.constant)
+        except OrccadError as error:
+            raise _located(error, getattr(expr, "loc", adjust.loc)) from None
+    constant = values[0] if form.constant and form.ramp is None else None
+    return Adjustment(exc.name, target.component, target.port, constant, form, adjust.loc)
+
+
+def _unknown_module(name: str, inst: RobotTaskInstance) -> str:
+    return (f"unknown module '{name}' in Robot-Task '{inst.task.name}' (its modules: "
+            f"{', '.join(inst.modules)})")
+
+
+def _probe(module: ModuleInstance, spec: Any, param: str, value: Any, constant: bool) -> None:
+    """Set ``value`` on a throw-away ``module``: a constant must be valid; a value computed
+    from the nominal parameters must have the parameter's type and shape (``kp`` a number or
+    one per joint), its range being checked when the update is applied."""
+    owner = module.kind.name
+    if not constant:
+        spec.convert(value, owner)
+        try:
+            spec.coerce(value, owner)
+        except OrccadError:
+            return  # out of range at the nominal values: checked when applied
+    module.set_param(param, value)
 
 
 def _priorities(modules: dict[str, ModuleSpec]) -> None:
@@ -245,15 +309,18 @@ def _priorities(modules: dict[str, ModuleSpec]) -> None:
 
 
 def instantiate(task: ast.RobotTask, robots: Mapping[str, ast.Robot], host,
-                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None
-                ) -> RobotTaskInstance:
-    """Check ``task`` with the arguments of one ``run`` and build its instance."""
+                args: tuple[ast.Arg, ...] = (), run_loc: SourceLocation | None = None,
+                actual: Mapping[str, Any] | None = None) -> RobotTaskInstance:
+    """Check ``task`` with the arguments of one ``run`` and build its instance; ``actual``
+    gives the values of its run-time arguments (default: the nominal binding, see
+    :func:`~orccad_app.robottask.values.task_arguments`)."""
     try:
-        params = task_arguments(task, args)
+        params = task_arguments(task, args, actual=actual)
     except OrccadError as error:
         raise _located(error, run_loc or task.loc) from None
     context = _context(task, params, robots, host)
-    inst = RobotTaskInstance(task, params, task.robot, context)
+    inst = RobotTaskInstance(task, params, task.robot, context, robots=robots, host=host,
+                             args=args, run_loc=run_loc)
     inst.modules = _declared_modules(task, params, context, host)
     _law_defaults(inst, host)
     _conditions(inst, host)

@@ -34,6 +34,9 @@ class RoleKind(enum.Enum):
     """Output ``X.E.adjust``: apply the parameter update of X's type-1 exception E."""
     RAISED = "raised"
     """Output ``E.raised``: exception E (type 2 or 3) is raised, by a task or by ``within``."""
+    ARGUMENT = "argument"
+    """Valued output ``X.arg.P``: the value of X's parameter P, a run-time argument, in the
+    instant X starts (:mod:`orccad_app.robottask.run_arguments`)."""
 
 
 @dataclass(frozen=True)
@@ -43,7 +46,7 @@ class SignalRole:
     :param kind: what it stands for.
     :param task: the Robot-Task it belongs to (``None`` for :attr:`RoleKind.RAISED`).
     :param name: the exception or observer event it concerns (``EVENT``, ``ADJUST``,
-        ``RAISED``), else ``None``.
+        ``RAISED``), the parameter (``ARGUMENT``), else ``None``.
     """
 
     kind: RoleKind

@@ -15,6 +15,7 @@ from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.lang.run_args import is_constant
 
 __all__ = ["evaluate", "call_form", "task_arguments"]
 
@@ -94,8 +95,15 @@ def _check_type(param: ast.Param, value: Any, loc) -> Any:
 
 
 def task_arguments(task: ast.RobotTask, args: tuple[ast.Arg, ...] = (),
-                   caller_env: Mapping[str, Any] | None = None) -> dict[str, Any]:
-    """The task's parameters bound for one ``run``: defaults, then the given arguments."""
+                   caller_env: Mapping[str, Any] | None = None,
+                   actual: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The task's parameters bound for one ``run``: defaults, then the given arguments.
+
+    A run-time argument (one that reads a variable or a signal value, see
+    :mod:`orccad_app.lang.run_args`) takes its value from ``actual`` (the values computed when
+    the task starts, already checked) and, without one, the parameter's default: the
+    *nominal* binding the compiler checks the control scheme with.
+    """
     bound: dict[str, Any] = {}
     given: dict[str, ast.Arg] = {}
     for index, arg in enumerate(args):
@@ -107,6 +115,11 @@ def task_arguments(task: ast.RobotTask, args: tuple[ast.Arg, ...] = (),
             given[arg.name] = arg
     for param in task.params:
         arg = given.pop(param.name, None)
+        if arg is not None and not is_constant(arg.value):
+            if actual is not None and param.name in actual:
+                bound[param.name] = actual[param.name]
+                continue
+            arg = None  # the nominal binding: the default (the checker requires one)
         if arg is not None:
             value = evaluate(arg.value, caller_env or {})
             bound[param.name] = _check_type(param, value, arg.loc)

@@ -23,6 +23,7 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.tcs.analysis import utilization
+from orccad_app.tcs.phasing import Activation
 from orccad_app.tcs.bus_delay import BusModel
 from orccad_app.tcs.deadlock import DeadlockCycle, find_deadlock_cycles
 from orccad_app.tcs.graph import TCS
@@ -93,7 +94,9 @@ def _module_lines(report: TcsReport) -> list[str]:
     for task in report.tcs.module_tasks:
         lines.append(f"  {task.name:<20} {task.kind or '-':<18} {task.processor:<6} "
                      f"{task.priority:>4} {_ms(task.period_ns):>7} {_ms(task.wcet_ns):>7} "
-                     f"{task.utilization:>6.3f}")
+                     f"{task.utilization:>6.3f}"
+                     + ("  sporadic: T = min inter-arrival"
+                        if task.activation is Activation.SPORADIC else ""))
     for resource in report.tcs.resources:
         ports = ", ".join(f"{p.name} ({'sensor' if p.direction.value == 'out' else 'actuator'})"
                           for p in resource.ports)

@@ -14,6 +14,9 @@ an infinity (strict JSON). Topics (message encoding ``json``, schema encoding ``
   plot next to the signals, marking the task's span.
 - ``/mission/task`` — ``{"task", "site", "event": "start"|"end", "outcome"}`` (a State
   Transitions panel on ``/mission/task.task``).
+- ``/mission/args/<Task>/<param>`` — ``{"value": …}`` at each start of the Robot-Task: the
+  actual value of its parameter (``/mission/args/GoTo/target.value[0]``), typed like a port;
+  ``/orccad/task_start`` also holds all of them as JSON text (``args_json``).
 - ``/log`` — ``foxglove.Log``: the mission's story (task starts and ends, exceptions, inputs,
   new outputs, parameter changes, deadline misses, deadlocks, the final status) for the Log
   panel; ``name`` is ``mission``, ``executive`` or ``trace``.
@@ -89,9 +92,11 @@ EVENT_FIELDS: dict[str, tuple[tuple[str, dict], ...]] = {
     "param": (("module", _STRING), ("param", _STRING), ("value_json", _STRING)),
     "deadlock": (("cycle", _STRINGS),),
     "reaction": (("inputs", _STRINGS), ("outputs", _STRINGS), ("status", _STRING)),
-    "task_start": (("task", _STRING), ("site", _INTEGER)),
+    "task_start": (("task", _STRING), ("site", _INTEGER), ("args_json", _STRING)),
     "task_end": (("task", _STRING), ("site", _INTEGER), ("outcome", _STRING)),
     "exception": (("task", _STRING), ("name", _STRING), ("type", _INTEGER)),
+    "update": (("module", _STRING), ("param", _STRING), ("exception", _STRING),
+               ("update_json", _STRING)),
 }
 """The flat fields of each ``/orccad/<event>`` topic, with their JSON types."""
 
@@ -136,11 +141,14 @@ def _event_message(event: str, module: str, port: str, job: int, value: Any,
                                                                                  [])),
                 "status": str(_get(value, "status", ""))}
     if event == "task_start":
-        return {"task": module, "site": job}
+        return {"task": module, "site": job, "args_json": text or "{}"}
     if event == "task_end":
         return {"task": module, "site": job, "outcome": str(value or "")}
     if event == "exception":
         return {"task": module, "name": port, "type": int(value or 0)}
+    if event == "update":
+        return {"module": module, "param": port, "exception": str(_get(value, "exception", "")),
+                "update_json": text}
     raise ValueError(f"unknown trace event {event!r}")
 
 
@@ -298,6 +306,9 @@ class McapTraceWriter:
         if event == "task_start":
             self._active(time_ns, m["task"], 1, m["site"], "start", "")
             self.log(time_ns, INFO, "mission", f"{m['task']} starts (site {m['site']})")
+            for param, value in json.loads(m["args_json"]).items():
+                self._sample(time_ns, f"/mission/args/{m['task']}/{param}",
+                             f"{m['task']}.{param}", value)
         elif event == "task_end":
             self._active(time_ns, m["task"], 0, m["site"], "end", m["outcome"])
             level = INFO if m["outcome"] == "good_end" else WARNING
@@ -312,6 +323,9 @@ class McapTraceWriter:
         elif event == "param":
             self.log(time_ns, INFO, "executive", f"{m['module']}.{m['param']} := "
                                                  f"{m['value_json']}")
+        elif event == "update":
+            self.log(time_ns, INFO, "mission", f"type-1 update by {m['exception']}: "
+                                               f"{m['module']}.{m['param']} {m['update_json']}")
         elif event == "finish" and m["missed"]:
             self.log(time_ns, WARNING, "executive", f"{m['module']} job {m['job']} finished "
                                                     "after its deadline")

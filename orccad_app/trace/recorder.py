@@ -24,9 +24,12 @@ kill          Module-Task
 param         Module-Task        parameter              the new value
 deadlock                                                the cycle of ``module.port``
 reaction                                                ``{"inputs", "outputs", "status"}``
-task_start    Robot-Task                         site
+task_start    Robot-Task                         site   its arguments ``{param: value}``
 task_end      Robot-Task                         site   the outcome
 exception     Robot-Task or ""   exception name         its type (1, 2, 3)
+update        Module-Task        parameter              ``{"exception", "task", "old", "new",
+                                                        "ramp"}``: a type-1 update (``ramp``:
+                                                        ``{"start", "end", "duration_s"}`` or null)
 ============  =================  ==============  =====  ===========================================
 
 Values are strict JSON text (``json.dumps``: floats print exactly, so equal runs give equal
@@ -48,7 +51,7 @@ __all__ = ["TraceRow", "TraceWriter", "TraceRecorder", "EVENTS", "to_json", "pla
 
 EVENTS = ("release", "start", "preempt", "resume", "compute_end", "finish", "overrun", "block",
           "unblock", "read", "write", "signal", "message", "activate", "kill", "param",
-          "deadlock", "reaction", "task_start", "task_end", "exception")
+          "deadlock", "reaction", "task_start", "task_end", "exception", "update")
 """Every event name a trace may hold, in the order of the table above."""
 
 
@@ -183,8 +186,8 @@ class TraceRecorder(Observer):
             self._row(t_ns, "reaction",
                       value={"inputs": list(inputs), "outputs": list(outputs), "status": status})
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
-        self._row(t_ns, "task_start", task, job=site)
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        self._row(t_ns, "task_start", task, job=site, value=args or None)
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         self._row(t_ns, "task_end", task, job=site, value=outcome)
@@ -192,3 +195,9 @@ class TraceRecorder(Observer):
     def on_exception(self, record: Any) -> None:
         self._row(record.time_ns, "exception", record.task or "", record.name,
                   value=record.type)
+        update = record.update
+        if update is not None:
+            self._row(record.time_ns, "update", update.module, update.param,
+                      value={"exception": record.name, "task": record.task,
+                             **{k: v for k, v in update.as_dict().items()
+                                if k not in ("module", "param")}})

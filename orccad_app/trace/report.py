@@ -4,14 +4,18 @@ JSON keys (docs/design.md, *Command line*):
 
 - ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;
-- ``robot_tasks``: per Robot-Task run ``name``, ``start_s``, ``end_s``, ``outcome``,
+- ``robot_tasks``: per Robot-Task run ``name``, ``args`` (each parameter's actual value at
+  that start: run-time arguments evaluated, defaults filled in), ``start_s``, ``end_s``, ``outcome``,
   ``tracking_error`` ``{"rms", "max", "unit"}`` (``rad`` or ``m``, the task function's) (``null`` without a control law);
 - ``modules``, keyed ``Task.module``: ``processor``, ``period_s``, ``wcet_s``, ``jobs``
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
-  ``preemptions``, ``blocking_s``;
+  ``preemptions``, ``blocking_s``; a sporadic one also ``sporadic``: ``min_interarrival_s``,
+  ``interrupts``, ``released``, ``deferred``, ``coalesced``, ``min_gap_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``;
-- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``;
+- ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
+  ``module``, ``param``, ``old``, ``new`` and ``ramp`` (``start``, ``end``, ``duration_s``, or
+  ``null``);
 - ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
 - ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
   ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
@@ -27,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.diagnostics import arguments_text
 from orccad_app.mission.result import RunResult
 from orccad_app.trace.recorder import plain_value
 
@@ -75,6 +80,13 @@ def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
             "response_time_mean_s": stats.response_mean_ns / 1e9,
             "deadline_misses": stats.deadline_misses, "preemptions": stats.preemptions,
             "blocking_s": stats.blocking_ns / 1e9}
+        sporadic = result.stats.sporadic.get(name)
+        if sporadic is not None:
+            found[name]["sporadic"] = {
+                "min_interarrival_s": sporadic.min_interarrival_ns / 1e9,
+                "interrupts": sporadic.interrupts, "released": sporadic.released,
+                "deferred": sporadic.deferred, "coalesced": sporadic.coalesced,
+                "min_gap_s": None if sporadic.min_gap_ns < 0 else sporadic.min_gap_ns / 1e9}
     return found
 
 
@@ -113,15 +125,22 @@ def _ms(seconds: float) -> str:
     return f"{seconds * 1e3:.3f}"
 
 
+def _task_label(task: dict[str, Any]) -> str:
+    """``GoTo(target=[10, 0, 15])``: the task with its actual arguments."""
+    args = task.get("args") or {}
+    return task["name"] + (f"({arguments_text(args)})" if args else "")
+
+
 def _task_lines(report: dict[str, Any]) -> list[str]:
     lines = ["Robot-Tasks:"]
+    width = max([16, *(len(_task_label(t)) for t in report["robot_tasks"] or [])])
     for task in report["robot_tasks"] or []:
         end = "…" if task["end_s"] is None else f"{task['end_s']:.3f}"
         error = task["tracking_error"]
         figures = ("" if error is None else
                    f"   tracking error RMS {error['rms']:.3e} {error['unit']}, "
                    f"max {error['max']:.3e} {error['unit']}")
-        lines.append(f"  {task['name']:<16} {task['start_s']:.3f} → {end} s  "
+        lines.append(f"  {_task_label(task):<{width}} {task['start_s']:.3f} → {end} s  "
                      f"{task['outcome']}{figures}")
     if not report["robot_tasks"]:
         lines.append("  (none started)")
@@ -138,6 +157,13 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
                      f"{_ms(m['wcet_s']):>6} {m['jobs']:>6} {_ms(m['response_time_max_s']):>9} "
                      f"{_ms(m['response_time_mean_s']):>9} {m['deadline_misses']:>6} "
                      f"{m['preemptions']:>7}")
+    for name, m in report["modules"].items():
+        sporadic = m.get("sporadic")
+        if sporadic:
+            lines.append(f"  {name}: sporadic, min inter-arrival {_ms(sporadic['min_interarrival_s'])}"
+                         f" ms: {sporadic['interrupts']} interrupts, {sporadic['released']} "
+                         f"releases, {sporadic['deferred']} deferred, {sporadic['coalesced']} "
+                         f"coalesced")
     return lines
 
 
@@ -175,6 +201,27 @@ def _injection_lines(report: dict[str, Any]) -> list[str]:
     return lines
 
 
+def _exception_lines(result: RunResult) -> list[str]:
+    """One line per exception; consecutive ones that read the same (a type-1 update repeated
+    at its bound: ``kp 800 -> 800``) as one line ``first–last s … ×N``."""
+    groups: list[tuple[float, float, str, int]] = []
+    for record in result.exceptions:
+        change = f": {record.update.text()}" if record.update is not None else ""
+        text = (f"{record.name} (type {record.type}"
+                f"{', ' + record.task if record.task else ''}){change}")
+        time_s = record.time_ns / 1e9
+        if groups and groups[-1][2] == text:
+            first, _, _, count = groups[-1]
+            groups[-1] = (first, time_s, text, count + 1)
+        else:
+            groups.append((time_s, time_s, text, 1))
+    lines = ["Exceptions:"]
+    for first, last, text, count in groups:
+        when = f"{first:.3f} s" if count == 1 else f"{first:.3f}–{last:.3f} s"
+        lines.append(f"  {when}  {text}" + (f" ×{count}" if count > 1 else ""))
+    return lines
+
+
 def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ()) -> str:
     """The human report: the story first (status, Robot-Tasks, exceptions, injections,
     outputs), then the Module-Tasks' timing, processors and bus."""
@@ -186,10 +233,7 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
              f"({ratio:.1f}× real time), seed {report['seed']}"]
     lines += _task_lines(report)
     if report["exceptions"]:
-        lines.append("Exceptions:")
-        for e in report["exceptions"]:
-            lines.append(f"  {e['time_s']:.3f} s  {e['name']} (type {e['type']}"
-                         f"{', ' + e['task'] if e['task'] else ''})")
+        lines += _exception_lines(result)
     if report["injections"]:
         lines += _injection_lines(report)
     if report["outputs"]:

@@ -17,7 +17,7 @@ from orccad_app.tui.screens.help import HelpScreen
 from orccad_app.tui.screens.browser import BrowserScreen
 from orccad_app.tui.screens.report import ReportScreen
 from orccad_app.tui.screens.run import RunScreen
-from orccad_app.tui.session import LiveSession, mission_files
+from orccad_app.tui.session import LiveSession, ScriptedInputs, mission_files
 
 __all__ = ["OrccadApp"]
 
@@ -57,8 +57,9 @@ class OrccadApp(App):
         if self.run_now and self.selected:
             self.start_run(self.selected, self.mission)
 
-    def start_run(self, path: str, mission: str | None) -> None:
-        """Plan ``mission`` of ``path`` (as ``orccad run`` does) and show its live run."""
+    def start_run(self, path: str, mission: str | None, script: ScriptedInputs | None = None) -> None:
+        """Plan ``mission`` of ``path`` (as ``orccad run`` does) and show its live run
+        (``script``: a counterexample's inputs injected at its instants' times)."""
         screen: RunScreen | None = None
 
         def post(update) -> None:
@@ -66,7 +67,8 @@ class OrccadApp(App):
                 screen.post_message(RunUpdated(update))
 
         try:
-            self.session = LiveSession(path, mission, post, speed=self.speed, seed=self.seed)
+            self.session = LiveSession(path, mission, post, speed=self.speed, seed=self.seed,
+                                       script=script)
         except OrccadError as error:
             self.notify(error.format(), severity="error", timeout=10)
             return

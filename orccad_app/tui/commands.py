@@ -15,7 +15,9 @@ def commands_for(app, screen) -> list[tuple[str, Callable[[], None], str]]:
     """``(title, callback, help)`` of what can be done on ``screen`` now."""
     from orccad_app.tui.screens.browser import BrowserScreen
     from orccad_app.tui.screens.report import ReportScreen
+    from orccad_app.tui.screens.replay import ReplayScreen
     from orccad_app.tui.screens.run import RunScreen
+    from orccad_app.tui.session import failed_outcomes
 
     found = [("Help: the keys of this screen", app.action_help, "? or F1")]
     for path in app.files:
@@ -25,6 +27,17 @@ def commands_for(app, screen) -> list[tuple[str, Callable[[], None], str]]:
         found += [("Run the mission", screen.action_run, "r: run it live"),
                   ("Check the mission's properties", screen.action_check, "c: orccad check"),
                   ("Edit the mission", screen.action_edit, "with live diagnostics")]
+        for outcome in [] if screen.report is None else failed_outcomes(screen.report):
+            found += [(f"Replay the counterexample to {outcome.name}",
+                       partial(screen.action_replay, outcome), "step by step, where it waits"),
+                      (f"Run the counterexample to {outcome.name} against the plant",
+                       partial(screen.run_counterexample, outcome),
+                       "its inputs injected at their instants")]
+    if isinstance(screen, ReplayScreen):
+        found += [("Run this counterexample against the plant", screen.action_run,
+                   "r: its inputs injected at their instants"),
+                  ("Go to the instant where the property fails",
+                   partial(screen.action_go, "failing"), "f")]
     if isinstance(screen, RunScreen) and not screen.finished:
         bar = screen.session
         for signal in bar.inputs:

@@ -28,7 +28,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, arguments_text
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
@@ -165,11 +165,16 @@ class LiveObserver(Observer):
     :param pace: the run's speed.
     :param sample_ns: plot sampling period [ns] (simulated time).
     :param flush_s: how often updates are posted [s] (wall time).
+    :param scripted: ``(time [ns], input)`` of the injections a script raises (logged as
+        raised ``by`` ``scripted_by`` when they reach the automaton).
     """
 
     def __init__(self, run: Any, post: Callable[[LiveUpdate], None], pace: Pace, *,
-                 sample_ns: int = 10_000_000, flush_s: float = 0.1) -> None:
+                 sample_ns: int = 10_000_000, flush_s: float = 0.1,
+                 scripted: set[tuple[int, str]] | frozenset[tuple[int, str]] = frozenset(),
+                 scripted_by: str = "") -> None:
         self.run, self.post, self.pace = run, post, pace
+        self._scripted, self._scripted_by = scripted, scripted_by
         self.sample_ns, self.flush_s = sample_ns, flush_s
         self._sensors = sensor_ports(run.plan)
         self._site_task = {site.number: site.task for site in run.plan.sites}
@@ -235,6 +240,10 @@ class LiveObserver(Observer):
         if self._abort is not None:
             self.run.abort(self._abort)
             return
+        for name in inputs:
+            if (t_ns, name) in self._scripted:
+                self._log.append(LogEntry(t_ns, "input", f"{name} raised by the "
+                                                         f"{self._scripted_by}"))
         present = {name for name in outputs if name in self._outputs}
         for name in sorted(present - self._present):  # a sustained output is logged once
             self._log.append(LogEntry(t_ns, "output", name))
@@ -339,8 +348,9 @@ class LiveObserver(Observer):
     def on_param(self, t_ns: int, module: str, name: str, value: Any) -> None:
         self._log.append(LogEntry(t_ns, "param", f"{module}.{name} := {value}"))
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
-        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts"))
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        shown = f": {arguments_text(args)}" if args else ""  # its actual arguments
+        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts{shown}"))
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) ends: {outcome}"))

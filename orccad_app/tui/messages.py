@@ -71,8 +71,10 @@ class CheckDone(Message):
 
     bubble = False  # addressed to the screen that runs the work
 
-    def __init__(self, mission: str, text: str, holds: bool) -> None:
+    def __init__(self, mission: str, text: str, holds: bool, report: Any = None) -> None:
         super().__init__()
         self.mission = mission
         self.text = text
         self.holds = holds
+        self.report = report
+        """The ``MissionReport`` (``None`` when the check could not run)."""

@@ -20,11 +20,12 @@ from pathlib import Path
 from typing import Any, Callable
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.trace.report import InjectionRecord
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
            "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
-           "write_atomically"]
+           "write_atomically", "ScriptedInputs", "failed_outcomes"]
 
 VALUE_HINTS = {"int": "an integer, e.g. 3", "float": "a number, e.g. 0.8",
                "bool": "true or false", "vector": "numbers in brackets, e.g. [0.5, 0.5, 0.5]",
@@ -211,6 +212,37 @@ def check_text(report: Any) -> str:
     return "\n".join(lines)
 
 
+@dataclass(frozen=True)
+class ScriptedInputs:
+    """The inputs of a counterexample, to run against the plant (the Check tab's "run").
+
+    :param instants: the script's instants (:class:`~orccad_app.reactive.script.Instant`).
+    :param by: who raised them, for the log and the report (``counterexample to P``).
+    """
+
+    instants: tuple[Any, ...]
+    by: str
+
+    @classmethod
+    def of(cls, outcome: Any) -> ScriptedInputs:
+        """The script of a failed property's ``PropertyOutcome``."""
+        from orccad_app.verify.replay import script_instants
+
+        return cls(tuple(script_instants(outcome.script)),
+                   f"counterexample to {outcome.name}")
+
+    def injections(self, tick_ns: int) -> list[Any]:
+        """The injections at the instants' times (:mod:`orccad_app.mission.scripted`)."""
+        from orccad_app.mission.scripted import script_injections
+
+        return script_injections(self.instants, tick_ns)
+
+
+def failed_outcomes(report: Any) -> list[Any]:
+    """The outcomes of a check report that failed with a counterexample."""
+    return [o for o in report.outcomes if not o.holds and o.script is not None]
+
+
 def _faults(run: Any) -> dict[str, str]:
     found = {}
     for robot, plant in run.sim.plants.items():
@@ -264,10 +296,13 @@ class LiveSession:
 
     :param post: receives each :class:`~orccad_app.tui.live.LiveUpdate`.
     :param speed: initial factor (``None`` as fast as possible, ``0`` paused).
+    :param script: a :class:`ScriptedInputs` (a counterexample run against the plant): its
+        inputs are injected at its instants' times, as ``orccad run --inject-from`` does.
     """
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
-                 speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0) -> None:
+                 speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0,
+                 script: Any = None) -> None:
         from orccad_app.mission.plan import plan_mission
         from orccad_app.mission.run import MissionRun
         from orccad_app.pipeline import load, select_mission
@@ -287,11 +322,20 @@ class LiveSession:
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
         horizon = getattr(mission_run, "run_horizon_s", None)  # robots with long missions
         until_s = horizon(plan, until_s) if horizon is not None else until_s
-        self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)))
+        self.script = script
+        """The counterexample run against the plant, or ``None``."""
+        injections = [] if script is None else script.injections(plan.tick_ns)
+        self.scripted = [InjectionRecord(i.time_ns, i.name, i.value, False, script.by)
+                         for i in injections]
+        """The script's injections, for the report."""
+        self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)),
+                              injections=injections)
         self.faults = _faults(self.run)
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
-        self.observer = LiveObserver(self.run, post, self.pace)
+        self.observer = LiveObserver(self.run, post, self.pace, scripted={
+            (record.time_ns, record.name) for record in self.scripted},
+            scripted_by=script.by if script is not None else "")
         self._trace = _Spool()
         self.run.add_observer(self.observer)
         self.run.add_observer(TraceRecorder(self._trace.writer))
@@ -325,7 +369,9 @@ class LiveSession:
         if paused > 0:
             result = dataclasses.replace(result, wall_time_s=max(result.wall_time_s - paused,
                                                                  1e-9))
-        lines = format_report(result, self.observer.injected).split("\n")
+        injected = sorted([*self.scripted, *self.observer.injected],
+                          key=lambda record: record.time_ns)
+        lines = format_report(result, injected).split("\n")
         if paused > 0:
             lines.insert(2, f"  paused {paused:.2f} s of wall time, not counted above")
         verdicts = self.monitor.results()

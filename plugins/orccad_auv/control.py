@@ -19,6 +19,10 @@ an observer reads no value, rather than a zero, before the guidance's first job)
     is resumed continues where it stopped).
 ``station_guidance(x, y, depth)``
     station keeping: holds (x, y, depth) and the heading of the first job with surge and sway.
+``waypoint_guidance(target)``, ``hold_guidance(target)``
+    ``los_guidance`` and ``station_guidance`` to the waypoint ``target`` = [x, y, depth] [m]
+    given as one vector (a waypoint received as a valued input, ``run GoTo(target =
+    ?Waypoint)``): exactly 3 finite components, the depth >= 0.
 
 Line of sight: on the leg a → b, cross-track error ``e`` (positive left of the leg), heading
 ``ψ = atan2(b - a) - atan(e / lookahead)``; the next waypoint when within ``radius``; the speed
@@ -46,6 +50,8 @@ import numpy as np
 
 from orccad_app.plugin_api import (
     ControlError,
+    DimensionMismatch,
+    InvalidParameter,
     ModuleInstance,
     ModuleKind,
     ParamSpec,
@@ -56,7 +62,7 @@ from orccad_app.plugin_api import (
 from orccad_auv.vehicle import THRUST_LIMITS_N, THRUSTER_ARM_M
 
 __all__ = ["DepthGuidance", "LosGuidance", "LawnmowerGuidance", "StationGuidance",
-           "Autopilot", "MODULE_KINDS", "wrap"]
+           "WaypointGuidance", "HoldGuidance", "Autopilot", "MODULE_KINDS", "wrap"]
 
 FAR_M = 1e9
 """``goal_error`` while the goal is not the current target [m]."""
@@ -151,6 +157,43 @@ class StationGuidance(_Guidance):
               ParamSpec("max_speed", "float", 0.5, "speed bound [m/s]", 0.0, True))
 
 
+_TARGET = ParamSpec("target", "vector", [10.0, 0.0, 10.0], "waypoint [x, y, depth] [m]")
+
+
+def _waypoint(kind: str, values: dict[str, Any]) -> dict[str, Any]:
+    """``values`` with ``x``, ``y``, ``depth`` taken from the vector ``target``, checked."""
+    target = np.asarray(values["target"], dtype=float)
+    if target.shape != (3,):
+        raise DimensionMismatch(f"{kind}: target must be [x, y, depth] (3 components), got "
+                                f"{target.size}: {target.tolist()}")
+    if target[2] < 0.0:
+        raise InvalidParameter(f"{kind}: the depth of target must be >= 0 m, got "
+                               f"{target.tolist()}")
+    return {**values, "x": float(target[0]), "y": float(target[1]), "depth": float(target[2])}
+
+
+class WaypointGuidance(LosGuidance):
+    """Line-of-sight guidance to one waypoint given as a vector [x, y, depth]."""
+
+    name = "waypoint_guidance"
+    summary = "AUV task function: line-of-sight to the waypoint target = [x, y, depth] [m]"
+    params = (_TARGET, _SPEED) + _LOS
+
+    def _instantiate(self, values: dict[str, Any], context: Any) -> ModuleInstance:
+        return _GuidanceInstance(self, _waypoint(self.name, values), self.ports)
+
+
+class HoldGuidance(StationGuidance):
+    """Station keeping at a waypoint given as a vector [x, y, depth]."""
+
+    name = "hold_guidance"
+    summary = "AUV task function: station keeping at target = [x, y, depth] [m]"
+    params = (_TARGET,) + StationGuidance.params[3:]
+
+    def _instantiate(self, values: dict[str, Any], context: Any) -> ModuleInstance:
+        return _GuidanceInstance(self, _waypoint(self.name, values), self.ports)
+
+
 class _GuidanceInstance(ModuleInstance):
     def init(self) -> None:
         super().init()
@@ -171,7 +214,7 @@ class _GuidanceInstance(ModuleInstance):
             depth = self.params["depth"]
             return {"setpoint": np.array([depth, self.heading, self.params["speed"], 0.0]),
                     "goal_error": np.array([abs(p[2] - depth)])}
-        if name == "station_guidance":
+        if isinstance(self.kind, StationGuidance):
             return self._station(p, yaw)
         return self._los(p)
 
@@ -296,4 +339,4 @@ def allocate(surge: float, heave: float, pitch: float, sway: float, yaw: float) 
 
 
 MODULE_KINDS = (DepthGuidance(), LosGuidance(), LawnmowerGuidance(), StationGuidance(),
-                Autopilot())
+                WaypointGuidance(), HoldGuidance(), Autopilot())

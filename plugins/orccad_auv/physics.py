@@ -104,6 +104,9 @@ class AuvPhysics(PlantExtension):
             model.body_mass[self.body] = float(mass)
         self.mass_kg = float(model.body_mass[self.body])
         self.gain = model.actuator_gear[:, 2].copy()
+        # views into MuJoCo's state (same memory for the life of ``data``), read every step
+        self._xpos, self._xmat = data.xpos[self.body], data.xmat[self.body]
+        self._xfrc, self._qvel, self._ctrl = data.xfrc_applied[self.body], data.qvel, data.ctrl
 
     # -- physics ---------------------------------------------------------------------------
 
@@ -119,22 +122,41 @@ class AuvPhysics(PlantExtension):
         return p["water_density"] * G_MPS2 * p["volume_m3"] * self.submerged_fraction()
 
     def step(self, dt_s: float) -> None:
-        data, body = self.data, self.body
-        self.max_depth_m = max(self.max_depth_m, -float(data.xpos[body][2]))
-        rot = data.xmat[body].reshape(3, 3)
-        up = self.buoyancy_n() - G_MPS2 * self.water_kg
-        if 0.0 < self.submerged_fraction() < 1.0:  # wave-making (radiation) damping
-            up -= self.params["surface_damping"] * float(data.qvel[2])
-        arm = rot @ np.array([0.0, 0.0, float(self.params["cb_height_m"])])
-        force = np.array([0.0, 0.0, up])
-        data.xfrc_applied[body, :3] = force
-        data.xfrc_applied[body, 3:] = np.cross(arm, np.array([0.0, 0.0, self.buoyancy_n()]))
-        thrust = np.asarray(data.ctrl)
-        power = self.params["hotel_w"] + self.params["thrust_coeff"] * float(
-            np.sum(np.abs(thrust) ** 1.5)) * self.efficiency
+        # Plain float arithmetic on cached views of MuJoCo's arrays (this runs before every
+        # integration step): the same IEEE operations, in the same order, as the numpy
+        # expressions ``rot @ [0, 0, h]``, ``np.cross(arm, [0, 0, B])`` and
+        # ``np.sum(np.abs(ctrl) ** 1.5)`` (a sequential sum for so few thrusters), so the
+        # run is bit-identical; numpy's per-call overhead was most of a step.
+        p = self.params
+        z = float(self._xpos[2])
+        if -z > self.max_depth_m:
+            self.max_depth_m = -z
+        radius = float(p["hull_radius_m"])
+        fraction = min(1.0, max(0.0, (radius - z) / (2.0 * radius)))
+        buoyancy = p["water_density"] * G_MPS2 * p["volume_m3"] * fraction
+        up = buoyancy - G_MPS2 * self.water_kg
+        if 0.0 < fraction < 1.0:  # wave-making (radiation) damping
+            up -= p["surface_damping"] * float(self._qvel[2])
+        height = float(p["cb_height_m"])
+        r = self._xmat.tolist()
+        arm0 = ((0.0 + r[0] * 0.0) + r[1] * 0.0) + r[2] * height
+        arm1 = ((0.0 + r[3] * 0.0) + r[4] * 0.0) + r[5] * height
+        arm2 = ((0.0 + r[6] * 0.0) + r[7] * 0.0) + r[8] * height
+        xfrc = self._xfrc
+        xfrc[0] = 0.0
+        xfrc[1] = 0.0
+        xfrc[2] = up
+        xfrc[3] = arm1 * buoyancy - arm2 * 0.0
+        xfrc[4] = arm2 * 0.0 - arm0 * buoyancy
+        xfrc[5] = arm0 * 0.0 - arm1 * 0.0
+        total = 0.0
+        for index, command in enumerate(self._ctrl.tolist()):
+            term = abs(command) ** 1.5
+            total = term if index == 0 else total + term
+        power = p["hotel_w"] + p["thrust_coeff"] * total * self.efficiency
         self.energy_j += power * dt_s
         if self.leaking:
-            self.water_kg += self.params["leak_rate_kg_s"] * dt_s
+            self.water_kg += p["leak_rate_kg_s"] * dt_s
 
     # -- sensors ---------------------------------------------------------------------------
 

@@ -28,12 +28,14 @@ from orccad_app.plugin_api import (
     PortSpec,
     RobotPort,
     RobotType,
+    SensorParam,
+    SensorSetting,
     resolve_params,
 )
 
 from orccad_auv.physics import SENSOR_DIMS, AuvPhysics
 
-__all__ = ["AuvRobotType", "AUV", "THRUSTERS", "MJCF_PATH", "AUV_PARAMS"]
+__all__ = ["AuvRobotType", "AUV", "THRUSTERS", "MJCF_PATH", "AUV_PARAMS", "AUV_SENSOR_PARAMS"]
 
 MJCF_PATH = Path(__file__).with_name("auv.xml")
 THRUSTERS = ("surge", "vert_fore", "vert_aft", "lat_fore", "lat_aft")
@@ -65,6 +67,15 @@ AUV_PARAMS = (
 )
 """Type parameters with their ranges (``robot auv : auv(cb_height_m = 0.08);``, or
 ``orccad run --set auv.cb_height_m=0.08``)."""
+
+AUV_SENSOR_PARAMS = (
+    SensorParam("depth_noise_std", ("depth",), SensorSetting.NOISE_STD, 0.02, "[m]",
+                "pressure depth sensor noise (standard deviation)", maximum=5.0),
+    SensorParam("attitude_noise_std", ("attitude",), SensorSetting.NOISE_STD, 0.002, "[rad]",
+                "roll, pitch and heading noise (standard deviation)", maximum=0.5),
+)
+"""Sensor noise, settable like the type parameters (``robot auv : auv(depth_noise_std = 0.1);``
+or ``--set auv.depth_noise_std=0.1``)."""
 
 _UNITS = {"depth": "[m]", "attitude": "[rad]", "velocity": "[m/s, rad/s]", "position": "[m]",
           "altitude": "[m]", "battery": "[%]", "leak": "[0/1]", "gps": "[0/1]"}
@@ -120,7 +131,7 @@ def make_auv() -> AuvRobotType:
         sensors=tuple(_sensor(port) for port in SENSOR_DIMS), actuators=(tau,),
         actuator_constraint=constraint,
         joint_limits=(np.array([-np.inf]), np.array([np.inf])), end_effector=None,
-        timestep_s=0.01, params=AUV_PARAMS,
+        timestep_s=0.01, params=AUV_PARAMS, sensor_params=AUV_SENSOR_PARAMS,
         idle=IdleBehaviour.FREE)  # thrusters off while no task drives them
 
 

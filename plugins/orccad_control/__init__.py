@@ -2,7 +2,8 @@
 
 Registers the trajectories (``cosine``, ``min_jerk``, ``constant``), the task functions
 (``joint_tracking``, ``cartesian_tracking``), the control laws (``pid``, ``generic``,
-``computed_torque``) and the generic module kinds (``trajectory``, ``control_law``). It is
+``computed_torque``) and the generic module kinds (``trajectory``, ``control_law``, and
+``dynamic_model`` and ``ct_feedback``: computed torque split at two rates). It is
 loaded through the ``orccad`` entry-point group like any third-party plugin.
 """
 
@@ -45,6 +46,6 @@ def orccad_register_trajectories(register):
 
 @hookimpl
 def orccad_register_module_kinds(register):
-    """The ``trajectory`` and ``control_law`` Module-Tasks."""
+    """The ``trajectory``, ``control_law``, ``dynamic_model`` and ``ct_feedback`` Module-Tasks."""
     for kind in MODULE_KINDS:
         register(kind)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -14,6 +15,41 @@ from orccad_observers.base import Monitor, ObserverKind
 __all__ = ["JointLimits", "TorqueSaturation"]
 
 
+SCALAR_DIM = 8
+"""Vectors of at most this many components are checked on Python floats (numpy's per-call
+overhead is most of the cost for a few joints). The operations are the numpy ones in the same
+order, with numpy's tie rules — ``np.minimum``/``np.maximum`` return their second operand on a
+tie, and ``np.min``/``np.max`` reduce left to right keeping the later element on a tie (checked
+up to 8 components) — so the monitored values are bit-identical; non-finite inputs take the
+numpy path."""
+
+
+def _least(values: list[float]) -> float:
+    """``np.min(values)`` for at most :data:`SCALAR_DIM` finite values."""
+    least = values[0]
+    for value in values[1:]:
+        if not least < value:
+            least = value
+    return least
+
+
+def _greatest(values: list[float]) -> float:
+    """``np.max(values)`` for at most :data:`SCALAR_DIM` values without NaN."""
+    greatest = values[0]
+    for value in values[1:]:
+        if not greatest > value:
+            greatest = value
+    return greatest
+
+
+def _finite_list(array: np.ndarray, dim: int) -> list[float] | None:
+    """``array`` as a list of floats when it has ``dim`` <= 8 finite components."""
+    if array.shape != (dim,) or dim > SCALAR_DIM or dim == 0:
+        return None
+    values = array.tolist()
+    return values if math.isfinite(sum(values)) else None
+
+
 class _JointLimitsMonitor(Monitor):
     def __call__(self, t_s: float, inputs: Mapping[str, Any]) -> tuple[bool, float] | None:
         q = inputs.get("q")
@@ -21,7 +57,15 @@ class _JointLimitsMonitor(Monitor):
             return None
         lower, upper = self.context.robot.joint_limits
         q = np.asarray(q, dtype=float)
-        distance = float(np.min(np.minimum(q - lower, upper - q)))
+        values = _finite_list(q, lower.size)
+        if values is None:
+            distance = float(np.min(np.minimum(q - lower, upper - q)))
+        else:
+            nearest = []
+            for x, low, high in zip(values, lower.tolist(), upper.tolist()):
+                below, above = x - low, high - x
+                nearest.append(below if below < above else above)  # np.minimum
+            distance = _least(nearest)
         return distance < self.params["margin"], distance
 
 
@@ -55,12 +99,45 @@ class _TorqueSaturationMonitor(Monitor):
         tau = np.asarray(tau, dtype=float)
         qdot = inputs.get("qdot")
         qdot = np.zeros_like(tau) if qdot is None else np.asarray(qdot, dtype=float)
-        low, high = constraint.bounds(qdot)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            usage = np.where(tau > 0, np.where(high > 0, tau / high, np.inf),
-                             np.where(tau < 0, np.where(low < 0, tau / low, np.inf), 0.0))
-        peak = float(np.max(usage))
+        torques = _finite_list(tau, constraint.dim)
+        speeds = _finite_list(qdot, constraint.dim) if torques is not None else None
+        if speeds is not None and torques is not None:
+            peak = self._peak(constraint, torques, speeds)
+        else:
+            low, high = constraint.bounds(qdot)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                usage = np.where(tau > 0, np.where(high > 0, tau / high, np.inf),
+                                 np.where(tau < 0, np.where(low < 0, tau / low, np.inf), 0.0))
+            peak = float(np.max(usage))
         return peak >= self.params["ratio"] - 1e-9, peak
+
+    @staticmethod
+    def _peak(constraint: Any, torques: list[float], speeds: list[float]) -> float:
+        """The largest used fraction, on floats: ``constraint.bounds`` and the ``usage``
+        expression of the numpy path, operation for operation."""
+        usage = []
+        for tau, qdot, tau_min, tau_max, alpha, beta in zip(
+                torques, speeds, constraint.tau_min.tolist(), constraint.tau_max.tolist(),
+                constraint.alpha.tolist(), constraint.beta.tolist()):
+            back_emf = 0.0 if beta == 0.0 else beta * qdot
+            low = -alpha - back_emf
+            if tau_min > low:
+                low = tau_min                        # np.maximum(tau_min, low)
+            high = alpha - back_emf
+            if tau_max < high:
+                high = tau_max                       # np.minimum(tau_max, high)
+            floor = low if low < tau_max else tau_max
+            if not high > floor:
+                high = floor                         # np.maximum(high, floor)
+            if not low < high:
+                low = high                           # np.minimum(low, high)
+            if tau > 0:
+                usage.append(tau / high if high > 0 else math.inf)
+            elif tau < 0:
+                usage.append(tau / low if low < 0 else math.inf)
+            else:
+                usage.append(0.0)
+        return _greatest(usage)
 
 
 class TorqueSaturation(ObserverKind):

@@ -47,3 +47,45 @@ def test_wrong_shape_goes_through_the_general_path_and_raises_as_before(host, ar
     law, task = _law(host, arm, LAWS[0])
     with pytest.raises(ValueError):
         law.command(0.0, np.zeros(2), np.zeros(2), task.reference(0.0))
+
+
+def _special_states(rng, count):
+    """Joint states that hit the plain-float path's corner cases: exact zeros of both signs,
+    errors that land exactly on a torque bound (ties in max/min), huge values, NaN and inf."""
+    specials = [0.0, -0.0, 1e-300, -1e-300, 1e300, math.nan, math.inf, -math.inf]
+    for k in range(count):
+        q, qdot = rng.normal(0.0, 1.0, 3), rng.normal(0.0, 5.0, 3)
+        if k % 3 == 0:
+            q[rng.integers(3)] = specials[rng.integers(len(specials) - 3)]
+            qdot[rng.integers(3)] = specials[rng.integers(len(specials) - 3)]
+        if k % 17 == 0:
+            q[rng.integers(3)] = specials[rng.integers(len(specials))]
+        yield q, qdot
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NaN inputs, numpy side
+@pytest.mark.parametrize("call", LAWS[:2], ids=["pid", "pid-no-integral"])
+def test_plain_float_path_equals_the_numpy_lean_path(host, arm, call):
+    """The plain-float PID (small robots) against the numpy lean path, bit for bit, with the
+    integral and the saturation directions it keeps."""
+    floats, task = _law(host, arm, call)
+    arrays, _ = _law(host, arm, call)
+    assert floats._lean.scalar
+    arrays._lean.scalar = False
+    rng = np.random.default_rng(7)
+    for k, (q, qdot) in enumerate(_special_states(rng, 3000)):
+        t = (k // 2) * 1e-3  # repeated instants: dt = 0
+        reference = task.reference(t)
+        if k % 5 == 0:  # a torque exactly on its bound: e chosen so that kp e hits it
+            q = reference.pos + floats._lean.high / -400.0
+            qdot = reference.vel.copy()
+        a = floats.command(t, q, qdot, reference)
+        b = arrays.command(t, q, qdot, reference)
+        for name in ("tau", "tau_unsat", "saturated", "e"):
+            x, y = getattr(a, name), getattr(b, name)
+            assert x.tobytes() == y.tobytes(), (k, name, x, y)
+        assert floats.integral.tobytes() == arrays.integral.tobytes(), k
+        assert floats._sat_dir.tobytes() == arrays._sat_dir.tobytes(), k
+        if not np.all(np.isfinite(floats.integral)):  # start again after a NaN
+            floats.reset()
+            arrays.reset()

@@ -25,7 +25,7 @@ class _Writes(Observer):
     def on_write(self, t_ns: int, module: str, port: str, value: object) -> None:
         self.writes.append((t_ns, module, port, value))
 
-    def on_task_start(self, t_ns: int, task: str, site: int) -> None:
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
         self.starts.append((t_ns, task))
 
 

@@ -175,3 +175,33 @@ def test_a_closed_loop_trace_triggers_the_expected_observers(host, context):
         assert "event" not in limits.compute(t, {"q": q})
         assert "event" not in lost.compute(t, {"e": e})
     assert math.isclose(result.times[-1], 3.995)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NaN inputs, numpy side
+@pytest.mark.parametrize("kind", ["joint_limits", "torque_saturation"])
+def test_limit_monitors_on_floats_equal_the_numpy_path(host, context, monkeypatch, kind):
+    """The plain-float path of the limit observers (a few joints) gives the numpy path's
+    values bit for bit: exact ties, signed zeros, bounds reached, non-finite inputs."""
+    import numpy as np
+
+    from orccad_observers import limits
+
+    floats = make(host, context, kind)
+    rng = np.random.default_rng(3)
+    special = [0.0, -0.0, 1.6, -1.6, 150.0, -150.0, 1e300, math.nan, math.inf]
+    samples = []
+    for k in range(2000):
+        a, b = rng.normal(0.0, 1.0, 3) * (1.0 if k % 2 else 100.0), rng.normal(0.0, 4.0, 3)
+        if k % 3 == 0:
+            a[rng.integers(3)] = special[rng.integers(len(special) - 2)]
+            b[rng.integers(3)] = special[rng.integers(len(special) - 2)]
+        if k % 29 == 0:
+            a[rng.integers(3)] = special[rng.integers(len(special))]
+        samples.append({"q": a} if kind == "joint_limits" else {"tau": a, "qdot": b})
+    got = [floats.monitor(0.0, inputs) for inputs in samples]
+    monkeypatch.setattr(limits, "SCALAR_DIM", 0)
+    want = [floats.monitor(0.0, inputs) for inputs in samples]
+    for k, ((hold_a, value_a), (hold_b, value_b)) in enumerate(zip(got, want)):
+        assert hold_a == hold_b, k
+        assert np.float64(value_a).tobytes() == np.float64(value_b).tobytes(), (k, value_a,
+                                                                               value_b)

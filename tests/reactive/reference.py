@@ -79,6 +79,26 @@ _BINARY = {
 }
 
 
+def _componentwise(op):
+    """Arithmetic on vectors, component by component (a number with each component)."""
+    def apply(left, right):
+        vectors = (tuple, list)
+        if isinstance(left, vectors) and isinstance(right, vectors):
+            if len(left) != len(right):
+                raise ValueError("vectors of different sizes")
+            return tuple(op(a, b) for a, b in zip(left, right))
+        if isinstance(left, vectors):
+            return tuple(op(a, right) for a in left)
+        if isinstance(right, vectors):
+            return tuple(op(left, b) for b in right)
+        return op(left, right)
+    return apply
+
+
+for _op in ("+", "-", "*", "/"):
+    _BINARY[_op] = _componentwise(_BINARY[_op])
+
+
 class ReferenceError_(Exception):
     """A run-time error of the program (unset variable, instantaneous loop, bad exit)."""
 
@@ -486,7 +506,9 @@ class _Run:
             return tuple(self.value(item, scope) for item in expr.items)
         if kind is ir.Unary:
             operand = self.value(expr.operand, scope)
-            return -operand if expr.op == "-" else not operand
+            if expr.op == "-":
+                return tuple(-v for v in operand) if isinstance(operand, tuple) else -operand
+            return not operand
         if expr.op == "and":
             return bool(self.value(expr.left, scope)) and bool(self.value(expr.right, scope))
         if expr.op == "or":

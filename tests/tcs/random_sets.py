@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from collections import Counter
 
 from orccad_app.executive import Bus, Processor, Simulation
 from orccad_app.tcs import TCS, ModuleTask, Port, us
 from orccad_app.tcs.bus_delay import BusModel
+from orccad_app.tcs.phasing import Activation
 from orccad_app.tcs.deadlock import find_deadlock_cycles
 from orccad_app.tcs.protocol import Protocol
 from orccad_app.tcs.schedulability import Schedulability, analyse_timing
@@ -51,6 +52,10 @@ class RandomSet:
     context_switch_ns: int
     transfer_ns: int
     horizon_ns: int
+    interrupts: dict[str, list[int]] = field(default_factory=dict)
+    """Sporadic Module-Task -> its external interrupts [ns] (besides its inputs' writes)."""
+    deferred: int = 0
+    """Interrupts of the last run that came too early (deferred or coalesced)."""
 
     def analyse(self, scheduler: str) -> Schedulability:
         return analyse_timing(self.tcs, scheduler, self.context_switch_ns,
@@ -65,8 +70,30 @@ class RandomSet:
                          processors=[Processor(p, scheduler, self.context_switch_ns)
                                      for p in processors])
         sim.activate()
+        for name, instants in self.interrupts.items():
+            for instant in instants:
+                sim.interrupt(name, at_ns=instant)
         stats = sim.run(self.horizon_ns)
+        self.deferred = sum(s.deferred + s.coalesced for s in stats.sporadic.values())
         return {name: (s.deadline_misses, s.overruns) for name, s in stats.tasks.items()}
+
+
+def make_sporadic(random_set: RandomSet, seed: int) -> RandomSet:
+    """The same set with one or two Module-Tasks made sporadic (minimum inter-arrival time =
+    their period, no offset), each interrupted by its inputs' writes and by an external
+    interrupt line whose gaps are drawn in [0.2, 3] times the minimum (so that many arrive
+    too early and are deferred)."""
+    rng = random.Random(seed + 7_000_003)
+    tasks = list(random_set.tcs.module_tasks)
+    for task in rng.sample(tasks, k=min(len(tasks), rng.randint(1, 2))):
+        task.activation = Activation.SPORADIC
+        task.offset_ns = 0
+        instants, t = [], rng.randint(0, task.period_ns)
+        while t < random_set.horizon_ns:
+            instants.append(t)
+            t += max(1, int(task.period_ns * rng.uniform(0.2, 3.0)))
+        random_set.interrupts[task.name] = instants
+    return random_set
 
 
 def generate(seed: int, protocol: str) -> RandomSet:
@@ -132,10 +159,11 @@ class Survey:
 
 
 def survey(sets_per_protocol: int, first_seed: int = 0,
-           horizon_ns: int | None = None) -> Survey:
+           horizon_ns: int | None = None, sporadic: bool = False) -> Survey:
     """Generate ``sets_per_protocol`` sets per protocol, analyse and run each under FP and
-    EDF (for ``horizon_ns`` instead of the set's own horizon when given). Sets with a potential
-    deadlock cycle are skipped (the static analysis rejects them)."""
+    EDF (for ``horizon_ns`` instead of the set's own horizon when given; with one or two
+    sporadic Module-Tasks per set when ``sporadic``). Sets with a potential deadlock cycle are
+    skipped (the static analysis rejects them)."""
     counts: dict[tuple[str, str], Counter] = {}
     unsafe: list[str] = []
     skipped = 0
@@ -149,12 +177,15 @@ def survey(sets_per_protocol: int, first_seed: int = 0,
                 continue
             if horizon_ns is not None:
                 random_set.horizon_ns = horizon_ns
+            if sporadic:
+                make_sporadic(random_set, seed)
             for scheduler in ("fp", "edf"):
                 said_ok = random_set.analyse(scheduler).ok
                 run = random_set.run(scheduler)
                 clean = not any(m or o for m, o in run.values())
                 count = counts.setdefault((protocol, scheduler), Counter())
                 count.update(runs=1, clean=int(clean), said_ok=int(said_ok),
+                             deferred=random_set.deferred,
                              pessimistic=int(clean and not said_ok),
                              unsafe=int(said_ok and not clean))
                 if said_ok and not clean:
@@ -173,9 +204,12 @@ def table(result: Survey) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":  # python -m tests.tcs.random_sets [SETS_PER_PROTOCOL]
+if __name__ == "__main__":  # python -m tests.tcs.random_sets [SETS_PER_PROTOCOL] [--sporadic]
     import sys
 
-    outcome = survey(int(sys.argv[1]) if len(sys.argv) > 1 else 250)
+    sporadic = "--sporadic" in sys.argv
+    numbers = [arg for arg in sys.argv[1:] if arg != "--sporadic"]
+    outcome = survey(int(numbers[0]) if numbers else 250,
+                     first_seed=300_000 if sporadic else 0, sporadic=sporadic)
     print(table(outcome))
     print(f"skipped (potential deadlock): {outcome.skipped}; unsafe: {outcome.unsafe_cases}")

@@ -38,7 +38,8 @@ def test_a_run_reports_tasks_phases_samples_load_and_its_log():
     samples = {name for update in updates for name in update.samples}
     assert {"tracking error", "arm.q[0]", "arm.q[1]", "arm.q[2]"} <= samples
     assert updates[-1].misses == {} and 0.3 < updates[-1].loads["cpu0"] < 0.6
-    assert _log(updates) == ["task      TrackPID (site 0) starts", "output    Tracked",
+    assert _log(updates) == ["task      TrackPID (site 0) starts: q0=[0.5, 0.5, 0.5], kp=400, kv=40",
+                             "output    Tracked",
                              "task      TrackPID (site 0) ends: good_end"]
     assert "mission ArmPID: done" in session.report()
 

@@ -108,3 +108,39 @@ def test_run_screen_source_tab(snap_compare, scratch, size):
 def test_empty_state(snap_compare, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert snap_compare(OrccadApp([]), terminal_size=SIZES["80x24"])
+
+
+@pytest.fixture
+def failing(tmp_path, monkeypatch):
+    """The fixture mission with a property its run violates (a counterexample to replay)."""
+    (tmp_path / "cex.orc").write_text(MISSION + "\nproperty Snap.never_tracked: never Tracked;\n",
+                                      encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    return "cex.orc"
+
+
+async def _checked(pilot) -> None:
+    await pilot.press("c")
+    for _ in range(400):
+        if getattr(pilot.app.screen, "report", None) is not None:
+            break
+        await pilot.pause(0.05)
+    await pilot.pause(0.3)
+    pilot.app.clear_notifications()  # a toast times out: a race in a snapshot
+    await pilot.pause()
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_check_tab_with_a_counterexample(snap_compare, failing, size):
+    assert snap_compare(OrccadApp([failing], selected=failing), run_before=_checked,
+                        terminal_size=SIZES[size])
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_counterexample_replay(snap_compare, failing, size):
+    async def replay(pilot):
+        await _checked(pilot)
+        await pilot.press("enter")  # its first instant: TrackPID runs, the mission waits in it
+        await pilot.pause(0.3)
+    assert snap_compare(OrccadApp([failing], selected=failing), run_before=replay,
+                        terminal_size=SIZES[size])

@@ -16,10 +16,21 @@ torques are bit-identical:
 
 Any other law (full gains, Cartesian tracking, a perturbed model with an integral, velocity-
 dependent bounds) or an input of the wrong shape goes through the general path.
+
+**Small robots, plain floats.** For a PID (identity model) of at most :data:`SCALAR_DOF`
+joints with constant or all-velocity-dependent bounds, :meth:`LeanPath.command` works on
+Python floats (``ndarray.tolist()``) instead of numpy arrays: for three joints numpy's
+per-call overhead is most of the cost. The operations are IEEE-754 double operations in the
+same order as the numpy ones, with numpy's tie rules: ``np.maximum(a, b)`` and
+``np.minimum(a, b)`` return ``b`` when ``a == b`` (they differ only in the sign of a zero),
+``np.sign`` returns ``+0.0`` for both zeros. Inputs with a NaN or an infinity take the numpy
+lean path (NaN propagation differs between Python's comparisons and numpy's). The torques are
+therefore bit-identical (``tests/control/test_lean_scalar.py`` compares both paths).
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -33,7 +44,12 @@ from orccad_app.control.trajectories import Sample
 if TYPE_CHECKING:  # the law object, duck-typed: base imports this module
     ControlLaw = Any
 
-__all__ = ["LeanPath", "lean_path"]
+__all__ = ["LeanPath", "lean_path", "SCALAR_DOF"]
+
+SCALAR_DOF = 8
+"""Largest number of joints served by the plain-float PID path."""
+_isfinite = math.isfinite
+_array = np.array
 
 
 def _diagonal(matrix: np.ndarray) -> np.ndarray | None:
@@ -97,6 +113,12 @@ class LeanPath:
         if not identity:
             self.pin, self.pin_model = law.model._pin, law.model.model
             self.pin_data, self.damping = law.model.data, law.model.damping
+        self.scalar = (identity and dof <= SCALAR_DOF and self.beta_mode != "mixed"
+                       and law.task_function.dim == dof)
+        if self.scalar:  # the constants of the plain-float path, as lists of floats
+            self.lists = tuple(np.asarray(a, dtype=float).tolist() for a in (
+                kp, kv, ki, self.neg_ki, self.tau_min, self.tau_max, self.alpha,
+                self.neg_alpha, self.beta, self.low, self.high))
 
     def command(self, law: ControlLaw, t_s: float, q: Any, qdot: Any,
                 reference: Sample) -> LawOutput | None:
@@ -107,6 +129,10 @@ class LeanPath:
         qdot = np.asarray(qdot, dtype=float)
         if q.shape != self.shape or qdot.shape != self.shape:
             return None
+        if self.scalar:
+            out = self._scalar_command(law, t_s, q, qdot, reference)
+            if out is not None:
+                return out
         e = q - reference.pos
         e_dot = qdot - reference.vel
         self._integrate(law, e, t_s)
@@ -162,3 +188,68 @@ class LeanPath:
             push = self.neg_ki * delta * sat_dir > 0
             delta[push] = 0.0
         law.integral = law.integral + delta
+
+    def _scalar_command(self, law: ControlLaw, t_s: float, q: np.ndarray, qdot: np.ndarray,
+                        reference: Sample) -> LawOutput | None:
+        """The PID on Python floats (see the module docstring); ``None`` for non-finite
+        inputs or a reference of another shape or type (the numpy path then runs)."""
+        pos, vel = reference.pos, reference.vel
+        if pos.shape != self.shape or vel.shape != self.shape or pos.dtype != np.float64 \
+                or vel.dtype != np.float64:
+            return None
+        ql, qdl, pl, vl = q.tolist(), qdot.tolist(), pos.tolist(), vel.tolist()
+        if not _isfinite(sum(ql) + sum(qdl) + sum(pl) + sum(vl)):
+            return None
+        kp, kv, ki, neg_ki, tau_min, tau_max, alpha, neg_alpha, beta, low, high = self.lists
+        t_prev = law._t_prev
+        dt = 0.0 if t_prev is None else max(t_s - t_prev, 0.0)
+        law._t_prev = t_s
+        ki_any = self.ki_any
+        integrate = dt != 0.0 and ki_any
+        integral = law.integral.tolist()
+        sat_dir = law._sat_dir.tolist()
+        windup = integrate and self.anti_windup and any(sat_dir)
+        full = self.beta_mode == "full"
+        e, tau, tau_unsat, saturated = [], [], [], []
+        lo = hi = 0.0
+        for j in range(len(ql)):  # one joint: the numpy lean path's operations, in order
+            x = ql[j] - pl[j]
+            e.append(x)
+            if integrate:
+                d = x * dt
+                if windup and neg_ki[j] * d * sat_dir[j] > 0:
+                    d = 0.0
+                integral[j] = integral[j] + d
+            u = kp[j] * x + kv[j] * (qdl[j] - vl[j])
+            if ki_any:
+                u = u + ki[j] * integral[j]
+            u = 0.0 - u
+            tau_unsat.append(u)
+            if full:  # numpy's maximum/minimum return the second operand on a tie
+                back_emf = beta[j] * qdl[j]
+                t_hi = tau_max[j]
+                lo = neg_alpha[j] - back_emf
+                if tau_min[j] > lo:
+                    lo = tau_min[j]                  # np.maximum(tau_min, lo)
+                hi = alpha[j] - back_emf
+                if t_hi < hi:
+                    hi = t_hi                        # np.minimum(tau_max, hi)
+                floor = lo if lo < t_hi else t_hi    # np.minimum(lo, tau_max)
+                if not hi > floor:
+                    hi = floor                       # np.maximum(hi, floor)
+                if not lo < hi:
+                    lo = hi                          # np.minimum(lo, hi)
+            else:
+                lo, hi = low[j], high[j]
+            v = u if u > lo else lo                  # np.maximum(tau_unsat, low)
+            if not v < hi:
+                v = hi                               # np.minimum(., high)
+            tau.append(v)
+            d = u - v
+            sat_dir[j] = 1.0 if d > 0 else -1.0 if d < 0 else 0.0  # np.sign
+            saturated.append(v != u)
+        if integrate:
+            law.integral = _array(integral)
+        law._sat_dir = _array(sat_dir)
+        return LawOutput(tau=_array(tau), tau_unsat=_array(tau_unsat),
+                         saturated=_array(saturated), e=_array(e))

@@ -35,6 +35,9 @@ class Trajectory(ABC):
     end_time_s: float | None = None
     #: True while the start position must come from the first measurement
     needs_start: bool = False
+    #: the kind and parameters it was made from (set by ``TrajectoryKind.create``), so that a
+    #: type-1 update can rebuild it with one parameter changed; ``None``: not retunable
+    origin: Any = None
 
     @property
     @abstractmethod

@@ -8,11 +8,13 @@ from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.screen import Screen
 from textual.containers import Vertical
-from textual.widgets import (Button, Footer, Header, Input, Label, ListItem, ListView, Select,
-                             Static, TabbedContent, TabPane, TextArea)
+from textual.widgets import (Button, Footer, Header, Input, Label, ListItem, ListView,
+                             OptionList, Select, Static, TabbedContent, TabPane, TextArea)
+from textual.widgets.option_list import Option
 
 from orccad_app.tui.messages import CheckDone
-from orccad_app.tui.session import FileView, check_file, check_text, inspect_file
+from orccad_app.tui.session import (FileView, ScriptedInputs, check_file, check_text,
+                                    failed_outcomes, inspect_file)
 from orccad_app.tui.widgets.source_view import SourceView
 
 __all__ = ["BrowserScreen"]
@@ -28,6 +30,9 @@ class BrowserScreen(Screen):
         Binding("c", "check", "Check", tooltip="prove its properties (orccad check)"),
         Binding("s", "show_tab('source')", "Source", tooltip="show the source"),
         Binding("m", "show_tab('summary')", "Summary", tooltip="show the compile summary"),
+        Binding("p", "replay", "Replay", show=False, tooltip="replay the counterexample chosen in the Check "
+                                                 "tab step by step (r there runs it on the "
+                                                 "plant)"),
         Binding("ctrl+e", "edit", "Edit", tooltip="edit it with live diagnostics"),
         Binding("slash", "search", "Search", tooltip="type to filter the mission list"),
         Binding("q", "app.quit", "Quit"),
@@ -42,6 +47,8 @@ class BrowserScreen(Screen):
         self.files = files
         self.selected = selected or (files[0] if files else None)
         self.view: FileView | None = None
+        self.report = None
+        """The last ``orccad check`` report (its counterexamples are replayed)."""
 
     def compose(self) -> ComposeResult:
         yield Header()
@@ -60,6 +67,7 @@ class BrowserScreen(Screen):
                     with Horizontal(id="check-bar"):
                         yield Button("Check properties (orccad check)", id="check-button")
                         yield Button("Run", id="run-button", variant="primary")
+                    yield OptionList(id="counterexamples")
                     with VerticalScroll():
                         yield Static("press c to prove the mission's properties",
                                      id="check-text")
@@ -98,6 +106,7 @@ class BrowserScreen(Screen):
         if view.missions:
             select.value = view.missions[0]
         self._show_summary()
+        self._show_counterexamples(None)
         self.query_one("#check-text", Static).update(
             "press c to prove the mission's properties (orccad check)")
 
@@ -187,14 +196,61 @@ class BrowserScreen(Screen):
         except Exception as error:  # a diagnostic for the user, not a crash of the UI
             self.post_message(CheckDone(mission, f"check failed: {error}", False))
             return
-        self.post_message(CheckDone(mission, check_text(report), report.holds))
+        self.post_message(CheckDone(mission, check_text(report), report.holds, report))
 
     @on(CheckDone)
     def _check_done(self, message: CheckDone) -> None:
         self.query_one("#check-text", Static).update(message.text)
+        self._show_counterexamples(message.report)
         self.notify(f"{message.mission}: " + ("all properties hold" if message.holds
                                               else "a property fails"),
                     severity="information" if message.holds else "warning")
+
+    def _show_counterexamples(self, report) -> None:
+        """List the failed properties of ``report`` above the check's text."""
+        self.report = report
+        failed = [] if report is None else failed_outcomes(report)
+        options = self.query_one("#counterexamples", OptionList)
+        options.clear_options()
+        options.add_options([Option(f"✗ {o.name}: {o.message}") for o in failed])
+        options.border_title = "counterexamples: enter replays one step by step"
+        options.display = bool(failed)
+        if failed:
+            options.highlighted = 0
+            options.focus()
+
+    @property
+    def outcome(self):
+        """The failed property chosen in the Check tab (``None`` without one)."""
+        failed = [] if self.report is None else failed_outcomes(self.report)
+        index = self.query_one("#counterexamples", OptionList).highlighted
+        return failed[index] if failed and index is not None and index < len(failed) else None
+
+    @on(OptionList.OptionSelected, "#counterexamples")
+    def _counterexample_chosen(self) -> None:
+        self.action_replay()
+
+    def action_replay(self, outcome=None) -> None:
+        """Replay ``outcome`` (default: the counterexample chosen in the Check tab) step by
+        step: the replay screen."""
+        from orccad_app.tui.screens.replay import ReplayScreen
+        from orccad_app.verify.replay import replay
+
+        outcome = outcome or self.outcome
+        if outcome is None or self.view is None or self.report is None:
+            self.notify("no counterexample: press c to check the mission, then choose a "
+                        "failed property in the Check tab", severity="warning")
+            return
+        composition = self.report.composition
+        self.app.push_screen(ReplayScreen(self.view.path, self.view.text,
+                                          replay(composition, outcome), outcome))
+
+    def run_counterexample(self, outcome) -> None:
+        """Run ``outcome``'s counterexample against the plant (the command palette)."""
+        if self.view is None or self.report is None:
+            return
+        self.app.start_run(self.view.path, self.report.composition.name,
+                           ScriptedInputs.of(outcome))
 
     @on(Button.Pressed, "#run-button")
     def action_run(self) -> None:

@@ -99,6 +99,8 @@ class RunScreen(Screen):
         self.query_one(EventLog).border_title = "log"
         self.title = f"ORCCAD — run {self.session.mission}"
         self.sub_title = self.session.path
+        if self.session.script is not None:
+            self.sub_title += f" — inputs of the {self.session.script.by}"
         self.query_one(TaskTable).show([])
         self._where(None)
         self._status(None)
