@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 from orccad_app.cli import main
-from orccad_app.lang import imports
+from orccad_app.lang import ast, imports
+from orccad_app.lang.walk import nodes
 from orccad_app.pipeline import load
 
 GREET = """\
@@ -209,3 +210,29 @@ def test_malformed_imports_are_syntax_errors(tmp_path, capsys, form):
     err = _error(tmp_path, capsys, {"lib/greet.orc": GREET,
                                     "main.orc": form + "\nmission Main { nothing; }\n"})
     assert "main.orc:1:" in err and "error:" in err
+
+
+def test_the_same_files_give_the_same_automaton(tmp_path, capsys):
+    _write(tmp_path, {"lib/greet.orc": GREET, "main.orc": MAIN})
+    outputs = []
+    for _ in range(2):
+        assert main(["compile", str(tmp_path / "main.orc"), "--format", "json"]) == 0
+        outputs.append(capsys.readouterr().out)
+    assert outputs[0] == outputs[1]
+
+
+def test_a_library_file_runs_alone(capsys):
+    assert main(["run", "missions/lib/homing.orc", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["status"] == "done"
+    assert [(t["name"], t["outcome"]) for t in report["robot_tasks"]] == [("Home", "good_end")]
+
+
+def test_arm_recovery_homes_through_the_library_twice():
+    source = load("missions/arm_recovery.orc")
+    mission = source.program.missions[0]
+    calls = [n.mission for n in nodes(mission) if isinstance(n, ast.RunMission)]
+    assert calls.count("Homing") == 2 and calls.count("Parking") == 1
+    assert {f.path for f in source.imported} == {"missions/lib/homing.orc",
+                                                 "missions/lib/parking.orc"}
+    assert source.program.robottask("Home").loc.file == "missions/lib/homing.orc"
