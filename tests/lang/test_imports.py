@@ -236,3 +236,19 @@ def test_arm_recovery_homes_through_the_library_twice():
     assert {f.path for f in source.imported} == {"missions/lib/homing.orc",
                                                  "missions/lib/parking.orc"}
     assert source.program.robottask("Home").loc.file == "missions/lib/homing.orc"
+
+
+def test_sub_missions_on_one_robot_in_parallel_branches_are_a_resource_conflict(tmp_path,
+                                                                               capsys):
+    lib = Path("missions/lib").resolve()
+    err = _error(tmp_path, capsys, {
+        "lib/homing.orc": (lib / "homing.orc").read_text(encoding="utf-8"),
+        "lib/parking.orc": (lib / "parking.orc").read_text(encoding="utf-8"),
+        "main.orc": 'from "lib/homing.orc" import Homing;\n'
+                    'from "lib/parking.orc" import Parking;\n'
+                    "mission M {\n"
+                    "    par { run mission Homing; } || { run mission Parking; }\n}\n"})
+    assert (f"{tmp_path / 'main.orc'}:4:38: error: resource conflict: Robot-Tasks Home and "
+            "Park both use robot 'arm' and may run in parallel branches (Park in sub-mission "
+            "'Parking')") in err
+    assert f"{tmp_path / 'lib' / 'homing.orc'}:9:5: note: Home runs here" in err
