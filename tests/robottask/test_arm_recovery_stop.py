@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import shutil
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -53,3 +54,7 @@ def test_the_properties_catch_a_race_that_ends_during_the_park(tmp_path):
     assert result.returncode == 1
     assert "FAIL  property park_completes" in result.stdout
     assert "FAIL  property parked_before_done" in result.stdout
+    # the counterexample says the park is the sub-mission Parking, run by the 'do' of Stop
+    call = next(n for n, line in enumerate(text.splitlines(), 1) if "run mission Parking" in line)
+    assert f"# in Parking#1 ({tmp_path / 'lib' / 'parking.orc'}:8) inside {buggy}:{call}" \
+        in result.stdout
