@@ -182,8 +182,8 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
 def _processors(plan, args: argparse.Namespace) -> list:
     from orccad_app.executive.processor import Processor
 
-    names = dict.fromkeys(task.processor for task in plan.tcs.module_tasks)
-    return [Processor(name, args.scheduler, args.context_switch_us * 1000) for name in names]
+    return [Processor(name, args.scheduler, args.context_switch_us * 1000)
+            for name in plan.processor_names]
 
 
 def run(args: argparse.Namespace) -> int:

@@ -328,8 +328,13 @@ class TopicWriter:
             self.log(time_ns, INFO, "executive", f"{m['module']}.{m['param']} := "
                                                  f"{m['value_json']}")
         elif event == "update":
+            change = json.loads(m["update_json"])
+            ramp = change.get("ramp")
+            new = (f"ramp {ramp['start']} -> {ramp['end']} over {ramp['duration_s']} s"
+                   if ramp else f"{change.get('new')}")
             self.log(time_ns, INFO, "mission", f"type-1 update by {m['exception']}: "
-                                               f"{m['module']}.{m['param']} {m['update_json']}")
+                                               f"{m['module']}.{m['param']} {change.get('old')} "
+                                               f"-> {new}")
         elif event == "finish" and m["missed"]:
             self.log(time_ns, WARNING, "executive", f"{m['module']} job {m['job']} finished "
                                                     "after its deadline")

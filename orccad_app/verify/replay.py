@@ -20,10 +20,11 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.reactive.automaton import Automaton
-from orccad_app.reactive.labels import MissionLabel
+from orccad_app.reactive.labels import InMission, MissionLabel
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import Instant
 from orccad_app.robottask.composition import Composition
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify.checker import PropertyOutcome
 from orccad_app.verify.counterexample import Script
 
@@ -73,6 +74,7 @@ class ReplayStep:
     :param waiting: the statements the new state waits at.
     :param tasks: the Robot-Tasks active in the new state, with their ``run`` statements.
     :param mark: :data:`FAILS`, :data:`LOOPS` or ``""``.
+    :param inside: the sub-mission instances (``run mission``) the new state is in.
     """
 
     number: int
@@ -84,6 +86,7 @@ class ReplayStep:
     waiting: tuple[SourceLocation, ...]
     tasks: tuple[RunningTask, ...]
     mark: str = ""
+    inside: tuple[InMission, ...] = ()
 
     def lines_in(self, path: str) -> list[int]:
         """The lines of file ``path`` the state waits at (sorted, unique)."""
@@ -125,7 +128,7 @@ def _tasks(composition: Composition, state: int) -> tuple[RunningTask, ...]:
     automaton: Automaton = composition.automaton
     labels = automaton.labels[state] if automaton.labels and state < len(automaton.labels) \
         else ()
-    numbers = {label.site for label in labels if hasattr(label, "site")}
+    numbers = {label.site for label in labels if isinstance(label, RtLabel)}
     return tuple(RunningTask(site.robottask.name, site.number, site.stmt.loc)
                  for site in composition.sites if site.number in numbers)
 
@@ -148,7 +151,7 @@ def replay(composition: Composition, outcome: PropertyOutcome) -> Replay:
         steps.append(ReplayStep(index + 1, line.time_ns, line.inputs, reaction.outputs,
                                 reactor.state, reaction.status,
                                 waiting_at(automaton, reactor.state),
-                                _tasks(composition, reactor.state), mark))
+                                _tasks(composition, reactor.state), mark, line.inside))
     return Replay(mission, outcome.kind, outcome.name, outcome.message, tuple(steps),
                   script.loop_start, script.note)
 
@@ -198,6 +201,8 @@ def step_lines(step: ReplayStep, path: str, text: str) -> list[str]:
     for task in step.tasks:
         where = Path(task.loc.file or name).name
         lines.append(f"  running: {task.task} (site {task.site}, run at {where}:{task.loc.line})")
+    for inside in step.inside:
+        lines.append(f"  in sub-mission {inside.label.text()}")
     return lines
 
 

@@ -16,8 +16,7 @@ from orccad_app.tui.messages import InputRequested, RunFailed, RunFinished, RunU
 from orccad_app.tui.screens.series import SeriesScreen
 from orccad_app.tui.session import LiveSession
 from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_text,
-                                    tasks_in_state, tcs_rows, waiting_elsewhere,
-                                    waiting_lines)
+                                    tasks_in_state, tcs_rows, waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
 from orccad_app.tui.widgets.plots import Marker, Plots
@@ -127,7 +126,7 @@ class RunScreen(Screen):
         tasks = tasks_in_state(self.session, state)
         self.query_one("#run-source", SourceView).show_run(
             self.session.path, self.session.text, waiting_lines(self.session, state),
-            run_site_lines(self.session, state), waiting_elsewhere(self.session, state))
+            run_site_lines(self.session, state))
         self.query_one("#rta-text", Static).update(rta_text(self.session, tasks))
         loads = {} if update is None else update.loads
         misses = {} if update is None else update.misses
@@ -277,7 +276,7 @@ def _markers(log: list[LogEntry]) -> list[Marker]:
     found = []
     for entry in log:
         kind = _MARKED.get(entry.kind)
-        if entry.kind == "task" and ") starts" in entry.text:
+        if entry.task_start:
             kind = "task"
         if kind is not None:
             found.append(Marker(entry.time_ns / 1e9, kind, entry.text))
