@@ -16,7 +16,8 @@ from orccad_app.tui.messages import InputRequested, RunFailed, RunFinished, RunU
 from orccad_app.tui.screens.series import SeriesScreen
 from orccad_app.tui.session import LiveSession
 from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_text,
-                                    tasks_in_state, tcs_rows, waiting_lines)
+                                    tasks_in_state, tcs_rows, waiting_elsewhere,
+                                    waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
 from orccad_app.tui.widgets.plots import Marker, Plots
@@ -125,7 +126,7 @@ class RunScreen(Screen):
         tasks = tasks_in_state(self.session, state)
         self.query_one("#run-source", SourceView).show_run(
             self.session.path, self.session.text, waiting_lines(self.session, state),
-            run_site_lines(self.session, state))
+            run_site_lines(self.session, state), waiting_elsewhere(self.session, state))
         self.query_one("#rta-text", Static).update(rta_text(self.session, tasks))
         loads = {} if update is None else update.loads
         misses = {} if update is None else update.misses
