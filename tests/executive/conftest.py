@@ -139,9 +139,8 @@ def _plan_file(path, replacements: dict[str, str] | None = None, tmp_path=None):
         for old, new in replacements.items():
             assert old in text, old
             text = text.replace(old, new)
-        library = path.parent / "lib"  # what the mission imports ("lib/homing.orc")
-        if library.is_dir() and not (tmp_path / "lib").exists():
-            shutil.copytree(library, tmp_path / "lib")
+        if (path.parent / "lib").is_dir():  # the sub-missions it imports, beside the copy
+            shutil.copytree(path.parent / "lib", tmp_path / "lib", dirs_exist_ok=True)
         return _plan_text(tmp_path, text)
     source = load(path)
     return plan_mission(source, select_mission(source, None))
