@@ -39,9 +39,9 @@ class RunScreen(Screen):
 
     BINDINGS = [
         Binding("space", "toggle_pause", "Pause/resume"),
-        Binding("r", "speed('realtime')", "1×", tooltip="real time (1×)"),
-        Binding("x", "speed('fast')", "10×", tooltip="10× real time"),
-        Binding("m", "speed('max')", "Max", tooltip="as fast as possible"),
+        Binding("r", "speed('realtime')", "1×", show=False, tooltip="real time (1×)"),
+        Binding("x", "speed('fast')", "10×", show=False, tooltip="10× real time"),
+        Binding("m", "speed('max')", "Max", show=False, tooltip="as fast as possible"),
         Binding("i", "inject", "Inject", tooltip="inject the fault or event chosen in the list"),
         Binding("h", "hold_mode", "Pulse/hold", tooltip="inputs: pulse (one instant) or hold "
                                                         "(every instant until pressed again)"),
@@ -94,7 +94,7 @@ class RunScreen(Screen):
                 yield EventLog(id="log")
         yield InputBar(self.session.inputs, self.session.events, self.session.faults,
                        id="inputs")
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         self.query_one(EventLog).border_title = "log"
@@ -117,8 +117,9 @@ class RunScreen(Screen):
         self.post_message(RunFinished(result, self.session.report()))
 
     def _status(self, update: LiveUpdate | None) -> None:
+        limit = 4 if self.size.width < 120 else 12  # where it waits: what fits on a line
         self.query_one("#run-status", Static).update(status_text(
-            self.session, update, self.meter))
+            self.session, update, self.meter, limit))
 
     def _where(self, update: LiveUpdate | None) -> None:
         """The source with the statements the mission waits at, the RTA and TCS tabs."""
