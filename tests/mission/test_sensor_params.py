@@ -140,6 +140,8 @@ def test_a_campaign_varies_the_arms_noise(tmp_path):
     runs = json.loads(result.stdout)["results"]
     drawn = [run["setting"]["values"]["arm.noise_std"] for run in runs]
     assert len(set(drawn)) == 3 and all(0.0 <= v <= 0.01 for v in drawn)
+    rms = [run["metrics"]["TrackPID.tracking_error.rms"] for run in runs]
+    assert rms.index(max(rms)) == drawn.index(max(drawn))  # the noisiest run tracks worst
     for run in runs:  # each run's replay command carries its noise
         assert any(f"arm.noise_std={value!r}" in arg
                    for value in [run["setting"]["values"]["arm.noise_std"]]
