@@ -84,14 +84,15 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path, host: PluginHost | None = None) -> Source:
-    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations.
+def load(path: str | Path, host: PluginHost | None = None, text: str | None = None) -> Source:
+    """Read, parse and check ``path`` (or ``text``, an edited version of it: its imports are
+    still resolved from ``path``'s folder); errors are :class:`OrccadError` with locations.
 
     The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
     declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
     their failures printed once on stderr."""
     path = str(path)
-    text = read_source(path)
+    text = read_source(path) if text is None else text
     program, imported = resolve_imports(parse(text, path), read_source)
     result = check(program)
     instances = None

@@ -1,5 +1,5 @@
 """``orccad check FILE [--mission M] [--observe S1,S2,…] [--counterexample OUT] [--promela OUT]
-[--replay PROPERTY]``.
+[--replay PROPERTY] [--json]``.
 
 Parses and checks the file, compiles each mission (or the one named) in the composed view,
 then proves the built-in properties and every ``property`` that applies to it (see
@@ -9,7 +9,9 @@ then proves the built-in properties and every ``property`` that applies to it (s
 input. ``--replay PROPERTY`` prints that property's counterexample instant by instant (inputs,
 outputs, the statements the mission waits at, the instant where it fails) and, with
 ``--counterexample OUT``, writes its script for ``orccad run --inject-from OUT``. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
-and campaigns judge them; they do not change the exit status.
+and campaigns judge them; they do not change the exit status. ``--json`` prints the verdicts
+as one object instead (each counterexample with its instants and the sub-mission instances
+the mission is in after each).
 """
 
 from __future__ import annotations
@@ -43,6 +45,8 @@ def register(sub) -> None:
                              "outputs, where the mission waits, where it fails); with "
                              "--counterexample OUT, write its script (for orccad run "
                              "--inject-from OUT)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the verdicts and counterexamples as one JSON object")
     add_max_states(parser)
     parser.set_defaults(func=run)
 
@@ -61,12 +65,16 @@ def run(args: argparse.Namespace) -> int:
     if args.replay is not None:
         return _replay(source, missions, args)
     failed, written, unproved = 0, False, 0
+    reports = []
     for mission in missions:
         report = _checked(source, mission, args.max_states)
         unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
-        _print_report(source, report, len(missions) > 1)
+        if args.json:
+            reports.append(report)
+        else:
+            _print_report(source, report, len(missions) > 1)
         for outcome in report.outcomes:
             if not outcome.holds:
                 failed += 1
@@ -74,6 +82,11 @@ def run(args: argparse.Namespace) -> int:
                     emit_text(_script_text(source, mission, outcome).rstrip("\n"),
                               args.counterexample)
                     written = True
+    if args.json:
+        from orccad_app.jsonout import dumps
+        print(dumps({"file": source.path, "missions": [_report_dict(source, r) for r in reports],
+                     "failed": failed, "holds": not failed}, indent=2))
+        return 1 if failed else 0
     total = len(missions)
     left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
             if unproved else "")
@@ -151,6 +164,38 @@ def _print_report(source, report, several: bool) -> None:
     for prop in report.signal_properties:
         print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
               "judged on runs and campaigns")
+
+
+def _report_dict(source, report) -> dict:
+    """One mission's verdicts, JSON-ready (no timings: the same input gives the same text)."""
+    model, automaton = report.model, report.composition.automaton
+    mission = report.composition.mission
+    return {
+        "mission": report.composition.name,
+        "automaton_states": automaton.state_count,
+        "model_states": len(model.states),
+        "model_steps": model.step_count,
+        "counters_exact": model.exact,
+        "outcomes": [{"kind": o.kind, "name": o.name, "holds": o.holds, "message": o.message,
+                      "counterexample": None if o.holds or o.script is None else
+                      _script_dict(source, mission, o)} for o in report.outcomes],
+        "signal_properties": [p.name for p in report.signal_properties],
+    }
+
+
+def _script_dict(source, mission, outcome) -> dict:
+    script = outcome.script
+    return {
+        "replay": _replay_command(source, mission),
+        "note": script.note or None,
+        "replayed": script.replayed,
+        "loop_start": script.loop_start,
+        "instants": [{"time_s": None if line.time_ns is None else line.time_ns / 1e9,
+                      "inputs": dict(line.inputs),
+                      "inside": [where.to_dict() for where in line.inside]}
+                     for line in script.lines],
+        "script": _script_text(source, mission, outcome),
+    }
 
 
 def _replay(source, missions, args) -> int:

@@ -36,7 +36,7 @@ from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
-from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.model import DEFAULT_PROCESSOR, RobotTaskInstance
 from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.robottask.updates import UpdateForm
@@ -105,6 +105,22 @@ class SiteModules:
     def task(self) -> str:
         """The Robot-Task's name."""
         return self.site.task
+
+    @property
+    def automaton_processor(self) -> str:
+        """The processor its behaviour automaton reacts on: declared (``automaton on P``),
+        else its first module's."""
+        placement = self.instance.task.automaton
+        if placement is not None:
+            return placement.processor
+        first = next(iter(self.instance.modules.values()), None)
+        return first.processor if first is not None else DEFAULT_PROCESSOR
+
+    @property
+    def reaction_ns(self) -> int:
+        """The execution time of one reaction of its automaton [ns] (0 unless declared)."""
+        placement = self.instance.task.automaton
+        return placement.reaction_ns if placement is not None else 0
 
     @property
     def arguments(self) -> tuple[RunArgument, ...]:
@@ -195,6 +211,14 @@ class MissionPlan:
     def signals(self) -> dict[str, str]:
         """Every TCS event signal -> automaton input."""
         return {signal: name for site in self.sites for signal, name in site.events.items()}
+
+    @property
+    def processor_names(self) -> tuple[str, ...]:
+        """Every processor of the run: the Module-Tasks', then the automata's, first-seen
+        order."""
+        names = [task.processor for task in self.tcs.module_tasks]
+        names += [site.automaton_processor for site in self.sites]
+        return tuple(dict.fromkeys(names))
 
     def run_horizon_s(self, default_s: float) -> float:
         """The default simulated-time limit [s]: ``default_s``, or longer when a robot type

@@ -156,6 +156,7 @@ class MissionRun:
         self.exceptions: list[ExceptionRecord] = []
         self.outputs: list[tuple[int, str, Any]] = []
         self._stopped_by: str | None = None
+        self._route_signals()
         self._schedule_inputs(injections)
 
     def add_observer(self, observer: Any) -> None:
@@ -205,10 +206,28 @@ class MissionRun:
 
     # -- signals into the automaton ----------------------------------------------------------
 
+    def _route_signals(self) -> None:
+        """Each site's observer signals go to its automaton's processor: over the bus from
+        another processor, then through a reaction of the declared time there
+        (:mod:`orccad_app.executive.reaction`)."""
+        servers = {}
+        for site in self.plan.sites:
+            key = (site.automaton_processor, site.reaction_ns)
+            if key not in servers:
+                servers[key] = self.sim.reaction_server(*key, self._react_to)
+            for signal in site.events:
+                observer = self.sim.tasks[signal.rsplit(".", 1)[0]].task
+                self.sim.signal_routes.add(signal, observer.processor, servers[key])
+
+    def _react_to(self, signals: list[tuple[str, Any]]) -> None:
+        for name, _ in signals:
+            self._post(self._signals[name], None)
+
     def signal(self, name: str, value: Any) -> None:
-        """An executive signal: forwarded to the automaton when it is one of its inputs."""
+        """An executive signal: forwarded to the automaton when it is one of its inputs
+        (through its route: the bus, the reaction time)."""
         target = self._signals.get(name)
-        if target is not None:
+        if target is not None and not self.sim.signal_routes.send(name, value):
             self._post(target, None)
 
     def _post(self, name: str, value: Any) -> None:
