@@ -32,6 +32,7 @@ from orccad_app.lang import ast
 from orccad_app.mission.tcs_bridge import add_instance, robot_resource
 from orccad_app.pipeline import Source, compose_mission
 from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
@@ -190,7 +191,7 @@ class MissionPlan:
     """A mission ready for :class:`~orccad_app.mission.run.MissionRun`.
 
     :param name: the mission's name.
-    :param automaton: its composed automaton.
+    :param automaton: its composed automaton (built on demand for a run).
     :param roles: the role of every signal the lowering added.
     :param sites: per ``run`` site, in site order.
     :param tcs: one TCS holding every site's Module-Tasks and the robots.
@@ -199,7 +200,7 @@ class MissionPlan:
     """
 
     name: str
-    automaton: Automaton
+    automaton: Automaton | LazyAutomaton
     roles: SignalRoles
     sites: list[SiteModules]
     tcs: TCS
@@ -335,6 +336,6 @@ def _reaction_tick_ns(tcs: TCS, mission: ast.Mission) -> int:
 
 def plan_mission(source: Source, mission: ast.Mission) -> MissionPlan:
     """Compose ``mission`` of ``source`` and plan it with the instances checked at load."""
-    composition = compose_mission(source, mission)
+    composition = compose_mission(source, mission, lazy=True)
     instances = {site.number: source.instance(site.stmt) for site in composition.sites}
     return plan_composition(composition, instances)

@@ -293,24 +293,25 @@ class MissionRun:
         self._reacted_at = now
         reactor = self.reactor
         try:
-            reaction = reactor.react(inputs, now)
+            step = reactor.step(inputs, now)  # the lean path: the leaf's precomputed result
         except OrccadError as error:
             raise ReactionError(error.message, error.location, error.notes) from None
         for hook in self._on_reaction:
-            hook(now, tuple(pending), reaction.outputs, reaction.status)
-        if not reaction.outputs and reactor.state == self._state and not reactor.finished:
+            hook(now, tuple(pending), step.outputs, reactor.status)
+        if not step.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
-        emitted = set(reaction.outputs)
-        for name in reaction.outputs:
+        emitted = set(step.outputs)
+        values = reactor.values(step) if step.valued else {}
+        for name in step.outputs:
             if name in self._outputs:
-                self.outputs.append((now, name, reaction.values.get(name)))
-        raised = self._exceptions(now, reaction.outputs)
+                self.outputs.append((now, name, values.get(name)))
+        raised = self._exceptions(now, step.outputs)
         if self.reactor.state != self._state:
             self._state = self.reactor.state
             phases = self._phases()
         else:
             phases = self._phase
-        self._update_sites(now, emitted, raised, phases, reaction.values)
+        self._update_sites(now, emitted, raised, phases, values)
         if self.reactor.finished:
             self.kernel.stop()
 
