@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import shutil
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
