@@ -8,6 +8,8 @@ Robot-Tasks and parameters in ``run``, and ``catch`` of an exception nothing can
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.walk import nodes, runs
@@ -25,6 +27,15 @@ UNIT_LOOKALIKES = frozenset({
     "nanos", "S", "MS", "US", "NS", "Ms", "Us", "Ns", "ps", "µs"})
 
 
+@dataclass(frozen=True)
+class _VarUse:
+    """One access to a variable: its declaration, whether it assigns it, where."""
+
+    decl: object
+    write: bool
+    loc: SourceLocation
+
+
 class MissionChecker:
     """Checks the statements of one mission; results accumulate in the attributes.
 
@@ -39,6 +50,7 @@ class MissionChecker:
         self.name_kinds: dict[ast.Name, NameKind] = {}
         self.condition_kinds: dict[ast.Expr, ConditionKind] = {}
         self.traps: list[str] = []
+        self._var_uses: list[_VarUse] = []  # every variable access, in traversal order
 
     def error(self, message: str, location: SourceLocation, **kwargs) -> None:
         self.problems.error(message, location, **kwargs)
@@ -94,6 +106,7 @@ class MissionChecker:
                        "last value", name.loc)
         else:
             self.name_kinds[name] = NameKind.VARIABLE
+            self._var_uses.append(_VarUse(binding.decl, False, name.loc))
 
     def _last_value(self, expr: ast.LastValue, scope: Scope) -> None:
         binding = scope.lookup(expr.signal)
@@ -319,7 +332,29 @@ class MissionChecker:
         return names
 
     def _par(self, stmt: ast.Par | ast.Race, scope: Scope) -> None:
-        self._blocks(scope, *stmt.branches)
+        per_branch = []
+        for branch in stmt.branches:
+            start = len(self._var_uses)
+            self.block(branch, scope)
+            per_branch.append(self._var_uses[start:])
+        self._shared_variables(per_branch)
+
+    def _shared_variables(self, per_branch: list[list[_VarUse]]) -> None:
+        """Esterel v5's rule: a variable written in one parallel branch is neither read nor
+        written in another (the branches are unordered; a signal carries values across)."""
+        reported: set[int] = set()
+        for index, uses in enumerate(per_branch):
+            for write in (u for u in uses if u.write and id(u.decl) not in reported):
+                other = next((u for j, others in enumerate(per_branch) if j != index
+                              for u in others if u.decl is write.decl), None)
+                if other is None:
+                    continue
+                reported.add(id(write.decl))
+                self.error(f"variable '{write.decl.name}' is shared by parallel branches: "
+                           f"assigned here and {'assigned' if other.write else 'read'} in "
+                           "another branch (parallel branches are unordered; pass the value "
+                           "through a signal, as in Esterel)", write.loc, previous=other.loc,
+                           what="used in the other branch")
 
     _race = _par
 
@@ -345,3 +380,5 @@ class MissionChecker:
             self.error(f"undeclared variable '{stmt.name}'", stmt.loc)
         elif binding.kind is NameKind.SIGNAL:
             self.error(f"cannot assign to signal '{stmt.name}'; use emit", stmt.loc)
+        else:
+            self._var_uses.append(_VarUse(binding.decl, True, stmt.loc))

@@ -179,3 +179,30 @@ def test_valid_statements_pass():
     }"""
     decls = "input A, Battery : float; output Alarm : string, Out : float;"
     assert messages(body, decls) == []
+
+
+SHARED = "variable 'n' is shared by parallel branches"
+
+
+@pytest.mark.parametrize("body", [
+    # found by the lazy-vs-full comparison: the read did not wait for the assignment under
+    # an undecided test (V(0) compiled, V(1) in the reference interpreter)
+    "par { loop { signal S { if not S { n := n + 1; } pause; } } } || { emit V(n + 0); }",
+    "par { n := 1; } || { n := 2; }",
+    "race { n := 1; halt; } || { if n > 0 { emit V(1); } pause; }",
+    "par { n := 1; } || { pause; } || { run Track(kp = n, q0 = [0.0, 0.0, 0.0]); }",
+])
+def test_a_variable_assigned_in_one_parallel_branch_is_not_used_in_another(body):
+    found = errors(body, "output V : int; var n := 0;", tasks=True)
+    assert [m for m, _, _ in found if m.startswith(SHARED)] and len(found) == 1, found
+
+
+@pytest.mark.parametrize("body", [
+    "par { n := n + 1; emit V(n); } || { pause; }",       # one branch: sequential
+    "par { emit V(n); } || { emit V(n); }",               # reads only: nothing to order
+    "n := 1; par { emit V(n); } || { pause; } n := 2;",   # before and after the par
+    "par { var m := 0; m := 1; } || { var m := 5; emit V(m); }",  # two variables
+])
+def test_variables_that_no_two_branches_share_are_accepted(body):
+    assert not [m for m in messages(body, "output V : int combine +; var n := 0;")
+                if m.startswith(SHARED)]
