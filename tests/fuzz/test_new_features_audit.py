@@ -53,3 +53,12 @@ def test_an_argument_given_twice_is_refused_not_the_last_one_kept(tmp_path):
     for old, new, message in cases:
         path = _mission(tmp_path, "arm_retune.orc", old, new)
         _refused(run_orccad(["compile", path]), "arm_retune.orc:", message)
+
+
+def test_check_refuses_json_with_its_text_only_views():
+    # --replay and --observe printed text although --json asked for a JSON document
+    source = str(ROOT / "missions" / "false_property.orc")
+    _refused(run_orccad(["check", source, "--replay", "placed_after_approach", "--json"]),
+             "--replay prints text, not JSON")
+    _refused(run_orccad(["check", source, "--observe", "Placed", "--json"]),
+             "--observe prints text, not JSON")
