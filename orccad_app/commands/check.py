@@ -56,6 +56,7 @@ def run(args: argparse.Namespace) -> int:
 
     refuse_overwriting(args.counterexample, args.file)
     refuse_overwriting(args.promela, args.file)
+    _refuse_json_with_text_views(args)
     source = load(args.file)
     source.print_warnings()
     missions = ([select_mission(source, args.mission)] if args.mission
@@ -196,6 +197,17 @@ def _script_dict(source, mission, outcome) -> dict:
                      for line in script.lines],
         "script": _script_text(source, mission, outcome),
     }
+
+
+def _refuse_json_with_text_views(args: argparse.Namespace) -> None:
+    """``--replay`` and ``--observe`` print text: with ``--json`` the output would not parse."""
+    from orccad_app.diagnostics import OrccadError
+
+    hints = {"--replay": " (without --replay, --json gives each counterexample with its "
+                         "instants)", "--observe": ""}
+    for flag, value in (("--replay", args.replay), ("--observe", args.observe)):
+        if args.json and value is not None:
+            raise OrccadError(f"{flag} prints text, not JSON: drop --json{hints[flag]}")
 
 
 def _replay(source, missions, args) -> int:

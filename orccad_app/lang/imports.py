@@ -100,6 +100,9 @@ class _Resolver:
         return replace(program, library=tuple(merger.items))
 
     def _load(self, imp: ast.Import, importer: str, chain: tuple[str, ...]) -> ast.Program:
+        if "\0" in imp.path:
+            raise OrccadError(f'cannot import "{imp.path!r}": a file name cannot contain a NUL '
+                              "character", imp.path_loc)
         path = os.path.normpath(os.path.join(os.path.dirname(importer), imp.path))
         key = _key(path)
         if key in chain:

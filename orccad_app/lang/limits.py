@@ -44,7 +44,8 @@ MAX_TREE_DEPTH = 4_000
 _UNIT_NS = {"s": 10**9, "ms": 10**6, "us": 10**3, "ns": 1}
 #: Rules whose DURATION must be at least MIN_PERIOD_NS, with the word for the message.
 _AT_LEAST_PERIOD = {"clause_period": "a Module-Task period", "rt_duration":
-                    "a Robot-Task's nominal duration"}
+                    "a Robot-Task's nominal duration", "clause_sporadic":
+                    "a sporadic Module-Task's minimum inter-arrival time"}
 
 
 #: Python recursion limit while a program is processed: the passes recurse over the AST, and

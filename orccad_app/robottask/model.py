@@ -25,7 +25,7 @@ from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.lang.walk import runs
 from orccad_app.robottask.updates import UpdateForm, compute, update_form
-from orccad_app.robottask.values import call_form, evaluate, task_arguments
+from orccad_app.robottask.values import call_form, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 from orccad_app.tcs.phasing import Activation
 
@@ -153,9 +153,9 @@ def _declared_modules(task: ast.RobotTask, params: dict, context, host) -> dict[
     for m in task.modules:
         try:
             kind = host.module_kind(m.kind)
-            values = {a.name: evaluate(a.value, params) for a in m.args}
             if any(a.name is None for a in m.args):
                 raise OrccadError(f"arguments of module kind '{m.kind}' must be named", m.loc)
+            values = call_form(ast.Call(func=m.kind, args=m.args), params)[1]
             instance = kind.create(values, context)
             default = kind.default_timing
             if m.min_interarrival_ns is not None and m.period_ns is not None:

@@ -74,6 +74,8 @@ def call_form(call: ast.Call, env: Mapping[str, Any]) -> tuple[str, dict[str, An
         if arg.name is None:
             raise OrccadError(f"arguments of '{call.func}' must be named (name = value)",
                               arg.loc)
+        if arg.name in args:
+            raise OrccadError(f"argument '{arg.name}' of '{call.func}' is given twice", arg.loc)
         args[arg.name] = evaluate(arg.value, env)
     return call.func, args
 
