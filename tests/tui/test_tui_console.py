@@ -227,7 +227,7 @@ async def test_browser_search_preview_and_empty_state(tmp_path, monkeypatch):
     async with app.run_test(size=SIZE) as pilot:
         screen = app.screen
         await pilot.press("slash")
-        await pilot.press(*"auv")
+        await pilot.press(*"survey")  # auv_survey.orc, not auv_waypoints.orc
         await pilot.pause()
         names = [item.name for item in screen.query("#files ListItem")]
         assert names == ["missions/auv_survey.orc"]
