@@ -36,6 +36,8 @@ from orccad_app.plugin_host.host import PluginHost
 MISSION = Path(__file__).resolve().parents[1] / "missions" / "arm_pid.orc"
 DURATION_S = 4.0
 TARGET = 3.0
+CLOCK = time.perf_counter
+"""The clock of the timings (bench_executive.py may set ``time.process_time``)."""
 
 
 
@@ -46,9 +48,9 @@ def _host() -> PluginHost:
 
 def run_executive(plan) -> tuple[float, float]:
     """(wall time [s], RMS tracking error [rad]) of one executive run."""
-    start = time.perf_counter()
+    start = CLOCK()
     result = MissionRun(plan).run()
-    wall = time.perf_counter() - start
+    wall = CLOCK() - start
     assert result.status == "done", (result.status, result.reason)
     return wall, result.rms_error()
 
@@ -69,7 +71,7 @@ def run_bare(host) -> tuple[float, float]:
     steps = int(round(DURATION_S / model.opt.timestep))
     low, high = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
     sum_sq = 0.0
-    start = time.perf_counter()
+    start = CLOCK()
     for k in range(steps):
         t = k * model.opt.timestep
         q, qdot = data.qpos.copy(), data.qvel.copy()
@@ -77,7 +79,7 @@ def run_bare(host) -> tuple[float, float]:
         data.ctrl[:] = np.clip(out.tau, low, high)
         mujoco.mj_step(model, data)
         sum_sq += float(np.dot(out.e, out.e))
-    wall = time.perf_counter() - start
+    wall = CLOCK() - start
     return wall, math.sqrt(sum_sq / (3 * steps))
 
 

@@ -7,6 +7,8 @@
 // - low battery (BatteryLow): end the survey and surface; Recover then raises BatteryLow again
 //   at the surface, so the mission ends 'failed' with that reason, the vehicle safe;
 // - a leak or the depth limit (type 3): the mission is aborted and 'on fatal' surfaces at once.
+from "lib/surfacing.orc" import Surfacing;  // Surface (to depth 0 m): lib/surfacing.orc
+
 robot auv : auv;
 
 output SurveyEnded;
@@ -77,20 +79,6 @@ robottask Survey(depth: float = 15.0) on auv {
     exception AltitudeLow from altitude_low(min = 5.0) : abort;
 }
 
-// Surfacing has no exception: it is what every recovery path ends with.
-robottask Surface() on auv {
-    module guide : depth_guidance(depth = 0.0) period 100 ms wcet 1 ms on cpu0 priority 2;
-    module pilot : auv_autopilot period 50 ms wcet 1 ms on cpu0 priority 1;
-    connect auv.position  -> guide.position;
-    connect auv.attitude  -> guide.attitude;
-    connect guide.setpoint -> pilot.setpoint;
-    connect auv.depth     -> pilot.depth;
-    connect auv.attitude  -> pilot.attitude;
-    connect auv.velocity  -> pilot.velocity;
-    connect pilot.tau     -> auv.tau;
-    postcondition measure at_waypoint(tol = 0.3);
-}
-
 mission AuvSurvey {
     run StationKeep();                                // launch
     try {
@@ -106,10 +94,10 @@ mission AuvSurvey {
     } catch BatteryLow, AltitudeLow {
         nothing;                                      // end the survey: surface below
     }
-    run Surface();
+    run mission Surfacing;
     run StationKeep(x = 50.0, y = 20.0);              // recover (fails if the battery is low)
     on fatal {
-        run Surface();
+        run mission Surfacing;
     }
 }
 

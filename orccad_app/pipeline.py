@@ -17,6 +17,7 @@ from orccad_app.lang.names import check
 from orccad_app.lang.parser import parse
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.application import ABSTRACT, COMPOSED, AbstractApplicationLowerer
 from orccad_app.robottask.composition import Composition, compose
@@ -83,14 +84,15 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path, host: PluginHost | None = None) -> Source:
-    """Read, parse and check ``path``; errors are :class:`OrccadError` with locations.
+def load(path: str | Path, host: PluginHost | None = None, text: str | None = None) -> Source:
+    """Read, parse and check ``path`` (or ``text``, an edited version of it: its imports are
+    still resolved from ``path``'s folder); errors are :class:`OrccadError` with locations.
 
     The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
     declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
     their failures printed once on stderr."""
     path = str(path)
-    text = read_source(path)
+    text = read_source(path) if text is None else text
     program, imported = resolve_imports(parse(text, path), read_source)
     result = check(program)
     instances = None
@@ -178,8 +180,10 @@ def require_missions(source: Source) -> tuple[ast.Mission, ...]:
 
 
 def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSED,
-                    max_states: int = DEFAULT_MAX_STATES) -> Automaton:
-    """The minimized automaton of ``mission``.
+                    max_states: int = DEFAULT_MAX_STATES,
+                    lazy: bool = False) -> Automaton | LazyAutomaton:
+    """The minimized automaton of ``mission`` (with ``lazy``: built as it runs, see
+    :mod:`orccad_app.reactive.lazy`).
 
     ``view`` is ``composed`` (the application automaton with the RTAs of its Robot-Tasks
     inlined: what is checked and run) or ``abstract`` (Robot-Tasks seen through their start
@@ -187,12 +191,14 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
     """
     if view == ABSTRACT:
         program = lower_mission(source.program, mission, AbstractApplicationLowerer)
+        if lazy:
+            return LazyAutomaton(program, max_states=max_states)
         return compile_program(program, max_states=max_states)
-    return compose_mission(source, mission, max_states=max_states).automaton
+    return compose_mission(source, mission, max_states=max_states, lazy=lazy).automaton
 
 
 def compose_mission(source: Source, mission: ast.Mission, *,
-                    max_states: int = DEFAULT_MAX_STATES) -> Composition:
+                    max_states: int = DEFAULT_MAX_STATES, lazy: bool = False) -> Composition:
     """The composed automaton of ``mission`` with its ``run`` sites and signal roles (what the
-    checker and the mission layer start from)."""
-    return compose(source.program, mission, max_states=max_states)
+    checker and the mission layer start from); ``lazy`` for a run (states built on demand)."""
+    return compose(source.program, mission, max_states=max_states, lazy=lazy)

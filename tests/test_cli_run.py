@@ -59,7 +59,9 @@ def test_run_arm_pid_json_is_done_with_every_figure(pid_report):
     assert (ctrl["processor"], ctrl["period_s"], ctrl["wcet_s"], ctrl["jobs"]) == \
         ("cpu0", 0.001, 0.0003, 4000)
     assert report["processors"]["cpu0"]["load"] == pytest.approx(0.45)
-    assert report["bus"] == {"messages": 0, "busy_ratio": 0.0}
+    assert (report["bus"]["messages"], report["bus"]["busy_ratio"]) == (0, 0.0)
+    assert report["bus"]["classes"]["event"] == {"messages": 0, "queued_mean_s": 0.0,
+                                                 "queued_max_s": 0.0}
     assert report["exceptions"] == []
     assert report["wall_time_s"] > 0
 

@@ -74,7 +74,7 @@ class CompiledMission:
         self.mission = select_mission(self.source, mission)
         self.name = self.mission.name
         self.digest = self.source.digest  # the file's and its imports' texts
-        self.composition = compose_mission(self.source, self.mission)
+        self.composition = compose_mission(self.source, self.mission, lazy=True)
 
     def plan(self, setting: RunSetting) -> Any:
         """The mission's plan with ``setting``'s overrides."""

@@ -1,5 +1,5 @@
 """``orccad check FILE [--mission M] [--observe S1,S2,…] [--counterexample OUT] [--promela OUT]
-[--replay PROPERTY]``.
+[--replay PROPERTY] [--json]``.
 
 Parses and checks the file, compiles each mission (or the one named) in the composed view,
 then proves the built-in properties and every ``property`` that applies to it (see
@@ -9,7 +9,9 @@ then proves the built-in properties and every ``property`` that applies to it (s
 input. ``--replay PROPERTY`` prints that property's counterexample instant by instant (inputs,
 outputs, the statements the mission waits at, the instant where it fails) and, with
 ``--counterexample OUT``, writes its script for ``orccad run --inject-from OUT``. Signal properties (Signal Temporal Logic) are listed as not proved: ``orccad run``
-and campaigns judge them; they do not change the exit status.
+and campaigns judge them; they do not change the exit status. ``--json`` prints the verdicts
+as one object instead (each counterexample with its instants and the sub-mission instances
+the mission is in after each).
 """
 
 from __future__ import annotations
@@ -43,13 +45,14 @@ def register(sub) -> None:
                              "outputs, where the mission waits, where it fails); with "
                              "--counterexample OUT, write its script (for orccad run "
                              "--inject-from OUT)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the verdicts and counterexamples as one JSON object")
     add_max_states(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, require_missions, select_mission
-    from orccad_app.verify.checker import check_mission
 
     refuse_overwriting(args.counterexample, args.file)
     refuse_overwriting(args.promela, args.file)
@@ -62,12 +65,16 @@ def run(args: argparse.Namespace) -> int:
     if args.replay is not None:
         return _replay(source, missions, args)
     failed, written, unproved = 0, False, 0
+    reports = []
     for mission in missions:
-        report = check_mission(source.program, mission, max_states=args.max_states)
+        report = _checked(source, mission, args.max_states)
         unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
-        _print_report(source, report, len(missions) > 1)
+        if args.json:
+            reports.append(report)
+        else:
+            _print_report(source, report, len(missions) > 1)
         for outcome in report.outcomes:
             if not outcome.holds:
                 failed += 1
@@ -75,12 +82,55 @@ def run(args: argparse.Namespace) -> int:
                     emit_text(_script_text(source, mission, outcome).rstrip("\n"),
                               args.counterexample)
                     written = True
+    if args.json:
+        from orccad_app.jsonout import dumps
+        print(dumps({"file": source.path, "missions": [_report_dict(source, r) for r in reports],
+                     "failed": failed, "holds": not failed}, indent=2))
+        return 1 if failed else 0
     total = len(missions)
     left = (f"; {unproved} signal propert{'ies' if unproved > 1 else 'y'} left to runs"
             if unproved else "")
     print(f"{'all properties hold' if not failed else f'{failed} failed'} "
           f"({total} mission{'s' if total > 1 else ''}{left})")
     return 1 if failed else 0
+
+
+#: Wall time [s] a check runs before its progress line appears, and between two updates.
+PROGRESS_DELAY_S, PROGRESS_INTERVAL_S = 1.0, 0.5
+
+
+class _Progress:
+    """``check`` on a terminal past a second: states explored, then properties done, on one
+    line of stderr erased before the mission's report."""
+
+    def __init__(self, mission: str) -> None:
+        from orccad_app.mission.progress import StatusLine
+
+        self.mission = mission
+        self.line = StatusLine(sys.stderr, delay_s=PROGRESS_DELAY_S,
+                               interval_s=PROGRESS_INTERVAL_S)
+
+    def states(self, explored: int) -> None:
+        if self.line.due():
+            self.line.show(f"checking {self.mission}: compiling, {explored} states explored")
+
+    def properties(self, done: int, total: int) -> None:
+        if self.line.due():
+            self.line.show(f"checking {self.mission}: {done} of {total} properties done")
+
+
+def _checked(source, mission, max_states: int):
+    """The report of ``mission``, with a progress line when stderr is a terminal."""
+    from orccad_app.verify.checker import check_mission
+
+    if not sys.stderr.isatty():  # never in a pipe or a file
+        return check_mission(source.program, mission, max_states=max_states)
+    progress = _Progress(mission.name)
+    try:
+        return check_mission(source.program, mission, max_states=max_states,
+                             progress=progress)
+    finally:
+        progress.line.close()
 
 
 def _replay_command(source, mission) -> str:
@@ -114,6 +164,38 @@ def _print_report(source, report, several: bool) -> None:
     for prop in report.signal_properties:
         print(f"  --    signal property {prop.name}: not proved (Signal Temporal Logic); "
               "judged on runs and campaigns")
+
+
+def _report_dict(source, report) -> dict:
+    """One mission's verdicts, JSON-ready (no timings: the same input gives the same text)."""
+    model, automaton = report.model, report.composition.automaton
+    mission = report.composition.mission
+    return {
+        "mission": report.composition.name,
+        "automaton_states": automaton.state_count,
+        "model_states": len(model.states),
+        "model_steps": model.step_count,
+        "counters_exact": model.exact,
+        "outcomes": [{"kind": o.kind, "name": o.name, "holds": o.holds, "message": o.message,
+                      "counterexample": None if o.holds or o.script is None else
+                      _script_dict(source, mission, o)} for o in report.outcomes],
+        "signal_properties": [p.name for p in report.signal_properties],
+    }
+
+
+def _script_dict(source, mission, outcome) -> dict:
+    script = outcome.script
+    return {
+        "replay": _replay_command(source, mission),
+        "note": script.note or None,
+        "replayed": script.replayed,
+        "loop_start": script.loop_start,
+        "instants": [{"time_s": None if line.time_ns is None else line.time_ns / 1e9,
+                      "inputs": dict(line.inputs),
+                      "inside": [where.to_dict() for where in line.inside]}
+                     for line in script.lines],
+        "script": _script_text(source, mission, outcome),
+    }
 
 
 def _replay(source, missions, args) -> int:

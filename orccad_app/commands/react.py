@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     view = COMPOSED if args.composed else ABSTRACT
     automaton = compile_mission(source, select_mission(source, args.mission), view=view,
-                                max_states=args.max_states)
+                                max_states=args.max_states, lazy=True)
     text, name = _read_script(args.inputs)
     instants = parse_script(text, name, automaton.inputs)
     timed = any(i.time_ns is not None for i in instants)

@@ -6,6 +6,7 @@
                     [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
                     [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
+                    [--foxglove] [--foxglove-port PORT] [--foxglove-wait S]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
 The mission's automaton (application + RTAs) runs in the loop with the Module-Tasks of its
@@ -22,6 +23,7 @@ written); 2 on bad input; 130 on Ctrl-C (the trace stays valid, the report is pr
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
@@ -67,6 +69,16 @@ def register(sub) -> None:
                              "[0.001, 1000], default 1) and report lateness")
     parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    parser.add_argument("--foxglove", action="store_true",
+                        help="stream the run live to Foxglove over its WebSocket protocol on "
+                             "127.0.0.1 (the MCAP trace's topics; paced at real time unless "
+                             "--realtime says otherwise; needs pip install -e '.[foxglove]')")
+    parser.add_argument("--foxglove-port", type=bounded_int(0, 65535), default=None,
+                        metavar="PORT", help="the --foxglove server's port (default 8765; 0 "
+                                             "picks a free one)")
+    parser.add_argument("--foxglove-wait", type=_wall_seconds, default=None, metavar="S",
+                        help="with --foxglove, wait at most S wall seconds for Foxglove to "
+                             "subscribe before the run starts (default 60; 0 starts at once)")
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
     parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
@@ -74,6 +86,17 @@ def register(sub) -> None:
     parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
     parser.set_defaults(func=run)
+
+
+def _wall_seconds(text: str) -> float:
+    """A wall-clock wait [s]: finite, in [0, 3600]."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 <= value <= 3600:  # NaN fails too
+        raise argparse.ArgumentTypeError(f"expected seconds in [0, 3600], got {text!r}")
+    return value
 
 
 def _file_after_injections(args: argparse.Namespace) -> str:
@@ -138,11 +161,29 @@ def _scripted(path: str, plan) -> list:
     return script_injections(instants, plan.tick_ns)
 
 
+def _foxglove(args: argparse.Namespace, mission: str, plan):
+    """The live stream of ``--foxglove`` (its URL said on standard error)."""
+    from orccad_app.trace import sensor_ports
+    from orccad_app.trace.foxglove_live import DEFAULT_PORT, open_foxglove
+
+    port = DEFAULT_PORT if args.foxglove_port is None else args.foxglove_port
+    live = open_foxglove(port, {"mission": mission, "file": args.file, "seed": str(args.seed)},
+                         sensor_ports(plan))
+    wait_s = 60.0 if args.foxglove_wait is None else args.foxglove_wait
+    print(f"orccad: streaming to Foxglove on {live.url} (in Foxglove: Open connection, "
+          "Foxglove WebSocket)" + (f"; the run starts when Foxglove subscribes (at most "
+                                   f"{wait_s:g} s from now)" if wait_s > 0 else ""),
+          file=sys.stderr, flush=True)
+    if wait_s > 0 and not live.wait_for_client(wait_s):
+        print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
+    return live
+
+
 def _processors(plan, args: argparse.Namespace) -> list:
     from orccad_app.executive.processor import Processor
 
-    names = dict.fromkeys(task.processor for task in plan.tcs.module_tasks)
-    return [Processor(name, args.scheduler, args.context_switch_us * 1000) for name in names]
+    return [Processor(name, args.scheduler, args.context_switch_us * 1000)
+            for name in plan.processor_names]
 
 
 def run(args: argparse.Namespace) -> int:
@@ -157,6 +198,13 @@ def run(args: argparse.Namespace) -> int:
                                   report_dict, sensor_ports)
 
     _file_after_injections(args)
+    if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
+    if args.foxglove:  # before the run is planned: a missing extra is said at once
+        from orccad_app.trace.foxglove_live import require_foxglove
+
+        require_foxglove()
     injections = [_injection(text) for text in args.inject]
     _warn_first_instant(injections)
     overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
@@ -177,7 +225,9 @@ def run(args: argparse.Namespace) -> int:
                   MAX_SECONDS)
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
-                             bus=Bus(transfer_ns=args.bus_us * 1000), realtime=args.realtime)
+                             bus=Bus(transfer_ns=args.bus_us * 1000),
+                             realtime=1.0 if args.foxglove and args.realtime is None
+                             else args.realtime)
     monitor = PropertyMonitor(source.program, mission, mission_run)
     progress = None
     if sys.stderr.isatty():  # a progress line on long runs, never in a pipe or a file
@@ -189,6 +239,9 @@ def run(args: argparse.Namespace) -> int:
         writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
                                          "seed": str(args.seed)}, sensor_ports(plan))
         mission_run.add_observer(TraceRecorder(writer))
+    live = _foxglove(args, mission.name, plan) if args.foxglove else None
+    if live is not None:
+        mission_run.add_observer(TraceRecorder(live))
     try:
         try:
             result = mission_run.run()
@@ -197,6 +250,8 @@ def run(args: argparse.Namespace) -> int:
                 progress.close()
             if writer is not None:
                 writer.close()
+            if live is not None:
+                live.close()
     except OSError as error:  # the trace's disk is full or gone
         if not args.trace:
             raise

@@ -1,7 +1,8 @@
 """The shared bus between processors: per-message transfer time, FIFO contention.
 
 One message is on the bus at a time; others wait in FIFO order. A message occupies the bus for
-``transfer_ns`` (data and reply messages) or ``request_ns`` (requests of the pull protocols),
+``transfer_ns`` (data, reply and event messages) or ``request_ns`` (requests of the pull
+protocols),
 then is delivered: its callback runs in an event of class ``DELIVERY``, so a value delivered at
 ``t`` is visible to reads at ``t``.
 """
@@ -27,12 +28,15 @@ _DELIVERY = EventClass.DELIVERY
 class BusStats:
     """Counters of the bus.
 
-    :param messages: messages delivered (``data`` + ``request`` + ``reply``).
-    :param by_kind: messages delivered per kind.
+    :param messages: messages delivered (``data`` + ``request`` + ``reply`` + ``event``: a
+        signal to an automaton, :mod:`orccad_app.executive.reaction`).
+    :param by_kind: messages delivered per kind (``event`` from the first one).
     :param busy_ns: time spent transferring [ns] (up to the last ``close``).
     :param queued_ns: total time messages waited for the bus [ns].
     :param max_queued_ns: longest wait [ns].
     :param elapsed_ns: simulated time covered [ns].
+    :param queued_by_kind: total wait per message kind [ns].
+    :param max_queued_by_kind: longest wait per message kind [ns].
     """
 
     messages: int = 0
@@ -41,6 +45,23 @@ class BusStats:
     queued_ns: int = 0
     max_queued_ns: int = 0
     elapsed_ns: int = 0
+    queued_by_kind: dict[str, int] = field(default_factory=dict)
+    max_queued_by_kind: dict[str, int] = field(default_factory=dict)
+
+    def by_class(self) -> dict[str, dict[str, float]]:
+        """Per message class — ``port_data`` (data, request and reply messages of the
+        connections) and ``event`` (signals to an automaton) — ``messages``, ``queued_mean_ns``
+        and ``queued_max_ns`` (the wait for the bus)."""
+        classes = {"port_data": ("data", "request", "reply"), "event": ("event",)}
+        found = {}
+        for name, kinds in classes.items():
+            count = sum(self.by_kind.get(k, 0) for k in kinds)
+            queued = sum(self.queued_by_kind.get(k, 0) for k in kinds)
+            found[name] = {"messages": count,
+                           "queued_mean_ns": queued / count if count else 0.0,
+                           "queued_max_ns": max(self.max_queued_by_kind.get(k, 0)
+                                                for k in kinds)}
+        return found
 
     @property
     def busy_ratio(self) -> float:
@@ -71,7 +92,10 @@ class Bus:
         self.name = name
         self.transfer_ns = transfer_ns
         self.request_ns = transfer_ns if request_ns is None else request_ns
-        self.stats = BusStats(by_kind={"data": 0, "request": 0, "reply": 0})
+        kinds = ("data", "request", "reply")  # and "event", counted from the first one
+        self.stats = BusStats(by_kind=dict.fromkeys(kinds, 0),
+                              queued_by_kind=dict.fromkeys(kinds, 0),
+                              max_queued_by_kind=dict.fromkeys(kinds, 0))
         self._queue: deque[list[Any]] = deque()
         self._busy = False
         self._transfer_start = 0
@@ -109,11 +133,14 @@ class Bus:
         _, kind, label, payload, then, queued = message
         stats = self.stats
         stats.messages += 1
-        stats.by_kind[kind] += 1
+        stats.by_kind[kind] = stats.by_kind.get(kind, 0) + 1
         stats.busy_ns += self._kernel.now - self._transfer_start
         stats.queued_ns += queued
         if queued > stats.max_queued_ns:
             stats.max_queued_ns = queued
+        stats.queued_by_kind[kind] = stats.queued_by_kind.get(kind, 0) + queued
+        if queued > stats.max_queued_by_kind.get(kind, 0):
+            stats.max_queued_by_kind[kind] = queued
         self._busy = False
         if self._queue:
             self._start(self._queue.popleft())

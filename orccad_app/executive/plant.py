@@ -61,6 +61,8 @@ _WATCHED_INDEX = np.array([int(w) for w in _WATCHED_WARNINGS])
 _WATCHED_SLICE = slice(int(_WATCHED_INDEX.min()), int(_WATCHED_INDEX.max()) + 1)
 if _WATCHED_SLICE.stop - _WATCHED_SLICE.start != len(_WATCHED_INDEX):  # not contiguous
     _WATCHED_SLICE = slice(0, None)
+_NOISE_BLOCK = 256
+"""Sensor noise samples drawn at once per port (see ``MujocoPlant._noise_draw``)."""
 _clip = np.clip if not hasattr(np, "_core") else getattr(np._core.umath, "clip", np.clip)
 """``np.clip``'s ufunc without its Python wrapper (same operation)."""
 
@@ -125,6 +127,7 @@ class MujocoPlant:
         self.data = mujoco.MjData(self.model)
         # views into MuJoCo's arrays (the same memory for the life of ``data``)
         self._qpos, self._qvel, self._ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
+        self._option = self.model.opt
         self._warning_view = self.data.warning.number[_WATCHED_SLICE]
         self.name = name
         self.timestep_ns = int(round(self.model.opt.timestep * 1e9))
@@ -152,6 +155,8 @@ class MujocoPlant:
         self._kernel: Kernel  # set by attach(), before the run
         self._attached = False
         self._streams: dict[str, np.random.Generator] = {}
+        self._noise_blocks: dict[str, list] = {}
+        """Per noisy port: [noise block, next index, its std, the standard normals]."""
         self._warnings = self._warning_counts()
         self._warning_total = sum(self._warning_view.tolist())
         self._messages_seen = len(_MUJOCO_WARNINGS)
@@ -315,7 +320,7 @@ class MujocoPlant:
 
     def _partial(self, duration_ns: int) -> None:
         """One step shorter than the timestep."""
-        option = self.model.opt
+        option = self._option
         full = option.timestep
         option.timestep = duration_ns / 1e9
         hold = self._holding()
@@ -362,14 +367,30 @@ class MujocoPlant:
         value = self._readers[port]()
         std = self._noise.get(port)
         if std:
-            stream = self._streams.get(port)
-            if stream is None:
-                stream = self._streams[port] = self._kernel.stream(f"plant/{self.name}/{port}")
-            value += stream.normal(0.0, std, value.shape)
+            value += self._noise_draw(port, std, value.shape)
         quantum = self._quantum.get(port)
         if quantum:
             value = np.round(value / quantum) * quantum
         return value
+
+    def _noise_draw(self, port: str, std: float, shape: tuple[int, ...]) -> np.ndarray:
+        """``stream.normal(0.0, std, shape)`` of the port's stream, drawn :data:`_NOISE_BLOCK`
+        samples at a time: ``Generator.normal`` computes ``loc + scale * z`` over the stream's
+        standard normals ``z`` in order, and so does this from a block of
+        ``standard_normal`` (the same draws), so the noise is bit-identical."""
+        size = math.prod(shape)
+        block = self._noise_blocks.get(port)
+        if block is None or block[1] + size > block[0].size or block[2] != std:
+            stream = self._streams.get(port)
+            if stream is None:
+                stream = self._streams[port] = self._kernel.stream(f"plant/{self.name}/{port}")
+            rest = block[3][block[1]:] if block is not None else np.empty(0)
+            raw = np.concatenate([rest, stream.standard_normal(_NOISE_BLOCK * max(size, 1))])
+            block = [np.add(0.0, np.multiply(std, raw)), 0, std, raw]
+            self._noise_blocks[port] = block
+        start = block[1]
+        block[1] = start + size
+        return block[0][start:start + size].reshape(shape)
 
     def observe(self, port: str) -> np.ndarray:
         """The true value of ``port`` now, for monitors (signal properties): no noise, no

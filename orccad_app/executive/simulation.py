@@ -33,6 +33,7 @@ from orccad_app.executive.job import Job, TaskStats
 from orccad_app.executive.kernel import EventClass, Kernel
 from orccad_app.executive.observer import Observer
 from orccad_app.executive.processor import Processor, ProcessorStats
+from orccad_app.executive.reaction import Deliver, ReactionServer, SignalRoutes
 from orccad_app.executive.sporadic import SporadicStats, sporadic_releases
 from orccad_app.executive.task_runtime import ModuleTaskRuntime
 from orccad_app.tcs.graph import TCS
@@ -64,6 +65,7 @@ class RunStats:
     :param processors: per processor.
     :param bus: the bus's, if any connection crosses it.
     :param sporadic: per sporadic Module-Task, its interrupts and releases.
+    :param reactions: per automaton reaction server (``automaton@cpu0``), its reactions.
     """
 
     time_ns: int
@@ -72,6 +74,7 @@ class RunStats:
     processors: dict[str, ProcessorStats]
     bus: BusStats | None
     sporadic: dict[str, SporadicStats] = field(default_factory=dict)
+    reactions: dict[str, TaskStats] = field(default_factory=dict)
 
 
 class Simulation:
@@ -103,6 +106,11 @@ class Simulation:
                                                    self.processors[task.processor])
                       for task in tcs.module_tasks}
         self.channels: dict[str, Channel] = {}
+        self._bus_attached = False
+        self.reactions: dict[str, ReactionServer] = {}
+        """Automata's reaction servers by name (``automaton@cpu0``)."""
+        self.signal_routes = SignalRoutes(self.bus_for_transfer)
+        """Where observers' signals go (filled by the mission layer)."""
         self._drivers: dict[str, list[ActuatorChannel]] = {}
         """Per plant, the channels writing its actuators (idle when no producer is active)."""
         self.lateness_max_s = 0.0
@@ -185,12 +193,30 @@ class Simulation:
         initial = in_port.initial if in_port.initial is not None else out_port.initial_value()
         bus = None
         if producer.processor != consumer.processor:
-            if self.bus is None:
-                self.bus = Bus()
-            bus = self.bus
-            bus.attach(self.kernel, self.hooks)
+            bus = self.bus_for_transfer()
         return make_channel(connection, self.tasks[producer.name], self.tasks[consumer.name],
                             initial, bus)
+
+    def bus_for_transfer(self) -> Bus:
+        """The bus between processors (a zero-time one made on first use), attached."""
+        if self.bus is None:
+            self.bus = Bus()
+        if not self._bus_attached:
+            self.bus.attach(self.kernel, self.hooks)
+            self._bus_attached = True
+        return self.bus
+
+    def reaction_server(self, processor: str, reaction_ns: int,
+                        deliver: Deliver) -> ReactionServer:
+        """The reactions of an automaton on ``processor``, each taking ``reaction_ns``
+        (:mod:`orccad_app.executive.reaction`); ``deliver(signals)`` is the reaction."""
+        if processor not in self.processors:
+            self.processors[processor] = Processor(processor)
+            self.processors[processor].attach(self.kernel, self.hooks)
+        server = ReactionServer(self.context, self.processors[processor], reaction_ns,
+                                deliver)
+        self.reactions[server.name] = server
+        return server
 
     # -- observers ---------------------------------------------------------------------------
 
@@ -383,7 +409,8 @@ class Simulation:
                         {name: p.stats for name, p in self.processors.items()},
                         self.bus.stats if self.bus is not None else None,
                         {} if self.sporadic is None else
-                        {name: r.stats for name, r in self.sporadic.releases.items()})
+                        {name: r.stats for name, r in self.sporadic.releases.items()},
+                        {name: server.stats for name, server in self.reactions.items()})
 
     def check_deadlock(self, job: Job) -> None:
         """Raise :class:`~orccad_app.executive.deadlock.DeadlockError` if ``job`` closes a

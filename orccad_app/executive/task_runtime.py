@@ -141,7 +141,8 @@ class ModuleTaskRuntime:
             return
         index = self._count
         self._count += 1
-        job = Job(self, index, kernel._seq, now, now + task.deadline_ns, self._duration())
+        duration = task.wcet_ns if self._rng is None else self._duration()
+        job = Job(self, index, kernel._seq, now, now + task.deadline_ns, duration)
         self.job = job
         self.stats.released += 1
         for hook in self._hooks.on_release:
@@ -161,16 +162,20 @@ class ModuleTaskRuntime:
         reads = self.reads
         inputs = job.inputs
         on_read = self._hooks.on_read
-        while job.op < len(reads):
-            port, channel = reads[job.op]
+        op, count = job.op, len(reads)
+        while op < count:
+            port, channel = reads[op]
             value = channel.read(job)
             if value is BLOCK:
+                job.op = op
                 self._block(job, port, "read", channel)
                 return
             inputs[port] = value
-            for hook in on_read:
-                hook(self._kernel.now, self.name, port, value)
-            job.op += 1
+            if on_read:
+                now = self._kernel.now
+                for hook in on_read:
+                    hook(now, self.name, port, value)
+            op += 1
         job.phase = READY
         job.op = 0
         self.processor.make_ready(job)

@@ -49,7 +49,8 @@ from orccad_app.lang.ast_formula import (Assumption, FBinary, FBool, FCompare, F
                                          Property, SArith, SCall, SignalExpr, SNeg, SNumber,
                                          SPort, SIGNAL_FUNCTIONS, formula_nodes,
                                          is_signal_formula)
-from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust, Connect,
+from orccad_app.lang.ast_robottask import (DEFAULT_PROTOCOL, PROTOCOLS, Adjust,
+                                           AutomatonPlacement, Connect,
                                            ExceptionDecl, ExceptionType, MeasurePostcondition,
                                            MeasurePrecondition, Module, Param, PortRef,
                                            RobotTask, SignalPostcondition,
@@ -64,7 +65,7 @@ __all__ = [
     "SignalDecl", "Direction", "Robot", "Param", "Relation", "Import", "ImportedName",
     # Robot-Tasks
     "PortRef", "Module", "Connect", "SignalPrecondition", "MeasurePrecondition",
-    "ExceptionType", "Adjust", "ExceptionDecl", "MeasurePostcondition",
+    "ExceptionType", "Adjust", "AutomatonPlacement", "ExceptionDecl", "MeasurePostcondition",
     "SignalPostcondition", "RobotTask", "PROTOCOLS", "DEFAULT_PROTOCOL",
     # statements
     "Trigger", "Block", "Nothing", "Pause", "Halt", "Emit", "Sustain", "Await", "Run", "If",

@@ -9,7 +9,8 @@ from orccad_app.lang.ast_expr import Arg, Call, Expr, node
 
 __all__ = ["PROTOCOLS", "DEFAULT_PROTOCOL", "Param", "PortRef", "Module", "Connect",
            "SignalPrecondition", "MeasurePrecondition", "ExceptionType", "Adjust",
-           "ExceptionDecl", "MeasurePostcondition", "SignalPostcondition", "RobotTask"]
+           "ExceptionDecl", "MeasurePostcondition", "SignalPostcondition", "AutomatonPlacement",
+           "RobotTask"]
 
 #: Port-to-port communication protocols (docs/design.md).
 PROTOCOLS: tuple[str, ...] = (
@@ -142,6 +143,17 @@ class SignalPostcondition:
 
 
 @node
+class AutomatonPlacement:
+    """``automaton on CPU [reaction D];``: the processor the Robot-Task's behaviour automaton
+    reacts on, and the execution time of a reaction there (``reaction_ns``, 0 when omitted).
+    An observer on another processor sends its signals over the bus."""
+
+    processor: str
+    reaction_ns: int = 0
+    loc: SourceLocation = NOWHERE
+
+
+@node
 class RobotTask:
     """``robottask NAME(params) on ROBOT { ... }``, its items grouped by kind."""
 
@@ -157,6 +169,7 @@ class RobotTask:
     exceptions: tuple[ExceptionDecl, ...] = ()
     postconditions: tuple[MeasurePostcondition | SignalPostcondition, ...] = ()
     loc: SourceLocation = NOWHERE
+    automaton: AutomatonPlacement | None = None
 
     def module(self, name: str) -> Module | None:
         """The module called ``name``, or ``None``."""

@@ -23,7 +23,7 @@ UNIT_NS: dict[str, int] = {"s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns
 #: Decorator of every transformer rule method: ``method(self, meta, *children)``.
 rule = v_args(inline=True, meta=True)
 
-_SINGLE_ITEMS = ("duration", "task_function", "law")
+_SINGLE_ITEMS = ("duration", "task_function", "law", "automaton")
 
 
 def duration_to_ns(text: str, location: SourceLocation = NOWHERE) -> int:
@@ -65,6 +65,14 @@ class RobotTaskRules:
     @rule
     def rt_law(self, meta, call):
         return ("law", call, self.loc(meta))
+
+    @rule
+    def rt_automaton(self, meta, processor, reaction):
+        loc = self.loc(meta)
+        placement = ast.AutomatonPlacement(processor=str(processor),
+                                           reaction_ns=0 if reaction is None else self.ns(reaction),
+                                           loc=loc)
+        return ("automaton", placement, loc)
 
     @rule
     def rt_module(self, meta, name, kind, args, *clauses):

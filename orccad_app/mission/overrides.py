@@ -266,7 +266,7 @@ def plan_with_overrides(source: Any, mission: ast.Mission, overrides: PlanOverri
     from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import instantiate
 
-    composition = composition or compose_mission(source, mission)
+    composition = composition or compose_mission(source, mission, lazy=True)
     if not overrides:
         instances = {site.number: source.instance(site.stmt) for site in composition.sites}
         return plan_composition(composition, instances)

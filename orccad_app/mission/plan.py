@@ -32,10 +32,11 @@ from orccad_app.lang import ast
 from orccad_app.mission.tcs_bridge import add_instance, robot_resource
 from orccad_app.pipeline import Source, compose_mission
 from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import Phase
-from orccad_app.robottask.model import RobotTaskInstance
+from orccad_app.robottask.model import DEFAULT_PROCESSOR, RobotTaskInstance
 from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.robottask.updates import UpdateForm
@@ -106,6 +107,22 @@ class SiteModules:
         return self.site.task
 
     @property
+    def automaton_processor(self) -> str:
+        """The processor its behaviour automaton reacts on: declared (``automaton on P``),
+        else its first module's."""
+        placement = self.instance.task.automaton
+        if placement is not None:
+            return placement.processor
+        first = next(iter(self.instance.modules.values()), None)
+        return first.processor if first is not None else DEFAULT_PROCESSOR
+
+    @property
+    def reaction_ns(self) -> int:
+        """The execution time of one reaction of its automaton [ns] (0 unless declared)."""
+        placement = self.instance.task.automaton
+        return placement.reaction_ns if placement is not None else 0
+
+    @property
     def arguments(self) -> tuple[RunArgument, ...]:
         """The run site's run-time arguments (evaluated when the task starts)."""
         return self.site.arguments
@@ -174,7 +191,7 @@ class MissionPlan:
     """A mission ready for :class:`~orccad_app.mission.run.MissionRun`.
 
     :param name: the mission's name.
-    :param automaton: its composed automaton.
+    :param automaton: its composed automaton (built on demand for a run).
     :param roles: the role of every signal the lowering added.
     :param sites: per ``run`` site, in site order.
     :param tcs: one TCS holding every site's Module-Tasks and the robots.
@@ -183,7 +200,7 @@ class MissionPlan:
     """
 
     name: str
-    automaton: Automaton
+    automaton: Automaton | LazyAutomaton
     roles: SignalRoles
     sites: list[SiteModules]
     tcs: TCS
@@ -194,6 +211,14 @@ class MissionPlan:
     def signals(self) -> dict[str, str]:
         """Every TCS event signal -> automaton input."""
         return {signal: name for site in self.sites for signal, name in site.events.items()}
+
+    @property
+    def processor_names(self) -> tuple[str, ...]:
+        """Every processor of the run: the Module-Tasks', then the automata's, first-seen
+        order."""
+        names = [task.processor for task in self.tcs.module_tasks]
+        names += [site.automaton_processor for site in self.sites]
+        return tuple(dict.fromkeys(names))
 
     def run_horizon_s(self, default_s: float) -> float:
         """The default simulated-time limit [s]: ``default_s``, or longer when a robot type
@@ -311,6 +336,6 @@ def _reaction_tick_ns(tcs: TCS, mission: ast.Mission) -> int:
 
 def plan_mission(source: Source, mission: ast.Mission) -> MissionPlan:
     """Compose ``mission`` of ``source`` and plan it with the instances checked at load."""
-    composition = compose_mission(source, mission)
+    composition = compose_mission(source, mission, lazy=True)
     instances = {site.number: source.instance(site.stmt) for site in composition.sites}
     return plan_composition(composition, instances)

@@ -156,6 +156,7 @@ class MissionRun:
         self.exceptions: list[ExceptionRecord] = []
         self.outputs: list[tuple[int, str, Any]] = []
         self._stopped_by: str | None = None
+        self._route_signals()
         self._schedule_inputs(injections)
 
     def add_observer(self, observer: Any) -> None:
@@ -205,10 +206,28 @@ class MissionRun:
 
     # -- signals into the automaton ----------------------------------------------------------
 
+    def _route_signals(self) -> None:
+        """Each site's observer signals go to its automaton's processor: over the bus from
+        another processor, then through a reaction of the declared time there
+        (:mod:`orccad_app.executive.reaction`)."""
+        servers = {}
+        for site in self.plan.sites:
+            key = (site.automaton_processor, site.reaction_ns)
+            if key not in servers:
+                servers[key] = self.sim.reaction_server(*key, self._react_to)
+            for signal in site.events:
+                observer = self.sim.tasks[signal.rsplit(".", 1)[0]].task
+                self.sim.signal_routes.add(signal, observer.processor, servers[key])
+
+    def _react_to(self, signals: list[tuple[str, Any]]) -> None:
+        for name, _ in signals:
+            self._post(self._signals[name], None)
+
     def signal(self, name: str, value: Any) -> None:
-        """An executive signal: forwarded to the automaton when it is one of its inputs."""
+        """An executive signal: forwarded to the automaton when it is one of its inputs
+        (through its route: the bus, the reaction time)."""
         target = self._signals.get(name)
-        if target is not None:
+        if target is not None and not self.sim.signal_routes.send(name, value):
             self._post(target, None)
 
     def _post(self, name: str, value: Any) -> None:
@@ -271,24 +290,25 @@ class MissionRun:
         self._reacted_at = now
         reactor = self.reactor
         try:
-            reaction = reactor.react(inputs, now)
+            step = reactor.step(inputs, now)  # the lean path: the leaf's precomputed result
         except OrccadError as error:
             raise ReactionError(error.message, error.location, error.notes) from None
         for hook in self._on_reaction:
-            hook(now, tuple(pending), reaction.outputs, reaction.status)
-        if not reaction.outputs and reactor.state == self._state and not reactor.finished:
+            hook(now, tuple(pending), step.outputs, reactor.status)
+        if not step.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
-        emitted = set(reaction.outputs)
-        for name in reaction.outputs:
+        emitted = set(step.outputs)
+        values = reactor.values(step) if step.valued else {}
+        for name in step.outputs:
             if name in self._outputs:
-                self.outputs.append((now, name, reaction.values.get(name)))
-        raised = self._exceptions(now, reaction.outputs)
+                self.outputs.append((now, name, values.get(name)))
+        raised = self._exceptions(now, step.outputs)
         if self.reactor.state != self._state:
             self._state = self.reactor.state
             phases = self._phases()
         else:
             phases = self._phase
-        self._update_sites(now, emitted, raised, phases, reaction.values)
+        self._update_sites(now, emitted, raised, phases, values)
         if self.reactor.finished:
             self.kernel.stop()
 

@@ -18,6 +18,7 @@ budget; the result is minimized by bisimulation (:mod:`.minimize`).
 from __future__ import annotations
 
 from collections import deque
+from typing import Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
@@ -27,7 +28,7 @@ from orccad_app.reactive.engine import BOOT, Outcome, react
 from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
 
-__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL"]
+__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL", "state_budget_error"]
 
 #: Default state budget; ``orccad compile --max-states`` changes it.
 DEFAULT_MAX_STATES = 20_000
@@ -35,15 +36,15 @@ DEFAULT_MAX_STATES = 20_000
 MAX_LEAVES_PER_STATE = 200_000
 
 
-class _NeedInput(Exception):
-    def __init__(self, signal: ir.SignalDecl):
-        self.signal = signal
-
-
 class _Oracle:
-    """Answers inputs from a fixed valuation and data tests from a depth-first prefix."""
+    """Answers inputs from a valuation and data tests from a depth-first prefix.
 
-    __slots__ = ("valuation", "prefix", "asked", "answers", "relations")
+    An input not in the valuation (nor forced by a relation) is answered *present* and noted
+    in ``new``: the run is then the one of the valuation extended with those inputs present,
+    and the compiler branches on them without running it again (:meth:`_Explorer._branch`).
+    """
+
+    __slots__ = ("valuation", "prefix", "asked", "answers", "relations", "new")
 
     def __init__(self, valuation: dict, prefix: list[bool], relations=()):
         self.valuation = valuation
@@ -51,6 +52,7 @@ class _Oracle:
         self.asked: dict[int, bool] = {}
         self.answers: list[bool] = []
         self.relations = relations
+        self.new: list[ir.SignalDecl] = []
 
     def input(self, signal: ir.SignalDecl) -> bool:
         try:
@@ -59,8 +61,11 @@ class _Oracle:
             forced = _forced(signal, self.valuation, self.relations)
             if forced is not None:
                 return forced
-            raise _NeedInput(signal) from None
-
+            if not self.new:
+                self.valuation = dict(self.valuation)
+            self.new.append(signal)
+            self.valuation[signal] = True
+            return True
 
     def data(self, number: int) -> bool:
         answer = self.asked.get(number)
@@ -70,6 +75,18 @@ class _Oracle:
             self.asked[number] = answer
             self.answers.append(answer)
         return answer
+
+
+def _next_prefix(answers: list[bool]) -> list[bool] | None:
+    """The data-test prefix of the next depth-first run after one that gave ``answers``
+    (``None`` when every combination was run)."""
+    prefix = list(answers)
+    while prefix and prefix[-1] is False:
+        prefix.pop()
+    if not prefix:
+        return None
+    prefix[-1] = False
+    return prefix
 
 
 def _forced(signal: ir.SignalDecl, valuation: dict, relations) -> bool | None:
@@ -101,32 +118,46 @@ class _Explorer:
             return Leaf(TERMINAL, (), DONE)
         return self._inputs(state, {})
 
-    def _inputs(self, state, valuation: dict):
-        runs: list[Outcome] = []
-        prefix: list[bool] = []
-        while True:
-            oracle = _Oracle(valuation, prefix, self.prep.program.relations)
-            try:
-                runs.append(react(self.prep, state, oracle))
-            except _NeedInput as need:
-                return self._branch(state, valuation, need.signal)
-            self.leaves += 1
-            if self.leaves > MAX_LEAVES_PER_STATE:
-                raise OrccadError(
-                    f"state explosion: one state of '{self.prep.program.name}' needs more than "
-                    f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
-            prefix = oracle.answers
-            while prefix and prefix[-1] is False:
-                prefix.pop()
-            if not prefix:
-                break
-            prefix[-1] = False
+    def _inputs(self, state, valuation: dict, runs: list[Outcome] | None = None,
+                prefix: list[bool] | None = None):
+        """The tree of ``state`` under input ``valuation``, going on from ``runs`` (the data
+        combinations run so far, which asked no input outside the valuation) at ``prefix``."""
+        runs = [] if runs is None else runs
+        next_prefix: list[bool] | None = [] if prefix is None else prefix
+        while next_prefix is not None:
+            oracle = _Oracle(valuation, next_prefix, self.prep.program.relations)
+            outcome = react(self.prep, state, oracle)
+            self._count(1)
+            if oracle.new:
+                return self._branch(state, valuation, runs, next_prefix, outcome, oracle, 0)
+            runs.append(outcome)
+            next_prefix = _next_prefix(oracle.answers)
         return self._trie(runs, 0)
 
-    def _branch(self, state, valuation: dict, signal: ir.SignalDecl):
-        then = self._inputs(state, {**valuation, signal: True})
-        orelse = self._inputs(state, {**valuation, signal: False})
+    def _branch(self, state, valuation: dict, runs: list[Outcome], prefix: list[bool],
+                outcome: Outcome, oracle: _Oracle, depth: int):
+        """Branch on the ``depth``-th input ``outcome`` asked first: ``outcome`` is a run of
+        the then-branch; the else-branch runs the same data combination again."""
+        signal = oracle.new[depth]
+        saved = list(runs)
+        on = {**valuation, signal: True}
+        if depth + 1 < len(oracle.new):
+            then = self._branch(state, on, runs, prefix, outcome, oracle, depth + 1)
+        else:
+            runs.append(outcome)
+            following = _next_prefix(oracle.answers)
+            then = (self._trie(runs, 0) if following is None
+                    else self._inputs(state, on, runs, following))
+        self._count(len(saved))  # the runs before hold in the else-branch too
+        orelse = self._inputs(state, {**valuation, signal: False}, saved, prefix)
         return then if then == orelse else InputTest(signal, then, orelse)
+
+    def _count(self, leaves: int) -> None:
+        self.leaves += leaves
+        if self.leaves > MAX_LEAVES_PER_STATE:
+            raise OrccadError(
+                f"state explosion: one state of '{self.prep.program.name}' needs more than "
+                f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
 
     def _trie(self, runs: list[Outcome], pos: int):
         first = runs[0]
@@ -175,11 +206,13 @@ class _Explorer:
             "used earlier in the same instant (test the data first, in a branch of its own)", loc)
 
 
-def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES) -> Automaton:
+def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES,
+                    progress: Callable[[int], None] | None = None) -> Automaton:
     """Compile ``program`` to a minimized deterministic automaton.
 
     Raises :class:`OrccadError` (with a location) for instantaneous loops, non-causal programs
-    and when more than ``max_states`` control states are reachable.
+    and when more than ``max_states`` control states are reachable. ``progress`` is called
+    with the number of control states explored after each one.
     """
     prep = prepare(program)
     explorer = _Explorer(prep, max_states)
@@ -190,19 +223,25 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
         state = queue.popleft()
         tree = explorer.tree(state)
         trees[state] = tree
+        if progress is not None:
+            progress(len(trees))
         for target in _targets(tree):
             if target not in seen:
                 if len(seen) >= max_states:
-                    raise OrccadError(
-                        f"state budget exceeded: '{program.name}' has more than {max_states} "
-                        "reachable control states (raise the budget with --max-states)",
-                        program.loc)
+                    raise state_budget_error(program, max_states)
                 seen.add(target)
                 queue.append(target)
     waiting = {key: _waiting(prep, key) for key in trees}
     by_pause = _labels_by_pause(prep)
     labels = {key: _labels(by_pause, key) for key in trees}
     return minimize(program, trees, BOOT, waiting, labels, prep.data_tests, _variables(prep))
+
+
+def state_budget_error(program: ir.Program, max_states: int) -> OrccadError:
+    """The located error of a program with more than ``max_states`` reachable states."""
+    return OrccadError(f"state budget exceeded: '{program.name}' has more than {max_states} "
+                       "reachable control states (raise the budget with --max-states)",
+                       program.loc)
 
 
 def _targets(tree):

@@ -293,8 +293,8 @@ class _Walk:
                 return (must if sure else None), codes
             sure = sure and must == 0
             start += 1
-        for child in children[start:]:
-            must, child_codes = self.go(child, False, sure, scope)
+        for index in range(start, len(children)):  # no slice: a mission's top sequence is long
+            must, child_codes = self.go(children[index], False, sure, scope)
             codes |= child_codes & ~1
             if not child_codes & 1:
                 return (must if sure else None), codes

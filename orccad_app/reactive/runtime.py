@@ -2,8 +2,11 @@
 
 :class:`Reactor` holds the current state and the data memory and walks the state's reaction
 tree for each instant. It is the only code on the hot path of ``orccad react`` and of the
-executive: trees are pre-compiled to tuples and closures, so one reaction is a handful of
-tuple look-ups.
+executive: trees are pre-compiled to tuples and closures (:mod:`.lowered`), so one reaction is a
+handful of tuple look-ups. :meth:`Reactor.step` is the lean path (it returns the leaf's
+precomputed :class:`~orccad_app.reactive.lowered.Step`); :meth:`Reactor.react` builds a
+:class:`Reaction` record on top of it. A :class:`~orccad_app.reactive.lazy.LazyAutomaton` runs
+the same way, its trees growing as instants need them.
 """
 
 from __future__ import annotations
@@ -15,16 +18,17 @@ from typing import Any, Mapping
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import (ABORTED, FAILED, RUNNING, Action, Automaton,
-                                          DataBranch, InputTest, Leaf)
-from orccad_app.reactive.expr import Store, Unset, compile_expr, format_expr
+                                          DataBranch, InputTest)
+from orccad_app.reactive.expr import Store, Unset, format_expr
+from orccad_app.reactive.lazy import LazyAutomaton
+from orccad_app.reactive.lowered import ACTION, DATA, INPUT, Step, lower
 
-__all__ = ["Reaction", "Reactor", "RelationViolation"]
+__all__ = ["Reaction", "Reactor", "RelationViolation", "Step"]
 
 
 class RelationViolation(OrccadError):
     """The inputs of an instant violate a declared ``relation`` (located at the relation)."""
 
-_LEAF, _INPUT, _DATA, _ACTION = range(4)
 _SETS = (frozenset, set)
 
 
@@ -43,35 +47,21 @@ class Reaction:
     reason: str | None = None
 
 
-def _lower(node, data_tests) -> tuple:
-    if isinstance(node, Leaf):
-        names = tuple(s.name for s in node.emitted)
-        valued = tuple(s for s in node.emitted if s.valued)
-        return (_LEAF, node.target, names, valued, node.status)
-    if isinstance(node, InputTest):
-        return (_INPUT, node.signal.name, _lower(node.then, data_tests),
-                _lower(node.orelse, data_tests))
-    if isinstance(node, DataBranch):
-        expr = data_tests[node.number].expr
-        return (_DATA, compile_expr(expr), _lower(node.then, data_tests),
-                _lower(node.orelse, data_tests), expr)
-    assert isinstance(node, Action)
-    return (_ACTION, node.kind == "assign", node.target, compile_expr(node.expr),
-            _lower(node.next, data_tests), node.expr)
-
-
-def _pre_read(automaton: Automaton) -> tuple[ir.SignalDecl, ...]:
+def _pre_read(automaton: Automaton | LazyAutomaton) -> tuple[ir.SignalDecl, ...]:
     """The signals whose ``pre(?S)`` some expression of the automaton reads."""
     found: dict = {}
-    stack: list = [*automaton.trees]
     exprs: list = [t.expr for t in automaton.data_tests]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, Action):
-            exprs.append(node.expr)
-            stack.append(node.next)
-        elif isinstance(node, (InputTest, DataBranch)):
-            stack.extend((node.then, node.orelse))
+    if isinstance(automaton, LazyAutomaton):
+        exprs.extend(automaton.expressions())
+    else:
+        stack: list = [*automaton.trees]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, Action):
+                exprs.append(node.expr)
+                stack.append(node.next)
+            elif isinstance(node, (InputTest, DataBranch)):
+                stack.extend((node.then, node.orelse))
     while exprs:
         expr = exprs.pop()
         if isinstance(expr, ir.PreValue):
@@ -86,11 +76,16 @@ def _pre_read(automaton: Automaton) -> tuple[ir.SignalDecl, ...]:
 
 
 class Reactor:
-    """An automaton in execution: ``react`` performs one instant."""
+    """An automaton in execution: ``react`` (or the lean ``step``) performs one instant."""
 
-    def __init__(self, automaton: Automaton):
+    def __init__(self, automaton: Automaton | LazyAutomaton):
         self.automaton = automaton
-        self._trees = tuple(_lower(t, automaton.data_tests) for t in automaton.trees)
+        if isinstance(automaton, LazyAutomaton):
+            self._lazy: LazyAutomaton | None = automaton
+            self._trees: list | tuple = automaton.roots  # grows with the automaton
+        else:
+            self._lazy = None
+            self._trees = tuple(lower(t, automaton.data_tests) for t in automaton.trees)
         self._inputs = {s.name: s for s in automaton.inputs}
         self.state = automaton.initial
         self.store = Store()
@@ -111,16 +106,24 @@ class Reactor:
 
         ``clock_ns`` sets this instant's executive clock; it may not go backwards.
         """
+        step = self.step(inputs, clock_ns)
+        valued = step.valued
+        values = {s.name: self.store.values.get(s) for s in valued} if valued else {}
+        return Reaction(step.outputs, values, self.status, step.target, self.reason)
+
+    def step(self, inputs: Mapping[str, Any] | frozenset[str] | set[str] = frozenset(),
+             clock_ns: int | None = None) -> Step:
+        """One instant, as :meth:`react`, returning the reached leaf's precomputed
+        :class:`Step` (no allocation): the mission's status is :attr:`status`, the values of
+        the valued outputs :meth:`values`."""
         store = self.store
         if clock_ns is not None:
             if clock_ns < store.clock_ns:
                 raise OrccadError(f"the clock went backwards: {clock_ns} ns after "
                                   f"{store.clock_ns} ns")
             store.clock_ns = clock_ns
-        for relation in self._relations:
-            if not relation.holds(inputs):
-                raise RelationViolation(f"these inputs violate 'relation {relation.text}' "
-                                        f"(declared at {relation.loc})", relation.loc)
+        if self._relations:
+            self._check_relations(inputs)
         if self._previous:
             values = store.values
             store.previous = {d: values.get(d, ir.NO_VALUE) for d in self._previous}
@@ -132,16 +135,20 @@ class Reactor:
                     store.values[self._inputs[name]] = value
         self.instant += 1
         node = self._trees[self.state]
+        if node is None:
+            node = self._grow(inputs)
         expr = None
         try:
             while True:
                 tag = node[0]
-                if tag == _INPUT:
+                if tag == INPUT:
                     node = node[2] if node[1] in inputs else node[3]
-                elif tag == _DATA:
+                    if node is None:  # a lazy tree: this path is not built yet
+                        node = self._grow(inputs)
+                elif tag == DATA:
                     expr = node[4]
                     node = node[2] if node[1](store) else node[3]
-                elif tag == _ACTION:
+                elif tag == ACTION:
                     expr = node[5]
                     if node[1]:
                         store.vars[node[2]] = node[3](store)
@@ -154,15 +161,36 @@ class Reactor:
             where = "" if isinstance(expr, ir.Fault) else f" in {format_expr(expr)}"
             raise OrccadError(f"run-time error{where}: {error}",
                               getattr(expr, "loc", None)) from None
-        _, target, names, valued, status = node
-        self.state = target
+        step: Step = node[1]
+        self.state = step.target
+        if step.status != RUNNING:
+            self._settle(step.status)
+        return step
+
+    def _grow(self, inputs) -> tuple | list:
+        """The current state's tree after building the path ``inputs`` take (lazy automata):
+        input tests come before any data action, so the walk restarts from the root."""
+        assert self._lazy is not None
+        return self._lazy.expand(self.state, inputs)
+
+    def _check_relations(self, inputs) -> None:
+        for relation in self._relations:
+            if not relation.holds(inputs):
+                raise RelationViolation(f"these inputs violate 'relation {relation.text}' "
+                                        f"(declared at {relation.loc})", relation.loc)
+
+    def _settle(self, status: str) -> None:
+        """The mission's status after an instant of status ``status`` (not ``running``)."""
         if status in (FAILED, ABORTED) and self.status not in (FAILED, ABORTED):
             self.status = status
-            self.reason = store.values.get(self._reasons[status])
+            self.reason = self.store.values.get(self._reasons[status])
         elif self.status == RUNNING:
             self.status = status
-        values = {s.name: store.values.get(s) for s in valued} if valued else {}
-        return Reaction(names, values, self.status, target, self.reason)
+
+    def values(self, step: Step) -> dict[str, Any]:
+        """The values of ``step``'s valued outputs (just after that step)."""
+        values = self.store.values
+        return {s.name: values.get(s) for s in step.valued}
 
     @property
     def finished(self) -> bool:

@@ -116,6 +116,7 @@ class ApplicationLowerer(Lowerer):
         self.aborted = ir.SignalDecl("_aborted", ir.OUTPUT, "string", loc, combine="last")
         self.failed_trap = ir.TrapDecl("_failed", loc)
         self.fatal_trap = ir.TrapDecl("_fatal", loc)
+        self.in_on_fatal = False  # lowering the 'on fatal' block (sub-missions it runs too)
 
     # ------------------------------------------------------------------ the mission
     def lower(self) -> ir.Program:
@@ -126,7 +127,9 @@ class ApplicationLowerer(Lowerer):
             wrapped = ir.Trap(self.fatal_trap, body, loc)
         else:
             finished = ir.TrapDecl("_finished", loc)
+            self.in_on_fatal = True
             on_fatal = self.block(self.mission.on_fatal, self.scope)
+            self.in_on_fatal = False
             wrapped = ir.Trap(finished, d.seq(
                 ir.Trap(self.fatal_trap, d.seq(body, ir.Exit(finished, loc)), loc), on_fatal), loc)
         return ir.Program(self.mission.name, (*self.inputs, *self.extra_inputs),
@@ -203,14 +206,12 @@ class ApplicationLowerer(Lowerer):
         task = self.tasks.get(s.task)
         if task is None:
             raise OrccadError(f"unknown Robot-Task '{s.task}'", s.task_loc or s.loc)
-        fatal_block = self.mission.on_fatal.loc if self.mission.on_fatal is not None else None
         if self.view == COMPOSED:  # the task's own signals first, in the declaration order
             self.signals_of(task)
         else:
             self.outcomes_of(task)
         arguments, emits = self._arguments(task, s, scope)
-        site = RunSite(len(self.sites), task, s,
-                       fatal_block is not None and contains(fatal_block, s.loc), arguments)
+        site = RunSite(len(self.sites), task, s, self.in_on_fatal, arguments)
         self.sites.append(site)
         if self.view == COMPOSED:
             body = rta_body(self.signals_of(task), site.number, self.raise_, self.fatal)

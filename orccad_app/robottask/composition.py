@@ -11,10 +11,12 @@ order) and the role of every generated signal (:class:`~.signals.SignalRoles`). 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 from orccad_app.lang import ast
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.robottask.application import ApplicationLowerer, RunSite
 from orccad_app.robottask.signals import SignalRoles
 
@@ -27,14 +29,15 @@ class Composition:
 
     :param mission: the mission.
     :param program: the program it belongs to.
-    :param automaton: the minimized composed automaton.
+    :param automaton: the minimized composed automaton, or, for a run, the same automaton
+        built on demand (:class:`~orccad_app.reactive.lazy.LazyAutomaton`).
     :param sites: its ``run`` sites, by number.
     :param roles: the role of every signal the lowering added.
     """
 
     mission: ast.Mission
     program: ast.Program
-    automaton: Automaton
+    automaton: Automaton | LazyAutomaton
     sites: tuple[RunSite, ...]
     roles: SignalRoles
 
@@ -45,8 +48,14 @@ class Composition:
 
 
 def compose(program: ast.Program, mission: ast.Mission, *,
-            max_states: int = DEFAULT_MAX_STATES) -> Composition:
-    """Lower and compile ``mission`` in the composed view."""
+            max_states: int = DEFAULT_MAX_STATES, lazy: bool = False,
+            progress: Callable[[int], None] | None = None) -> Composition:
+    """Lower and compile ``mission`` in the composed view; ``lazy``: build the automaton's
+    states as a run reaches them (what ``run``, campaigns and the TUI do); ``progress``: called
+    with the number of states explored (a full compile)."""
     lowerer = ApplicationLowerer(program, mission)
-    automaton = compile_program(lowerer.lower(), max_states=max_states)
+    kernel = lowerer.lower()
+    automaton: Automaton | LazyAutomaton = (
+        LazyAutomaton(kernel, max_states=max_states) if lazy
+        else compile_program(kernel, max_states=max_states, progress=progress))
     return Composition(mission, program, automaton, tuple(lowerer.sites), lowerer.roles)

@@ -33,6 +33,10 @@ a JSON parser refuses it: a gap in the plot and a warning say what happened.
 
 A metadata record ``orccad`` holds the run's description (mission, seed, file). Chunks are
 zstd-compressed; the output is deterministic (same rows → same bytes).
+
+:class:`TopicWriter` maps rows to these topics and messages; :class:`McapTraceWriter` writes
+them to the file, and :class:`~orccad_app.trace.foxglove_live.FoxgloveLiveWriter` streams the
+same topics to Foxglove over its WebSocket protocol (``orccad run --foxglove``).
 """
 
 from __future__ import annotations
@@ -45,7 +49,7 @@ from typing import IO, Any
 
 from orccad_app.trace.recorder import TraceRow
 
-__all__ = ["McapTraceWriter", "LOG_SCHEMA", "EVENT_FIELDS", "port_schema"]
+__all__ = ["TopicWriter", "McapTraceWriter", "LOG_SCHEMA", "EVENT_FIELDS", "port_schema"]
 
 _STRING = {"type": "string"}
 _INTEGER = {"type": "integer"}
@@ -194,30 +198,23 @@ def _plain(value: Any, key: str) -> Any | None:
 class _Topic:
     __slots__ = ("channel", "key", "dropped")
 
-    def __init__(self, channel: int, key: str) -> None:
+    def __init__(self, channel: Any, key: str) -> None:
         self.channel, self.key, self.dropped = channel, key, 0
 
 
-class McapTraceWriter:
-    """Rows to an MCAP file Foxglove plots (see the module docstring).
+class TopicWriter:
+    """Rows to the Foxglove topics of the module docstring; a subclass says where the
+    messages go (:meth:`_register` a topic, :meth:`_publish` a message, :meth:`_finish`).
 
     :param sensors: ``(module, input port)`` fed by a robot sensor -> the sensor
         (``("TrackPID.ctrl", "q") -> "arm.q"``), for the ``/plant`` topics.
     """
 
-    def __init__(self, path: str | Path, metadata: Mapping[str, str] | None = None,
-                 sensors: Mapping[tuple[str, str], str] | None = None,
-                 opener: Callable[..., IO[bytes]] = open) -> None:
-        from mcap.writer import Writer
-
-        self.path = str(path)
-        self._file: IO[bytes] = opener(path, "wb")
-        self._writer = Writer(self._file)
-        self._writer.start(profile="", library="orccad")
+    def __init__(self, metadata: Mapping[str, str] | None = None,
+                 sensors: Mapping[tuple[str, str], str] | None = None) -> None:
         self._sensors = dict(sensors or {})
         self._file_name = str((metadata or {}).get("file", ""))
-        self._schemas: dict[str, int] = {}
-        self._channels: dict[str, int] = {}
+        self._channels: dict[str, Any] = {}
         self._topics: dict[str, _Topic] = {}
         self._sensed: dict[str, int] = {}  # plant topic -> last instant written
         self._present: set[str] = set()
@@ -226,29 +223,36 @@ class McapTraceWriter:
         self._sequence = 0
         self._last_ns = 0
         self._closed = False
-        if metadata:
-            self._writer.add_metadata("orccad", {k: str(v) for k, v in metadata.items()})
         self._log_channel = self._channel("/log", "foxglove.Log", LOG_SCHEMA)
+
+    # -- the sink ---------------------------------------------------------------------------
+
+    def _register(self, topic: str, name: str, schema: str) -> Any:
+        """A channel for ``topic`` whose messages follow the JSON Schema ``schema`` (text)
+        called ``name``."""
+        raise NotImplementedError
+
+    def _publish(self, channel: Any, time_ns: int, body: bytes, sequence: int) -> None:
+        """Send one JSON message on ``channel`` at simulated instant ``time_ns``."""
+        raise NotImplementedError
+
+    def _finish(self) -> None:
+        """The last message was sent."""
 
     # -- channels ---------------------------------------------------------------------------
 
-    def _channel(self, topic: str, name: str, schema: dict[str, Any]) -> int:
+    def _channel(self, topic: str, name: str, schema: dict[str, Any]) -> Any:
         channel = self._channels.get(topic)
         if channel is None:
-            text = json.dumps(schema, sort_keys=True)
-            schema_id = self._schemas.get(text)
-            if schema_id is None:
-                schema_id = self._writer.register_schema(name, "jsonschema", text.encode())
-                self._schemas[text] = schema_id
-            channel = self._writer.register_channel(topic, "json", schema_id)
+            channel = self._register(topic, name, json.dumps(schema, sort_keys=True))
             self._channels[topic] = channel
         return channel
 
-    def _emit(self, channel: int, time_ns: int, message: dict[str, Any]) -> None:
+    def _emit(self, channel: Any, time_ns: int, message: dict[str, Any]) -> None:
         self._sequence += 1
         self._last_ns = max(self._last_ns, time_ns)
         body = json.dumps(message, separators=(",", ":"), allow_nan=False)
-        self._writer.add_message(channel, time_ns, body.encode(), time_ns, self._sequence)
+        self._publish(channel, time_ns, body.encode(), self._sequence)
 
     def log(self, time_ns: int, level: int, name: str, message: str, line: int = 0) -> None:
         """A ``foxglove.Log`` entry on ``/log``."""
@@ -324,8 +328,13 @@ class McapTraceWriter:
             self.log(time_ns, INFO, "executive", f"{m['module']}.{m['param']} := "
                                                  f"{m['value_json']}")
         elif event == "update":
+            change = json.loads(m["update_json"])
+            ramp = change.get("ramp")
+            new = (f"ramp {ramp['start']} -> {ramp['end']} over {ramp['duration_s']} s"
+                   if ramp else f"{change.get('new')}")
             self.log(time_ns, INFO, "mission", f"type-1 update by {m['exception']}: "
-                                               f"{m['module']}.{m['param']} {m['update_json']}")
+                                               f"{m['module']}.{m['param']} {change.get('old')} "
+                                               f"-> {new}")
         elif event == "finish" and m["missed"]:
             self.log(time_ns, WARNING, "executive", f"{m['module']} job {m['job']} finished "
                                                     "after its deadline")
@@ -362,7 +371,7 @@ class McapTraceWriter:
         self._status = status
 
     def close(self) -> None:
-        """Write the summary and footer, close the file (idempotent)."""
+        """Say what was left out, then finish (idempotent)."""
         if self._closed:
             return
         self._closed = True
@@ -371,6 +380,43 @@ class McapTraceWriter:
             if dropped:
                 self.log(self._last_ns, WARNING, "trace", "values left out: " + ", ".join(
                     f"{topic} {count}" for topic, count in sorted(dropped.items())))
+        finally:
+            self._finish()
+
+
+class McapTraceWriter(TopicWriter):
+    """Rows to an MCAP file Foxglove plots (see the module docstring).
+
+    :param sensors: ``(module, input port)`` fed by a robot sensor -> the sensor
+        (``("TrackPID.ctrl", "q") -> "arm.q"``), for the ``/plant`` topics.
+    """
+
+    def __init__(self, path: str | Path, metadata: Mapping[str, str] | None = None,
+                 sensors: Mapping[tuple[str, str], str] | None = None,
+                 opener: Callable[..., IO[bytes]] = open) -> None:
+        from mcap.writer import Writer
+
+        self.path = str(path)
+        self._file: IO[bytes] = opener(path, "wb")
+        self._writer = Writer(self._file)
+        self._writer.start(profile="", library="orccad")
+        self._schemas: dict[str, int] = {}
+        if metadata:
+            self._writer.add_metadata("orccad", {k: str(v) for k, v in metadata.items()})
+        super().__init__(metadata, sensors)
+
+    def _register(self, topic: str, name: str, schema: str) -> int:
+        schema_id = self._schemas.get(schema)
+        if schema_id is None:
+            schema_id = self._writer.register_schema(name, "jsonschema", schema.encode())
+            self._schemas[schema] = schema_id
+        return self._writer.register_channel(topic, "json", schema_id)
+
+    def _publish(self, channel: int, time_ns: int, body: bytes, sequence: int) -> None:
+        self._writer.add_message(channel, time_ns, body, time_ns, sequence)
+
+    def _finish(self) -> None:
+        try:
             self._writer.finish()
         finally:
             self._file.close()

@@ -34,7 +34,9 @@ update        Module-Task        parameter              ``{"exception", "task", 
 
 Values are strict JSON text (``json.dumps``: floats print exactly, so equal runs give equal
 files; a NaN or an infinity is ``null``, see docs/limits.md);
-``job`` is ``-1`` where it does not apply.
+``job`` is ``-1`` where it does not apply. A ``message`` of kind ``event`` is an observer's
+signal delivered to its automaton's processor (connection ``module.port -> automaton@cpu``);
+the automaton's reactions with a declared time are jobs of module ``automaton@cpu``.
 """
 
 from __future__ import annotations

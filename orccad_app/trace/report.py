@@ -12,7 +12,11 @@ JSON keys (docs/design.md, *Command line*):
   ``preemptions``, ``blocking_s``; a sporadic one also ``sporadic``: ``min_interarrival_s``,
   ``interrupts``, ``released``, ``deferred``, ``coalesced``, ``min_gap_s``;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
-- ``bus``: ``messages``, ``busy_ratio``;
+- ``bus``: ``messages``, ``busy_ratio``, ``classes``: per message class (``port_data``: the
+  connections' data, request and reply messages; ``event``: observers' signals to an automaton
+  on another processor) ``messages``, ``queued_mean_s``, ``queued_max_s`` (the wait for the bus);
+- ``reactions``: per automaton processor with a declared reaction time (``automaton@cpu0``),
+  ``count`` and ``response_time_max_s`` (from the signal's arrival to the reaction);
 - ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
   ``module``, ``param``, ``old``, ``new`` and ``ramp`` (``start``, ``end``, ``duration_s``, or
   ``null``);
@@ -90,6 +94,17 @@ def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
     return found
 
 
+def _bus_classes(result: RunResult) -> dict[str, dict[str, float]]:
+    """Per message class (``port_data``, ``event``): messages and queueing delay [s]."""
+    bus = result.stats.bus
+    if bus is None:
+        return {name: {"messages": 0, "queued_mean_s": 0.0, "queued_max_s": 0.0}
+                for name in ("port_data", "event")}
+    return {name: {"messages": c["messages"], "queued_mean_s": c["queued_mean_ns"] / 1e9,
+                   "queued_max_s": c["queued_max_ns"] / 1e9}
+            for name, c in bus.by_class().items()}
+
+
 def _injections(result: RunResult, injections: Iterable[InjectionRecord]) -> list[dict]:
     ordered = sorted(injections, key=lambda i: (i.time_ns, i.name))
     return [{"time_s": i.time_ns / 1e9, "name": i.name, "value": plain_value(i.value),
@@ -110,7 +125,11 @@ def report_dict(result: RunResult,
         "processors": {name: {"load": stats.load}
                        for name, stats in result.stats.processors.items()},
         "bus": {"messages": bus.messages if bus else 0,
-                "busy_ratio": bus.busy_ratio if bus else 0.0},
+                "busy_ratio": bus.busy_ratio if bus else 0.0,
+                "classes": _bus_classes(result)},
+        "reactions": {name: {"count": stats.completed,
+                             "response_time_max_s": stats.response_max_ns / 1e9}
+                      for name, stats in result.stats.reactions.items() if stats.released},
         "exceptions": [record.as_dict() for record in result.exceptions],
         "outputs": [{"time_s": t / 1e9, "name": name, "value": plain_value(value)}
                     for t, name, value in result.outputs],
@@ -244,6 +263,15 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
     lines.append(f"Processors: load {loads}")
     bus = report["bus"]
     lines.append(f"Bus: {bus['messages']} messages, busy {bus['busy_ratio']:.1%}")
+    for name, label in (("port_data", "port data"), ("event", "event signals")):
+        c = bus["classes"][name]
+        if c["messages"]:
+            lines.append(f"  {label}: {c['messages']} messages, queueing mean "
+                         f"{_ms(c['queued_mean_s'])} ms, max {_ms(c['queued_max_s'])} ms")
+    for name, r in report["reactions"].items():
+        lines.append(f"Reactions on {name.removeprefix('automaton@')}: {r['count']}, "
+                     f"longest {_ms(r['response_time_max_s'])} ms (signal delivered to "
+                     f"reaction done)")
     if "lateness_s" in report:
         late = report["lateness_s"]
         lines.append(f"Lateness behind the wall clock: median {_ms(late['median'])} ms, "

@@ -122,6 +122,7 @@ class LogEntry:
     time_ns: int
     kind: str
     text: str
+    task_start: bool = False
 
     def format(self) -> str:
         return f"{self.time_ns / 1e9:9.3f} s  {self.kind:<9} {self.text}"
@@ -350,12 +351,14 @@ class LiveObserver(Observer):
 
     def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
         shown = f": {arguments_text(args)}" if args else ""  # its actual arguments
-        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts{shown}"))
+        self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) starts{shown}",
+                                  task_start=True))
 
     def on_task_end(self, t_ns: int, task: str, site: int, outcome: str) -> None:
         self._log.append(LogEntry(t_ns, "task", f"{task} (site {site}) ends: {outcome}"))
 
     def on_exception(self, record: Any) -> None:
         origin = f" from {record.task}" if record.task else ""
+        change = f": {record.update.text()}" if getattr(record, "update", None) else ""
         self._log.append(LogEntry(record.time_ns, "exception",
-                                  f"{record.name} (type {record.type}){origin}"))
+                                  f"{record.name} (type {record.type}){origin}{change}"))

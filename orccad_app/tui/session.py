@@ -112,10 +112,14 @@ def mission_files(paths: list[str]) -> list[str]:
     return list(found)
 
 
-def _diagnostic(severity: str, error: Any) -> FileDiagnostic:
+def _diagnostic(severity: str, error: Any, path: str | None = None) -> FileDiagnostic:
     loc = getattr(error, "location", None) or getattr(error, "loc", None)
+    message = getattr(error, "message", str(error))
+    if loc is not None and path is not None and getattr(loc, "line", 0) and \
+            Path(loc.file).resolve() != Path(path).resolve():  # in an imported file
+        return FileDiagnostic(severity, 0, 0, f"{loc}: {message}")
     return FileDiagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
-                      getattr(error, "message", str(error)))
+                      message)
 
 
 def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
@@ -131,19 +135,21 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     return head + to_summary(automaton), inputs
 
 
-def inspect_file(path: str) -> FileView:
-    """Load, check and compile every mission of ``path``; errors become diagnostics."""
+def inspect_file(path: str, text: str | None = None) -> FileView:
+    """Load, check and compile every mission of ``path`` (or of ``text``, an edited version of
+    it); errors become diagnostics."""
     from orccad_app.pipeline import load
 
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        edited = text is not None
+        text = text if text is not None else Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as error:
         return FileView(path, "", [FileDiagnostic("error", 0, 0, f"cannot read: {error}")])
     view = FileView(path, text)
     try:
-        source = load(path)
+        source = load(path, text=text if edited else None)
     except OrccadError as error:
-        view.diagnostics.append(_diagnostic("error", error))
+        view.diagnostics.append(_diagnostic("error", error, path))
         return view
     view.source = source
     view.diagnostics += [_diagnostic("warning", w) for w in source.warnings]
@@ -152,18 +158,15 @@ def inspect_file(path: str) -> FileView:
         try:
             view.summaries[mission.name], view.inputs[mission.name] = _summary(source, mission)
         except OrccadError as error:
-            view.diagnostics.append(_diagnostic("error", error))
+            view.diagnostics.append(_diagnostic("error", error, path))
     return view
 
 
 def inspect_text(path: str, text: str) -> FileView:
-    """:func:`inspect_file` on an edited, unsaved ``text`` of ``path`` (checked from a copy
-    in a temporary folder; the diagnostics keep their lines)."""
-    with tempfile.TemporaryDirectory(prefix="orccad-edit-") as folder:
-        copy = Path(folder) / Path(path).name
-        copy.write_text(text, encoding="utf-8")
-        view = inspect_file(str(copy))
-    view.path, view.source = path, None
+    """:func:`inspect_file` on an edited, unsaved ``text`` of ``path`` (its imports resolved
+    from ``path``'s folder)."""
+    view = inspect_file(path, text)
+    view.source = None
     return view
 
 

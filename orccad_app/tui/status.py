@@ -17,8 +17,8 @@ from typing import Any
 
 from orccad_app.tui.live import PHASES, LiveUpdate
 
-__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites", "tasks_in_state", "where_text", "rta_text", "tcs_rows",
-           "LAG_RATIO"]
+__all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites",
+           "tasks_in_state", "elsewhere", "waiting_elsewhere", "where_text", "rta_text", "tcs_rows", "LAG_RATIO"]
 
 LAG_RATIO = 0.8
 """The run lags when its actual speed is below this fraction of the requested one."""
@@ -54,16 +54,41 @@ class SpeedMeter:
         return (s1 - s0) / running if running > 1e-3 else None
 
 
-def waiting_lines(session: Any, state: int | None) -> list[int]:
-    """Lines of the mission's file where state ``state`` of its automaton is paused."""
-    if state is None:
-        return []
-    automaton = session.run.plan.automaton
-    if not 0 <= state < len(automaton.waiting):
-        return []
-    name = Path(session.path).name
-    return sorted({loc.line for loc in automaton.waiting[state]
+def _waiting(session: Any, state: int | None) -> tuple[Any, ...]:
+    """The locations state ``state`` waits at (sub-missions' call sites included)."""
+    from orccad_app.verify.replay import waiting_at
+
+    return () if state is None else waiting_at(session.run.plan.automaton, state)
+
+
+def _in_file(locations: Any, path: str) -> list[int]:
+    name = Path(path).name
+    return sorted({loc.line for loc in locations
                    if loc.line > 0 and Path(loc.file or name).name == name})
+
+
+def waiting_lines(session: Any, state: int | None) -> list[int]:
+    """Lines of the mission's file where state ``state`` of its automaton is paused (a
+    statement of an imported sub-mission shows as its ``run mission`` line)."""
+    return _in_file(_waiting(session, state), session.path)
+
+
+def elsewhere(locations: Any, path: str) -> list[str]:
+    """``homing.orc:26``: the locations of ``locations`` in files other than ``path``."""
+    name = Path(path).name
+    return list(dict.fromkeys(f"{Path(loc.file).name}:{loc.line}" for loc in locations
+                              if loc.line > 0 and Path(loc.file or name).name != name))
+
+
+def waiting_elsewhere(session: Any, state: int | None) -> list[str]:
+    """Where ``state`` waits in other files than the mission's (imported sub-missions)."""
+    return elsewhere(_waiting(session, state), session.path)
+
+
+def _where(loc: Any, path: str) -> str:
+    """``:37`` in the mission's own file, ``homing.orc:26`` in another."""
+    name = Path(loc.file or path).name
+    return f":{loc.line}" if name == Path(path).name else f"{name}:{loc.line}"
 
 
 def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]]:
@@ -83,32 +108,39 @@ def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]
 
 
 def run_site_lines(session: Any, state: int | None) -> list[int]:
-    """Lines of the ``run`` statements of the Robot-Tasks active in ``state``."""
-    return sorted({line for _, line in running_sites(session, state) if line > 0})
+    """Lines of the ``run`` statements of the Robot-Tasks active in ``state`` in the
+    mission's file."""
+    return _in_file([loc for _, loc in running_sites(session, state)], session.path)
 
 
 def where_text(session: Any, state: int | None, status: str = "running") -> str:
-    """``waiting at arm_recovery.orc:58, 77`` (or the status once the mission ended)."""
+    """``waiting at arm_recovery.orc:58, 77, homing.orc:26`` (or the status once the mission
+    ended), then the running Robot-Tasks and their ``run`` statements."""
     if status in ("done", "failed", "aborted"):
         return f"the mission has ended: {status}"
-    lines = waiting_lines(session, state)
-    if not lines:
+    waiting = _waiting(session, state)
+    if not waiting:
         return "starting" if state is None else "reacting"
-    text = f"waiting at {Path(session.path).name}:{', '.join(map(str, lines))}"
+    name = Path(session.path).name
+    own = waiting_lines(session, state)
+    parts = ([f"{name}:{', '.join(map(str, own))}"] if own else []) + \
+        elsewhere(waiting, session.path)
+    text = f"waiting at {', '.join(parts)}"
     running = running_sites(session, state)
     if running:
-        text += " (running " + ", ".join(f"{task} at :{line}" for task, line in running) + ")"
+        text += " (running " + ", ".join(f"{task} at {_where(loc, session.path)}"
+                                         for task, loc in running) + ")"
     return text
 
 
-def running_sites(session: Any, state: int | None) -> list[tuple[str, int]]:
-    """``(task, line of its run statement)`` of the Robot-Tasks active in ``state``."""
+def running_sites(session: Any, state: int | None) -> list[tuple[str, Any]]:
+    """``(task, its run statement's location)`` of the Robot-Tasks active in ``state``."""
     automaton = session.run.plan.automaton
     if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
         return []
     numbers = {getattr(label, "site", None) for label in automaton.labels[state]
                if not isinstance(label, tuple)}
-    return [(site.task, site.site.stmt.loc.line) for site in session.run.plan.sites
+    return [(site.task, site.site.stmt.loc) for site in session.run.plan.sites
             if site.number in numbers]
 
 

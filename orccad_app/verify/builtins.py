@@ -116,13 +116,21 @@ def _one_task_per_robot(model: Model) -> Violation | None:
     return Violation(f"{first} and {second} are active at once on robot {name}", run)
 
 
-def _endless_spans(mission: ast.Mission) -> list:
+def _endless_spans(mission: ast.Mission, program: ast.Program) -> list:
+    """The spans of the statements meant to run forever, in the mission and the
+    sub-missions it runs (imported ones included)."""
     spans = []
     stack: list = [mission.body] + ([mission.on_fatal] if mission.on_fatal else [])
+    entered = {mission.name}
     while stack:
         node = stack.pop()
         if isinstance(node, (ast.Halt, ast.Sustain, ast.Loop, ast.Every)):
             spans.append(node.loc)
+        if isinstance(node, ast.RunMission) and node.mission not in entered:
+            entered.add(node.mission)
+            target = program.mission(node.mission)
+            if target is not None:
+                stack.append(target.body)
         if isinstance(node, tuple):
             stack.extend(node)
         elif hasattr(node, "__dataclass_fields__"):
@@ -131,7 +139,7 @@ def _endless_spans(mission: ast.Mission) -> list:
 
 
 def _no_deadlock(model: Model) -> Violation | None:
-    spans = _endless_spans(model.composition.mission)
+    spans = _endless_spans(model.composition.mission, model.composition.program)
     run_loc = {s.number: s.loc for s in model.composition.sites}
     automaton = model.automaton
 

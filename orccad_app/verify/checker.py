@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
@@ -27,7 +28,8 @@ from orccad_app.verify.model import Model, build_model
 from orccad_app.verify.search import Instant, Lasso, find_lasso
 from orccad_app.verify.tableau import Tableau
 
-__all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable"]
+__all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable",
+           "CheckProgress"]
 
 
 @dataclass
@@ -137,17 +139,38 @@ def _check_builtin(model: Model, name: str) -> PropertyOutcome:
 
 
 def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool = True,
-                  max_states: int = DEFAULT_MAX_STATES) -> MissionReport:
-    """Compile ``mission`` in the composed view and check its properties."""
-    composition = compose(program, mission, max_states=max_states)
+                  max_states: int = DEFAULT_MAX_STATES,
+                  progress: CheckProgress | None = None) -> MissionReport:
+    """Compile ``mission`` in the composed view and check its properties; ``progress`` is told
+    the states explored while compiling, then the properties done."""
+    states = None if progress is None else progress.states
+    composition = compose(program, mission, max_states=max_states, progress=states)
     model = build_model(composition)
     report = MissionReport(composition, model)
+    properties = [p for p in applicable(program.properties, mission)
+                  if not ast.is_signal_formula(p.formula)]
+    total = (len(BUILTINS) if builtins else 0) + len(properties)
     if builtins:
-        report.outcomes += [_check_builtin(model, name) for name in BUILTINS]
+        for name in BUILTINS:
+            report.outcomes.append(_check_builtin(model, name))
+            if progress is not None:
+                progress.properties(len(report.outcomes), total)
     assumptions = [from_ast(a.formula) for a in applicable(program.assumptions, mission)]
     for prop in applicable(program.properties, mission):
         if ast.is_signal_formula(prop.formula):
             report.signal_properties.append(prop)
             continue
         report.outcomes.append(_check_property(model, prop, assumptions))
+        if progress is not None:
+            progress.properties(len(report.outcomes), total)
     return report
+
+
+class CheckProgress(Protocol):
+    """What :func:`check_mission` reports while it works (a status line on a terminal)."""
+
+    def states(self, explored: int) -> None:
+        """``explored`` control states of the composed automaton explored so far."""
+
+    def properties(self, done: int, total: int) -> None:
+        """``done`` of ``total`` properties (built-in ones included) decided."""

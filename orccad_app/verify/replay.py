@@ -20,19 +20,36 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.labels import InMission, MissionLabel
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import Instant
 from orccad_app.robottask.composition import Composition
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify.checker import PropertyOutcome
 from orccad_app.verify.counterexample import Script
 
-__all__ = ["RunningTask", "ReplayStep", "Replay", "replay", "script_instants", "step_lines", "format_replay",
+__all__ = ["waiting_at", "RunningTask", "ReplayStep", "Replay", "replay", "script_instants", "step_lines", "format_replay",
            "FAILS", "LOOPS"]
 
 FAILS = "the property fails at this instant"
 """The mark of the last instant of a finite counterexample."""
 LOOPS = "from this instant on, the run repeats forever and the property never holds"
 """The mark of the first instant of a counterexample's loop."""
+
+
+def waiting_at(automaton: Automaton, state: int) -> tuple[SourceLocation, ...]:
+    """Where ``state`` of ``automaton`` waits: the statements it is paused at, then the
+    ``run mission`` statements of the sub-missions it is inside (a statement of an imported
+    file is reached from the mission's own file through them); unique, in that order."""
+    found: list[SourceLocation] = []
+    if 0 <= state < len(automaton.waiting):
+        found += automaton.waiting[state]
+    labels = automaton.labels[state] if automaton.labels and 0 <= state < len(
+        automaton.labels) else ()
+    found += sorted((label.call for label in labels
+                     if isinstance(label, MissionLabel) and label.call.line > 0),
+                    key=lambda loc: (loc.file, loc.line))
+    return tuple(dict.fromkeys(found))
 
 
 @dataclass(frozen=True)
@@ -57,6 +74,7 @@ class ReplayStep:
     :param waiting: the statements the new state waits at.
     :param tasks: the Robot-Tasks active in the new state, with their ``run`` statements.
     :param mark: :data:`FAILS`, :data:`LOOPS` or ``""``.
+    :param inside: the sub-mission instances (``run mission``) the new state is in.
     """
 
     number: int
@@ -68,6 +86,7 @@ class ReplayStep:
     waiting: tuple[SourceLocation, ...]
     tasks: tuple[RunningTask, ...]
     mark: str = ""
+    inside: tuple[InMission, ...] = ()
 
     def lines_in(self, path: str) -> list[int]:
         """The lines of file ``path`` the state waits at (sorted, unique)."""
@@ -109,7 +128,7 @@ def _tasks(composition: Composition, state: int) -> tuple[RunningTask, ...]:
     automaton: Automaton = composition.automaton
     labels = automaton.labels[state] if automaton.labels and state < len(automaton.labels) \
         else ()
-    numbers = {label.site for label in labels if hasattr(label, "site")}
+    numbers = {label.site for label in labels if isinstance(label, RtLabel)}
     return tuple(RunningTask(site.robottask.name, site.number, site.stmt.loc)
                  for site in composition.sites if site.number in numbers)
 
@@ -131,9 +150,8 @@ def replay(composition: Composition, outcome: PropertyOutcome) -> Replay:
         mark = "" if index != marked else (FAILS if script.loop_start is None else LOOPS)
         steps.append(ReplayStep(index + 1, line.time_ns, line.inputs, reaction.outputs,
                                 reactor.state, reaction.status,
-                                tuple(automaton.waiting[reactor.state]
-                                      if reactor.state < len(automaton.waiting) else ()),
-                                _tasks(composition, reactor.state), mark))
+                                waiting_at(automaton, reactor.state),
+                                _tasks(composition, reactor.state), mark, line.inside))
     return Replay(mission, outcome.kind, outcome.name, outcome.message, tuple(steps),
                   script.loop_start, script.note)
 
@@ -183,6 +201,8 @@ def step_lines(step: ReplayStep, path: str, text: str) -> list[str]:
     for task in step.tasks:
         where = Path(task.loc.file or name).name
         lines.append(f"  running: {task.task} (site {task.site}, run at {where}:{task.loc.line})")
+    for inside in step.inside:
+        lines.append(f"  in sub-mission {inside.label.text()}")
     return lines
 
 

@@ -55,7 +55,8 @@ _BIASED = ("depth", "attitude", "velocity", "position", "altitude")
 
 def euler_zyx(quat: np.ndarray) -> np.ndarray:
     """Roll, pitch, yaw [rad] of the unit quaternion ``quat`` (w, x, y, z)."""
-    w, x, y, z = quat
+    # Python floats: the same IEEE arithmetic as on numpy scalars, without their overhead
+    w, x, y, z = quat.tolist() if isinstance(quat, np.ndarray) else quat
     roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
     pitch = math.asin(max(-1.0, min(1.0, 2.0 * (w * y - z * x))))
     yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
@@ -104,6 +105,11 @@ class AuvPhysics(PlantExtension):
             model.body_mass[self.body] = float(mass)
         self.mass_kg = float(model.body_mass[self.body])
         self.gain = model.actuator_gear[:, 2].copy()
+        p = self.params  # the parameters step() reads, once (rho g V as buoyancy_n groups it)
+        self._constants = (float(p["hull_radius_m"]),
+                           p["water_density"] * G_MPS2 * p["volume_m3"], p["surface_damping"],
+                           float(p["cb_height_m"]), p["hotel_w"], p["thrust_coeff"],
+                           p["leak_rate_kg_s"])
         # views into MuJoCo's state (same memory for the life of ``data``), read every step
         self._xpos, self._xmat = data.xpos[self.body], data.xmat[self.body]
         self._xfrc, self._qvel, self._ctrl = data.xfrc_applied[self.body], data.qvel, data.ctrl
@@ -127,17 +133,15 @@ class AuvPhysics(PlantExtension):
         # expressions ``rot @ [0, 0, h]``, ``np.cross(arm, [0, 0, B])`` and
         # ``np.sum(np.abs(ctrl) ** 1.5)`` (a sequential sum for so few thrusters), so the
         # run is bit-identical; numpy's per-call overhead was most of a step.
-        p = self.params
+        radius, rho_g_v, damping, height, hotel, thrust_coeff, leak_rate = self._constants
         z = float(self._xpos[2])
         if -z > self.max_depth_m:
             self.max_depth_m = -z
-        radius = float(p["hull_radius_m"])
         fraction = min(1.0, max(0.0, (radius - z) / (2.0 * radius)))
-        buoyancy = p["water_density"] * G_MPS2 * p["volume_m3"] * fraction
+        buoyancy = rho_g_v * fraction
         up = buoyancy - G_MPS2 * self.water_kg
         if 0.0 < fraction < 1.0:  # wave-making (radiation) damping
-            up -= p["surface_damping"] * float(self._qvel[2])
-        height = float(p["cb_height_m"])
+            up -= damping * float(self._qvel[2])
         r = self._xmat.tolist()
         arm0 = ((0.0 + r[0] * 0.0) + r[1] * 0.0) + r[2] * height
         arm1 = ((0.0 + r[3] * 0.0) + r[4] * 0.0) + r[5] * height
@@ -153,10 +157,10 @@ class AuvPhysics(PlantExtension):
         for index, command in enumerate(self._ctrl.tolist()):
             term = abs(command) ** 1.5
             total = term if index == 0 else total + term
-        power = p["hotel_w"] + p["thrust_coeff"] * total * self.efficiency
+        power = hotel + thrust_coeff * total * self.efficiency
         self.energy_j += power * dt_s
         if self.leaking:
-            self.water_kg += p["leak_rate_kg_s"] * dt_s
+            self.water_kg += leak_rate * dt_s
 
     # -- sensors ---------------------------------------------------------------------------
 
@@ -167,14 +171,14 @@ class AuvPhysics(PlantExtension):
     def true_value(self, port: str) -> np.ndarray:
         """The noiseless, fault-free value of sensor ``port``."""
         data, body = self.data, self.body
-        pos = data.xpos[body]
+        pos = self._xpos.tolist()
         if port == "depth":
             return np.array(-pos[2])
         if port == "attitude":
             return euler_zyx(data.xquat[body])
         if port == "velocity":
-            rot = data.xmat[body].reshape(3, 3)
-            return np.concatenate([rot.T @ data.qvel[:3], data.qvel[3:6]])
+            rot = self._xmat.reshape(3, 3)
+            return np.concatenate([rot.T @ self._qvel[:3], self._qvel[3:6]])
         if port == "position":
             return np.array([pos[0], pos[1], -pos[2]])
         if port == "altitude":

@@ -64,9 +64,9 @@ def _special_states(rng, count):
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NaN inputs, numpy side
-@pytest.mark.parametrize("call", LAWS[:2], ids=["pid", "pid-no-integral"])
+@pytest.mark.parametrize("call", LAWS, ids=["pid", "pid-no-integral", "computed-torque"])
 def test_plain_float_path_equals_the_numpy_lean_path(host, arm, call):
-    """The plain-float PID (small robots) against the numpy lean path, bit for bit, with the
+    """The plain-float path (small robots) against the numpy lean path, bit for bit, with the
     integral and the saturation directions it keeps."""
     floats, task = _law(host, arm, call)
     arrays, _ = _law(host, arm, call)
@@ -79,6 +79,8 @@ def test_plain_float_path_equals_the_numpy_lean_path(host, arm, call):
         if k % 5 == 0:  # a torque exactly on its bound: e chosen so that kp e hits it
             q = reference.pos + floats._lean.high / -400.0
             qdot = reference.vel.copy()
+        if k % 7 == 0:  # finite inputs, overflowing torques (inf - inf: NaN)
+            q, qdot = reference.pos + 1e307, reference.vel - 1e308
         a = floats.command(t, q, qdot, reference)
         b = arrays.command(t, q, qdot, reference)
         for name in ("tau", "tau_unsat", "saturated", "e"):

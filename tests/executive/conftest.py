@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import shutil
+
 import pytest
 
 from orccad_app.executive import Bus, EventLog, Processor, Simulation
@@ -137,6 +139,8 @@ def _plan_file(path, replacements: dict[str, str] | None = None, tmp_path=None):
         for old, new in replacements.items():
             assert old in text, old
             text = text.replace(old, new)
+        if (path.parent / "lib").is_dir():  # the sub-missions it imports, beside the copy
+            shutil.copytree(path.parent / "lib", tmp_path / "lib", dirs_exist_ok=True)
         return _plan_text(tmp_path, text)
     source = load(path)
     return plan_mission(source, select_mission(source, None))

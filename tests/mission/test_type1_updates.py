@@ -194,3 +194,19 @@ def test_the_shipped_mission_logs_every_update_in_the_report_and_the_trace(tmp_p
     first = report["exceptions"][0]
     assert first["update"] == {"module": "TrackSoft.ctrl", "param": "kp", "old": 100.0,
                                "new": 150.0, "ramp": None}
+
+
+def test_an_mcap_trace_has_the_updates_on_their_topic_and_the_log(tmp_path):
+    from mcap.reader import make_reader
+
+    trace = tmp_path / "retune.mcap"
+    run = _orccad("run", "missions/arm_retune.orc", "--until", "0.2", "--trace", str(trace))
+    assert run.returncode == 1, run.stderr  # timeout at 0.2 s
+    with trace.open("rb") as stream:
+        messages = [(channel.topic, json.loads(message.data)) for _, channel, message
+                    in make_reader(stream).iter_messages(topics=["/orccad/update", "/log"])]
+    updates = [m for topic, m in messages if topic == "/orccad/update"]
+    assert [(u["param"], u["exception"], json.loads(u["update_json"])["new"]) for u in updates] \
+        == [("kp", "Drift", 150.0), ("ki", "Lagging", 0.0), ("kp", "Drift", 225.0)]
+    logs = [m["message"] for topic, m in messages if topic == "/log"]
+    assert "type-1 update by Lagging: TrackSoft.ctrl.ki 0.0 -> ramp 0.0 -> 20.0 over 1.0 s" in logs

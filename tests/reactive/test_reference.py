@@ -12,6 +12,11 @@ instant. Three traces are compared for each random program (:mod:`tests.reactive
 - the reference on the kernel expansion of the program (what the compiler receives);
 - the compiled, minimized automaton run by :class:`~orccad_app.reactive.runtime.Reactor`.
 
+The same random programs and inputs also run on the automaton built on demand
+(:class:`~orccad_app.reactive.lazy.LazyAutomaton`, what ``run`` and ``react`` use), which must
+give the full automaton's outputs, values and status, and reach states with the same labels, at
+every instant.
+
 Programs the compiler rejects are skipped. That includes programs that are *logically*
 correct but not *constructive* (``signal S { if S { emit S; } else { emit S; } }`` has the
 single coherent solution "S present", but nothing forces S before it is tested): Esterel v5
@@ -31,6 +36,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang.parser import parse
 from orccad_app.reactive import ir
 from orccad_app.reactive.compiler import compile_program
+from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
@@ -42,6 +48,8 @@ from tests.reactive.strategies import A, B, INPUTS, O1, O2, OUTPUTS, expand, inp
 
 #: Random programs checked per run (each on 10-20 instants); about 25 s on one core.
 MAX_EXAMPLES = 1000
+#: Random programs run on both the lazy and the full automaton.
+LAZY_EXAMPLES = 300
 #: Compilation budget for random programs (bigger ones are skipped, not failed).
 MAX_STATES = 2000
 
@@ -67,6 +75,19 @@ def trace(reactor, script) -> list[tuple]:
             out.append(("run-time error",))
             break
         out.append((reaction.outputs, reaction.values, reaction.status))
+    return out
+
+
+def labelled_trace(reactor, script) -> list[tuple]:
+    """:func:`trace` with the labels of the state reached after each instant."""
+    out: list[tuple] = []
+    for inputs, clock_ns in script:
+        try:
+            reaction = reactor.react(inputs, clock_ns)
+        except OrccadError:
+            out.append(("run-time error",))
+            break
+        out.append((reaction.outputs, reaction.values, reaction.status, reactor.labels))
     return out
 
 
@@ -116,6 +137,27 @@ def test_compiled_automaton_agrees_with_the_reference_interpreter(program, scrip
     actual = trace(Reactor(automaton), script)
     assert actual == expected, "compiled automaton and reference disagree:\n" + \
         _show(script, compiled=actual, reference=expected)
+
+
+@settings(CROSS_CHECK, max_examples=LAZY_EXAMPLES)
+@given(program=programs(), script=input_sequences())
+def test_lazy_automaton_agrees_with_the_full_one(program, script):
+    """The automaton built on demand gives the full automaton's outputs, values and status
+    and reaches states with the same labels, at every instant of random input sequences."""
+    if program.relations:
+        script = [({k: v for k, v in inputs.items() if not (k == "B" and "A" in inputs)}, t)
+                  for inputs, t in script]
+    kernel = expand(program)
+    note(f"program:\n{show_program(program)}")
+    try:
+        automaton = compile_program(kernel, max_states=MAX_STATES)
+    except OrccadError:
+        assume(False)
+    lazy_automaton = LazyAutomaton(kernel, max_states=MAX_STATES)
+    full = labelled_trace(Reactor(automaton), script)
+    lazy = labelled_trace(Reactor(lazy_automaton), script)
+    assert lazy == full, "lazy and full automata disagree:\n" + _show(script, lazy=lazy,
+                                                                      full=full)
 
 
 # --------------------------------------------------------------------------- regressions

@@ -9,7 +9,9 @@ old race.
 
 from __future__ import annotations
 
+import shutil
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -45,9 +47,14 @@ def test_check_proves_the_park_properties():
 def test_the_properties_catch_a_race_that_ends_during_the_park(tmp_path):
     text = MISSION.read_text(encoding="utf-8")
     assert OLD_BRANCH_END in text
+    shutil.copytree(MISSION.parent / "lib", tmp_path / "lib")  # the sub-missions it imports
     buggy = tmp_path / "buggy.orc"
     buggy.write_text(text.replace(OLD_BRANCH_END, ""), encoding="utf-8")
     result = cli("check", str(buggy))
     assert result.returncode == 1
     assert "FAIL  property park_completes" in result.stdout
     assert "FAIL  property parked_before_done" in result.stdout
+    # the counterexample says the park is the sub-mission Parking, run by the 'do' of Stop
+    call = next(n for n, line in enumerate(text.splitlines(), 1) if "run mission Parking" in line)
+    assert f"# in Parking#1 ({tmp_path / 'lib' / 'parking.orc'}:8) inside {buggy}:{call}" \
+        in result.stdout

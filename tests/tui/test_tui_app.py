@@ -98,8 +98,8 @@ async def test_an_arm_run_goes_live_to_its_report_and_exports_its_trace(tmp_path
         await _until(pilot, lambda: _report_shown(app))
         report = app.screen
         assert "mission ArmPID: done" in _text(report, "#report-text")
-        assert "TrackPID(q0=[0.5, 0.5, 0.5], kp=400, kv=40) 0.000 → 4.000 s  good_end" in _text(
-            report, "#report-text")
+        assert "TrackPID(q0=[0.5, 0.5, 0.5], kp=400, kv=40) 0.000 → 4.000 s  good_end" in \
+            _text(report, "#report-text")
         assert {m.result.status for m in finished} == {"done"}
         assert len({id(m) for m in finished}) == 1
         report.query_one("#export-path").value = str(tmp_path / "arm.mcap")

@@ -43,15 +43,18 @@ async def test_paused_run_shows_where_the_mission_waits_and_its_rta():
     async with app.run_test(size=SIZE) as pilot:
         run = await _paused_run(pilot, app)
         status = _text(run, "#run-status")
-        home = _line_of("    run Home();")
+        homing = _line_of("run mission Homing;")
         assert "PAUSED" in status and "speed paused" in status
-        # Home's measurement pre-condition (line 26), in the run of Home at line 58
-        assert "waiting at arm_recovery.orc:26" in status and f"Home at :{home}" in status
+        # Home's measurement pre-condition (homing.orc:26, the sub-mission Homing imported
+        # from lib/homing.orc), reached through 'run mission Homing' (arm_recovery.orc:37)
+        assert f"waiting at arm_recovery.orc:{homing}, homing.orc:26" in status
+        assert "running Home at homing.orc:9" in status
         assert "of 60 s" in status  # progress against the horizon
         await pilot.press("o")
         assert run.query_one("#run-tabs").active == "source-tab"
         source = run.query_one("#run-source")
-        assert source.waiting == [26] and source.sites == [home]
+        assert source.waiting == [homing] and source.sites == []
+        assert "in homing.orc:26" in _text(run, "#run-source")
         await pilot.press("e")
         rta = _text(run, "#rta-text")
         assert "Home[/b] (site 0): phase 2" in rta and "▶ 2 measuring" in rta
@@ -83,7 +86,7 @@ def test_the_actual_speed_excludes_pauses_and_a_slow_run_is_flagged():
 
             class plan:  # noqa: N801
                 class automaton:  # noqa: N801
-                    waiting = ((),)
+                    waiting, labels = ((),), ()
 
     from orccad_app.tui.status import status_text
     text = status_text(_Session, LiveUpdate(1_500_000_000, 0, "running", "1×"), meter)
@@ -227,7 +230,7 @@ async def test_browser_search_preview_and_empty_state(tmp_path, monkeypatch):
     async with app.run_test(size=SIZE) as pilot:
         screen = app.screen
         await pilot.press("slash")
-        await pilot.press(*"survey")  # auv_survey.orc, not auv_waypoints.orc
+        await pilot.press(*"auv_s")
         await pilot.pause()
         names = [item.name for item in screen.query("#files ListItem")]
         assert names == ["missions/auv_survey.orc"]

@@ -17,15 +17,18 @@ torques are bit-identical:
 Any other law (full gains, Cartesian tracking, a perturbed model with an integral, velocity-
 dependent bounds) or an input of the wrong shape goes through the general path.
 
-**Small robots, plain floats.** For a PID (identity model) of at most :data:`SCALAR_DOF`
-joints with constant or all-velocity-dependent bounds, :meth:`LeanPath.command` works on
-Python floats (``ndarray.tolist()``) instead of numpy arrays: for three joints numpy's
-per-call overhead is most of the cost. The operations are IEEE-754 double operations in the
+**Small robots, plain floats.** For at most :data:`SCALAR_DOF` joints with constant or
+all-velocity-dependent bounds, :meth:`LeanPath.command` works on Python floats
+(``ndarray.tolist()``) instead of numpy arrays: for three joints numpy's per-call overhead is
+most of the cost. Computed torque keeps numpy for its two matrix products (numpy's ``matmul``
+sums in BLAS's order, which plain Python does not reproduce) and Pinocchio's in-place
+``crba``/``nonLinearEffects``. The operations are IEEE-754 double operations in the
 same order as the numpy ones, with numpy's tie rules: ``np.maximum(a, b)`` and
 ``np.minimum(a, b)`` return ``b`` when ``a == b`` (they differ only in the sign of a zero),
-``np.sign`` returns ``+0.0`` for both zeros. Inputs with a NaN or an infinity take the numpy
-lean path (NaN propagation differs between Python's comparisons and numpy's). The torques are
-therefore bit-identical (``tests/control/test_lean_scalar.py`` compares both paths).
+``np.sign`` returns ``+0.0`` for both zeros. Inputs with a NaN or an infinity, or an
+unsaturated torque that is not finite, take the numpy lean path from the same state (NaN
+propagation differs between Python's comparisons and numpy's). The torques are
+therefore bit-identical (``tests/control/test_lean_path.py`` compares both paths).
 """
 
 from __future__ import annotations
@@ -50,6 +53,21 @@ SCALAR_DOF = 8
 """Largest number of joints served by the plain-float PID path."""
 _isfinite = math.isfinite
 _array = np.array
+_SETTERS = tuple(LawOutput.__dict__[name].__set__ for name in ("tau", "tau_unsat",
+                                                                "saturated", "e"))
+
+
+def _law_output(tau: np.ndarray, tau_unsat: np.ndarray, saturated: np.ndarray,
+                e: np.ndarray) -> LawOutput:
+    """``LawOutput(tau, tau_unsat, saturated, e)`` through its slots' descriptors: the
+    frozen dataclass's ``__init__`` (``object.__setattr__`` per field) costs twice as much."""
+    out = object.__new__(LawOutput)
+    set_tau, set_unsat, set_saturated, set_e = _SETTERS
+    set_tau(out, tau)
+    set_unsat(out, tau_unsat)
+    set_saturated(out, saturated)
+    set_e(out, e)
+    return out
 
 
 def _diagonal(matrix: np.ndarray) -> np.ndarray | None:
@@ -113,12 +131,16 @@ class LeanPath:
         if not identity:
             self.pin, self.pin_model = law.model._pin, law.model.model
             self.pin_data, self.damping = law.model.data, law.model.damping
-        self.scalar = (identity and dof <= SCALAR_DOF and self.beta_mode != "mixed"
+        self.scalar = (dof <= SCALAR_DOF and self.beta_mode != "mixed"
                        and law.task_function.dim == dof)
         if self.scalar:  # the constants of the plain-float path, as lists of floats
             self.lists = tuple(np.asarray(a, dtype=float).tolist() for a in (
                 kp, kv, ki, self.neg_ki, self.tau_min, self.tau_max, self.alpha,
                 self.neg_alpha, self.beta, self.low, self.high))
+            if not identity:
+                self.damping_list = np.asarray(self.damping, dtype=float).tolist()
+                self.mirror_list = self.mirror.tolist()
+                self.mass_flat = self.mass.reshape(-1)  # a view: writes fill self.mass
 
     def command(self, law: ControlLaw, t_s: float, q: Any, qdot: Any,
                 reference: Sample) -> LawOutput | None:
@@ -191,27 +213,40 @@ class LeanPath:
 
     def _scalar_command(self, law: ControlLaw, t_s: float, q: np.ndarray, qdot: np.ndarray,
                         reference: Sample) -> LawOutput | None:
-        """The PID on Python floats (see the module docstring); ``None`` for non-finite
-        inputs or a reference of another shape or type (the numpy path then runs)."""
+        """The law on Python floats (see the module docstring); ``None`` for non-finite
+        inputs or torques, or a reference of another shape or type (the numpy path then
+        runs, from the same state)."""
         pos, vel = reference.pos, reference.vel
-        if pos.shape != self.shape or vel.shape != self.shape or pos.dtype != np.float64 \
+        shape = self.shape
+        if pos.shape != shape or vel.shape != shape or pos.dtype != np.float64 \
                 or vel.dtype != np.float64:
             return None
         ql, qdl, pl, vl = q.tolist(), qdot.tolist(), pos.tolist(), vel.tolist()
         if not _isfinite(sum(ql) + sum(qdl) + sum(pl) + sum(vl)):
             return None
-        kp, kv, ki, neg_ki, tau_min, tau_max, alpha, neg_alpha, beta, low, high = self.lists
         t_prev = law._t_prev
-        dt = 0.0 if t_prev is None else max(t_s - t_prev, 0.0)
         law._t_prev = t_s
+        if self.identity:
+            integral, e, tau_unsat = self._pid(law, t_s, t_prev, ql, qdl, pl, vl)
+        else:
+            integral = None  # no integral on this path (see lean_path)
+            e, tau_unsat = self._model(q, qdot, ql, qdl, pl, vl, reference)
+        if not _isfinite(sum(tau_unsat)):
+            law._t_prev = t_prev
+            return None
+        return self._clamp(law, tau_unsat, e, qdl, integral)
+
+    def _pid(self, law: ControlLaw, t_s: float, t_prev: float | None, ql: list, qdl: list,
+             pl: list, vl: list) -> tuple[list | None, list, list]:
+        """(the new integral or ``None`` if unchanged, e, the unsaturated torque)."""
+        kp, kv, ki, neg_ki = self.lists[:4]
+        dt = 0.0 if t_prev is None else max(t_s - t_prev, 0.0)
         ki_any = self.ki_any
         integrate = dt != 0.0 and ki_any
         integral = law.integral.tolist()
         sat_dir = law._sat_dir.tolist()
         windup = integrate and self.anti_windup and any(sat_dir)
-        full = self.beta_mode == "full"
-        e, tau, tau_unsat, saturated = [], [], [], []
-        lo = hi = 0.0
+        e, tau_unsat = [], []
         for j in range(len(ql)):  # one joint: the numpy lean path's operations, in order
             x = ql[j] - pl[j]
             e.append(x)
@@ -223,8 +258,39 @@ class LeanPath:
             u = kp[j] * x + kv[j] * (qdl[j] - vl[j])
             if ki_any:
                 u = u + ki[j] * integral[j]
-            u = 0.0 - u
-            tau_unsat.append(u)
+            tau_unsat.append(0.0 - u)
+        return (integral if integrate else None), e, tau_unsat
+
+    def _model(self, q: np.ndarray, qdot: np.ndarray, ql: list, qdl: list, pl: list,
+               vl: list, reference: Sample) -> tuple[list, list]:
+        """(e, the unsaturated torque) of computed torque: the feedback on floats, the mass
+        products with numpy (its matrix product's summation order is BLAS's), the rest on
+        floats, in :meth:`_model_torque`'s order."""
+        kp, kv = self.lists[:2]
+        e = [a - b for a, b in zip(ql, pl)]
+        feedback = _array([p * x + v * (w - r) for p, x, v, w, r in zip(kp, e, kv, qdl, vl)])
+        upper = self.pin.crba(self.pin_model, self.pin_data, q).ravel().tolist()
+        self.mass_flat[:] = [upper[i] + 0.0 for i in self.mirror_list]  # mirrored, + 0.0
+        mass = self.mass
+        product = np.matmul(np.negative(mass, out=self.neg_mass), feedback).tolist()
+        bias = self.pin.nonLinearEffects(self.pin_model, self.pin_data, q, qdot).tolist()
+        tau_unsat = [u + (b + d * w) for u, b, d, w in zip(product, bias, self.damping_list, qdl)]
+        if self.feedforward:
+            acc = np.negative(reference.acc, out=self.work)
+            inertial = np.matmul(mass, acc, out=self.work2).tolist()
+            tau_unsat = [u - m for u, m in zip(tau_unsat, inertial)]
+        return e, tau_unsat
+
+    def _clamp(self, law: ControlLaw, tau_unsat: list, e: list, qdl: list,
+               integral: list | None) -> LawOutput:
+        """The actuator constraint on floats (:meth:`_bounds` and the clamp, numpy's tie
+        rules), the saturation directions, the law's state written back."""
+        tau_min, tau_max, alpha, neg_alpha, beta, low, high = self.lists[4:]
+        full = self.beta_mode == "full"
+        tau, saturated, sat_dir = [], [], []
+        lo = hi = 0.0
+        for j in range(len(tau_unsat)):
+            u = tau_unsat[j]
             if full:  # numpy's maximum/minimum return the second operand on a tie
                 back_emf = beta[j] * qdl[j]
                 t_hi = tau_max[j]
@@ -246,10 +312,9 @@ class LeanPath:
                 v = hi                               # np.minimum(., high)
             tau.append(v)
             d = u - v
-            sat_dir[j] = 1.0 if d > 0 else -1.0 if d < 0 else 0.0  # np.sign
+            sat_dir.append(1.0 if d > 0 else -1.0 if d < 0 else 0.0)  # np.sign
             saturated.append(v != u)
-        if integrate:
+        if integral is not None:
             law.integral = _array(integral)
         law._sat_dir = _array(sat_dir)
-        return LawOutput(tau=_array(tau), tau_unsat=_array(tau_unsat),
-                         saturated=_array(saturated), e=_array(e))
+        return _law_output(_array(tau), _array(tau_unsat), _array(saturated), _array(e))

@@ -18,6 +18,7 @@ from textual.widgets import Footer, Header, OptionList, Static
 from textual.widgets.option_list import Option
 
 from orccad_app.tui.session import ScriptedInputs
+from orccad_app.tui.status import elsewhere
 from orccad_app.tui.widgets.source_view import SourceView
 
 __all__ = ["ReplayScreen"]
@@ -103,7 +104,8 @@ class ReplayScreen(Screen):
         self.query_one("#replay-step", Static).update(self._step_text())
         waiting = step.lines_in(self.path)
         self.query_one("#replay-source", SourceView).show_run(
-            self.path, self.text, waiting, step.run_lines_in(self.path))
+            self.path, self.text, waiting, step.run_lines_in(self.path),
+            elsewhere(step.waiting, self.path))
 
     def _step_text(self) -> str:
         step = self.step
@@ -114,7 +116,8 @@ class ReplayScreen(Screen):
         if step.status != "running":
             lines.append(f"the mission has ended: {step.status}")
         for task in step.tasks:
-            lines.append(f"running: {task.task} (run at line {task.loc.line})")
+            where = elsewhere([task.loc], self.path) or [f"line {task.loc.line}"]
+            lines.append(f"running: {task.task} (run at {where[0]})")
         return "\n".join(lines)
 
     @on(OptionList.OptionHighlighted, "#replay-steps")

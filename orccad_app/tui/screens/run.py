@@ -275,7 +275,7 @@ def _markers(log: list[LogEntry]) -> list[Marker]:
     found = []
     for entry in log:
         kind = _MARKED.get(entry.kind)
-        if entry.kind == "task" and ") starts" in entry.text:  # `X (site n) starts[: args]`
+        if entry.task_start:
             kind = "task"
         if kind is not None:
             found.append(Marker(entry.time_ns / 1e9, kind, entry.text))

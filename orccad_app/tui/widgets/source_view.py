@@ -42,12 +42,15 @@ class SourceView(Static):
         self.update(Group(*parts))
 
     def show_run(self, path: str, text: str, lines: list[int],
-                 sites: list[int] = ()) -> None:
+                 sites: list[int] = (), elsewhere: list[str] = ()) -> None:
         """The mission's source with the lines it waits at highlighted (reversed) and the
-        ``run`` statements of the running Robot-Tasks (green), scrolled into view."""
+        ``run`` statements of the running Robot-Tasks (green), scrolled into view;
+        ``elsewhere`` (``homing.orc:26``) says where it waits in other files."""
         caption = (Text(f"{path}: waiting at line{'s' if len(lines) > 1 else ''} "
                         f"{', '.join(map(str, lines))}", style="bold yellow") if lines else
                    Text(f"{path}: not waiting at a statement", style="dim"))
+        if elsewhere:
+            caption.append(f"   in {', '.join(elsewhere)}", style="bold yellow")
         if sites:
             caption.append(f"   running: line{'s' if len(sites) > 1 else ''} "
                            f"{', '.join(map(str, sites))}", style="bold green")
