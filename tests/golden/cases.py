@@ -45,6 +45,7 @@ CASES: tuple[Case, ...] = (
     _compile("arm_recovery", "ArmRecovery"),
     _compile("auv_survey", "AuvSurvey"),
     _compile("false_property", "PickPlace"),
+    _compile("auv_waypoints", "AuvWaypoints"),
     # full runs: the report covers the whole mission
     _run("arm_computed_torque", "arm_computed_torque"),
     _run("arm_pid", "arm_pid"),
@@ -60,4 +61,8 @@ CASES: tuple[Case, ...] = (
     _run("arm_recovery-trace", "arm_recovery", "--until", "1.6", trace=True),
     _run("auv_survey-trace", "auv_survey", "--until", "12", trace=True),
     _run("false_property-trace", "false_property", "--until", "2", trace=True),
+    # run-time arguments: a waypoint's start (its arguments in the trace) and a refused one
+    _run("auv_waypoints-trace", "auv_waypoints", "--inject", "Waypoint([15, 0, 5])@1",
+         "--until", "2", trace=True),
+    _run("auv_waypoints-refused", "auv_waypoints", "--inject", "Waypoint([15, 0, -5])@1"),
 )
