@@ -9,7 +9,6 @@ old race.
 
 from __future__ import annotations
 
-import shutil
 import json
 import shutil
 import subprocess
