@@ -89,3 +89,14 @@ def test_the_documented_react_script_walks_the_tour(capsys):
     assert "Reached(1) Hold.start Hold.arg.target([15.0, 0.0, 5.0])" in out[2]
     assert "GoTo.start GoTo.arg.target([15.0, 12.0, 8.0])" in out[3]
     assert out[-1].endswith("[done]")
+
+
+def test_a_constant_waypoint_of_the_wrong_size_is_a_compile_error(tmp_path, capsys):
+    text = MISSION.read_text().replace("run GoTo(target = ?Waypoint) within 120 s;",
+                                       "run GoTo(target = [15.0, 0.0]) within 120 s;")
+    path = tmp_path / "w.orc"
+    path.write_text(text)
+    assert main(["compile", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"{path}:72:21: error: waypoint_guidance: target must be [x, y, depth] (3 " \
+           "components), got 2: [15.0, 0.0] (with the arguments of this run of GoTo)" in err
