@@ -20,9 +20,6 @@ def commands_for(app, screen) -> list[tuple[str, Callable[[], None], str]]:
     from orccad_app.tui.session import failed_outcomes
 
     found = [("Help: the keys of this screen", app.action_help, "? or F1")]
-    for path in app.files:
-        found.append((f"Open mission {path}", partial(app.open_file, path),
-                      "show it in the mission browser"))
     if isinstance(screen, BrowserScreen):
         found += [("Run the mission", screen.action_run, "r: run it live"),
                   ("Check the mission's properties", screen.action_check, "c: orccad check"),
@@ -55,6 +52,9 @@ def commands_for(app, screen) -> list[tuple[str, Callable[[], None], str]]:
         found.append(("Abort the run", screen.action_abort, "status aborted"))
     if isinstance(screen, ReportScreen):
         found.append(("Export the trace", screen.action_export, "to the path in the field"))
+    for path in app.files:  # after what this screen does
+        found.append((f"Open mission {path}", partial(app.open_file, path),
+                      "show it in the mission browser"))
     return found
 
 

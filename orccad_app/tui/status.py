@@ -113,23 +113,32 @@ def run_site_lines(session: Any, state: int | None) -> list[int]:
     return _in_file([loc for _, loc in running_sites(session, state)], session.path)
 
 
-def where_text(session: Any, state: int | None, status: str = "running") -> str:
-    """``waiting at arm_recovery.orc:58, 77, homing.orc:26`` (or the status once the mission
-    ended), then the running Robot-Tasks and their ``run`` statements."""
+MAX_WAITING = 4
+"""Locations shown in the status line (the Source tab, ``o``, shows them all)."""
+
+
+def where_text(session: Any, state: int | None, status: str = "running",
+               limit: int = MAX_WAITING) -> str:
+    """``waiting at arm_recovery.orc:58, 77, homing.orc:26 (running TrackPID at :48)`` (or
+    the status once the mission ended); past ``limit`` locations, ``… +N``. The
+    running Robot-Tasks come first when the list is cut, so a small terminal shows them."""
     if status in ("done", "failed", "aborted"):
         return f"the mission has ended: {status}"
     waiting = _waiting(session, state)
     if not waiting:
         return "starting" if state is None else "reacting"
     name = Path(session.path).name
-    own = waiting_lines(session, state)
-    parts = ([f"{name}:{', '.join(map(str, own))}"] if own else []) + \
-        elsewhere(waiting, session.path)
-    text = f"waiting at {', '.join(parts)}"
+    own = [str(line) for line in waiting_lines(session, state)]
+    others = elsewhere(waiting, session.path)
+    cut = max(0, len(own) + len(others) - limit)
+    if cut:
+        own, others = own[:limit], others[:max(0, limit - len(own))]
+    parts = ([f"{name}:{', '.join(own)}"] if own else []) + others
+    text = f"waiting at {', '.join(parts)}" + (f" … +{cut}" if cut else "")
     running = running_sites(session, state)
     if running:
-        text += " (running " + ", ".join(f"{task} at {_where(loc, session.path)}"
-                                         for task, loc in running) + ")"
+        tasks = ", ".join(f"{task} at {_where(loc, session.path)}" for task, loc in running)
+        text = f"running {tasks}; {text}" if cut else f"{text} (running {tasks})"
     return text
 
 
@@ -155,12 +164,14 @@ def _speed(session: Any, meter: SpeedMeter) -> tuple[str, str]:
     return f"speed {requested} (actual {shown})", lag
 
 
-def status_text(session: Any, update: LiveUpdate | None, meter: SpeedMeter) -> str:
-    """Two lines: time/progress/speed, then where the mission waits (Rich markup)."""
+def status_text(session: Any, update: LiveUpdate | None, meter: SpeedMeter,
+                limit: int = MAX_WAITING) -> str:
+    """Two lines: time/progress/speed, then where the mission waits (Rich markup; at most
+    ``limit`` locations)."""
     horizon_s = session.run.until_ns / 1e9
     if update is None:
         return (f"mission {session.mission}: starting at {session.pace.label}   horizon "
-                f"{horizon_s:g} s\n{where_text(session, None)}")
+                f"{horizon_s:g} s\n{where_text(session, None, limit=limit)}")
     t_s = update.time_ns / 1e9
     share = min(1.0, t_s / horizon_s) if horizon_s else 0.0
     bar = "█" * round(share * 10) + "░" * (10 - round(share * 10))
@@ -168,7 +179,7 @@ def status_text(session: Any, update: LiveUpdate | None, meter: SpeedMeter) -> s
     paused = "  [b reverse] PAUSED [/]" if session.pace.paused else ""
     held = f"  held: {', '.join(update.held)}" if update.held else ""
     return (f"t = {t_s:.3f} s of {horizon_s:g} s {bar} {share:.0%}   {speed}{paused}{lag}\n"
-            f"{where_text(session, update.state, update.status)}{held}")
+            f"{where_text(session, update.state, update.status, limit)}{held}")
 
 
 def rta_text(session: Any, tasks: list[tuple[str, int, int]]) -> str:

@@ -88,6 +88,37 @@ class ControlLaw(ABC):
     def _configure(self) -> None:
         """Set :attr:`gains`, :attr:`model` and :attr:`feedforward` from :attr:`params`."""
 
+    # The integral and the saturation directions: arrays, which the lean path may hold as
+    # lists of floats between its calls (materialized at the first read).
+    _integral_list: list[float] | None = None
+    _sat_list: list[float] | None = None
+
+    @property
+    def integral(self) -> np.ndarray:
+        """:math:`\\int e\\,dt` so far (per task-error component)."""
+        if self._integral_list is not None:
+            self._integral_array = np.array(self._integral_list)
+            self._integral_list = None
+        return self._integral_array
+
+    @integral.setter
+    def integral(self, value: np.ndarray) -> None:
+        self._integral_array = value
+        self._integral_list = None
+
+    @property
+    def _sat_dir(self) -> np.ndarray:
+        """Per joint, the sign of the last saturation (``tau_unsat - tau``)."""
+        if self._sat_list is not None:
+            self._sat_array = np.array(self._sat_list)
+            self._sat_list = None
+        return self._sat_array
+
+    @_sat_dir.setter
+    def _sat_dir(self, value: np.ndarray) -> None:
+        self._sat_array = value
+        self._sat_list = None
+
     def reset(self) -> None:
         """Forget the integral and the last sample time (at each task activation)."""
         self.integral = np.zeros(self.task_function.dim)

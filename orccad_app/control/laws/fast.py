@@ -243,8 +243,11 @@ class LeanPath:
         dt = 0.0 if t_prev is None else max(t_s - t_prev, 0.0)
         ki_any = self.ki_any
         integrate = dt != 0.0 and ki_any
-        integral = law.integral.tolist()
-        sat_dir = law._sat_dir.tolist()
+        integral = law._integral_list
+        integral = law.integral.tolist() if integral is None else integral[:]
+        sat_dir = law._sat_list
+        if sat_dir is None:
+            sat_dir = law._sat_dir.tolist()
         windup = integrate and self.anti_windup and any(sat_dir)
         e, tau_unsat = [], []
         for j in range(len(ql)):  # one joint: the numpy lean path's operations, in order
@@ -314,7 +317,7 @@ class LeanPath:
             d = u - v
             sat_dir.append(1.0 if d > 0 else -1.0 if d < 0 else 0.0)  # np.sign
             saturated.append(v != u)
-        if integral is not None:
-            law.integral = _array(integral)
-        law._sat_dir = _array(sat_dir)
+        if integral is not None:  # kept as floats: ControlLaw.integral makes the array
+            law._integral_list = integral
+        law._sat_list = sat_dir
         return _law_output(_array(tau), _array(tau_unsat), _array(saturated), _array(e))

@@ -71,11 +71,13 @@ class BrowserScreen(Screen):
                     with VerticalScroll():
                         yield Static("press c to prove the mission's properties",
                                      id="check-text")
-        yield Footer()
+        yield Footer(compact=True)
 
     @staticmethod
     def _items(paths: list[str]) -> list[ListItem]:
-        return [ListItem(Label(path), name=path) for path in paths]
+        """One item per file, named by its path; shown without the ``missions/`` folder (so
+        that a narrow list still tells ``arm_pid.orc`` from ``arm_retune.orc``)."""
+        return [ListItem(Label(path.removeprefix("missions/")), name=path) for path in paths]
 
     def on_mount(self) -> None:
         self.title = "ORCCAD — missions"

@@ -106,7 +106,7 @@ class EditorScreen(Screen[bool]):
                                  tab_behavior="indent")
             yield editor
             yield OptionList(id="diagnostics")
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         theme = TextAreaTheme.get_builtin_theme("monokai")

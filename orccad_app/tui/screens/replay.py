@@ -60,7 +60,7 @@ class ReplayScreen(Screen):
                 yield Static(id="replay-step")
                 with VerticalScroll(id="replay-scroll"):
                     yield SourceView(id="replay-source")
-        yield Footer()
+        yield Footer(compact=True)
 
     def _options(self) -> list[Option]:
         options = []

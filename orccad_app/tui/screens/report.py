@@ -59,7 +59,7 @@ class ReportScreen(Screen):
             yield Input(f"{self.session.mission}-trace.mcap", id="export-path")
             yield Button("Export trace", id="export-button", variant="primary")
             yield ProgressBar(total=1.0, id="export-progress", show_eta=False)
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         self.title = f"ORCCAD — report {self.session.mission}"

@@ -16,7 +16,8 @@ from orccad_app.tui.messages import InputRequested, RunFailed, RunFinished, RunU
 from orccad_app.tui.screens.series import SeriesScreen
 from orccad_app.tui.session import LiveSession
 from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_text,
-                                    tasks_in_state, tcs_rows, waiting_lines)
+                                    tasks_in_state, tcs_rows, waiting_elsewhere,
+                                    waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
 from orccad_app.tui.widgets.plots import Marker, Plots
@@ -38,9 +39,9 @@ class RunScreen(Screen):
 
     BINDINGS = [
         Binding("space", "toggle_pause", "Pause/resume"),
-        Binding("r", "speed('realtime')", "1×", tooltip="real time (1×)"),
-        Binding("x", "speed('fast')", "10×", tooltip="10× real time"),
-        Binding("m", "speed('max')", "Max", tooltip="as fast as possible"),
+        Binding("r", "speed('realtime')", "1×", show=False, tooltip="real time (1×)"),
+        Binding("x", "speed('fast')", "10×", show=False, tooltip="10× real time"),
+        Binding("m", "speed('max')", "Max", show=False, tooltip="as fast as possible"),
         Binding("i", "inject", "Inject", tooltip="inject the fault or event chosen in the list"),
         Binding("h", "hold_mode", "Pulse/hold", tooltip="inputs: pulse (one instant) or hold "
                                                         "(every instant until pressed again)"),
@@ -93,7 +94,7 @@ class RunScreen(Screen):
                 yield EventLog(id="log")
         yield InputBar(self.session.inputs, self.session.events, self.session.faults,
                        id="inputs")
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         self.query_one(EventLog).border_title = "log"
@@ -116,8 +117,9 @@ class RunScreen(Screen):
         self.post_message(RunFinished(result, self.session.report()))
 
     def _status(self, update: LiveUpdate | None) -> None:
+        limit = 4 if self.size.width < 120 else 12  # where it waits: what fits on a line
         self.query_one("#run-status", Static).update(status_text(
-            self.session, update, self.meter))
+            self.session, update, self.meter, limit))
 
     def _where(self, update: LiveUpdate | None) -> None:
         """The source with the statements the mission waits at, the RTA and TCS tabs."""
@@ -125,7 +127,7 @@ class RunScreen(Screen):
         tasks = tasks_in_state(self.session, state)
         self.query_one("#run-source", SourceView).show_run(
             self.session.path, self.session.text, waiting_lines(self.session, state),
-            run_site_lines(self.session, state))
+            run_site_lines(self.session, state), waiting_elsewhere(self.session, state))
         self.query_one("#rta-text", Static).update(rta_text(self.session, tasks))
         loads = {} if update is None else update.loads
         misses = {} if update is None else update.misses

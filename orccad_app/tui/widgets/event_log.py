@@ -23,7 +23,7 @@ class EventLog(Vertical):
 
     DEFAULT_CSS = """
     EventLog { height: 1fr; }
-    EventLog Input { height: 3; }
+    EventLog Input { height: 1; }
     EventLog RichLog { height: 1fr; }
     """
 
@@ -37,7 +37,7 @@ class EventLog(Vertical):
 
     def compose(self) -> ComposeResult:
         yield Input(placeholder="filter the log (e.g. exception, Stop, TrackPID)",
-                    id="log-filter")
+                    id="log-filter", compact=True)
         yield RichLog(id="log-lines", wrap=True, markup=False, min_width=20,
                       max_lines=self.MAX_LINES)
 

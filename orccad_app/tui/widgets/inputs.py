@@ -71,7 +71,7 @@ class InputBar(Horizontal):
         options = [(f"{self._key(name)}event {name}", name) for name in self.events]
         options += [(f"fault {name}", name) for name in self.faults]
         if options:
-            yield Select(options, id="injection", prompt="fault or event (type to search)",
+            yield Select(options, id="injection", prompt="fault/event (type: search)",
                          compact=True)
             yield Button("i inject", id="inject", compact=True)
         if not self.inputs and not options:

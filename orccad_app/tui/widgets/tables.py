@@ -16,7 +16,7 @@ class TaskTable(DataTable):
 
     def on_mount(self) -> None:
         self.cursor_type = "none"
-        self.add_columns("Robot-Task", "site", "phase")
+        self.add_columns("task", "site", "phase")
 
     def show(self, tasks: list[tuple[str, int, int]]) -> None:
         self.clear()
@@ -33,12 +33,12 @@ class LoadTable(DataTable):
 
     def on_mount(self) -> None:
         self.cursor_type = "none"
-        self.add_columns("processor / module", "load", "misses")
+        self.add_columns("cpu / module", "load", "miss")
 
     def show(self, loads: dict[str, float], misses: dict[str, int]) -> None:
         self.clear()
         for processor, load in sorted(loads.items()):
-            self.add_row(processor, f"{load:6.1%}", "")
+            self.add_row(processor, f"{load:.1%}", "")
         for module, count in sorted(misses.items()):
             self.add_row(f"  {module}", "", str(count))
         if not misses:
