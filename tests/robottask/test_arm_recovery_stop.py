@@ -9,6 +9,7 @@ old race.
 
 from __future__ import annotations
 
+import shutil
 import json
 import subprocess
 import sys
