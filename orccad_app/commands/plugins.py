@@ -44,8 +44,21 @@ def register(subparsers: Any) -> None:
 
 def _params(params: Any) -> list[dict[str, Any]]:
     return [{"name": p.name, "type": p.type, "required": p.required,
-             "default": None if p.required else _plain(p.default), "doc": p.doc}
+             "default": None if p.required else _plain(p.default), "doc": p.doc,
+             "minimum": p.minimum, "exclusive": p.exclusive, "maximum": p.maximum}
             for p in params]
+
+
+def _range(param: dict[str, Any]) -> str:
+    """`` in [0, 0.1]``, `` > 0``… (empty without bounds)."""
+    low, high = param.get("minimum"), param.get("maximum")
+    if low is None and high is None:
+        return ""
+    if high is None:
+        return f"  {'>' if param.get('exclusive') else '>='} {low:g}"
+    if low is None:
+        return f"  <= {high:g}"
+    return f"  in {'(' if param.get('exclusive') else '['}{low:g}, {high:g}]"
 
 
 def _plain(value: Any) -> Any:
@@ -111,7 +124,8 @@ def _details(entry: dict[str, Any]) -> list[str]:
     lines = []
     for param in entry["params"]:
         default = "required" if param["required"] else f"= {param['default']!r}"
-        lines.append(f"      param {param['name']}: {param['type']} {default}  {param['doc']}")
+        lines.append(f"      param {param['name']}: {param['type']} {default}{_range(param)}  "
+                     f"{param['doc']}")
     for port in entry.get("ports", ()):
         dim = f"[{port['dim']}]" if port["dim"] else ""
         optional = "" if port["required"] else " (optional)"

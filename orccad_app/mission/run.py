@@ -9,7 +9,10 @@ automaton input ``X.E``), injected inputs (``--inject SIG@T``) and timers are si
 automaton reacts, in zero time, at every instant where one of them can matter:
 
 - at every instant with an observer event or an injection (all of the instant's signals in one
-  reaction, after the jobs finishing then have written their outputs);
+  reaction, after the jobs finishing then have written their outputs); an observer's event
+  first goes to its Robot-Task's automaton processor (``automaton on P reaction D``: over the
+  bus from another processor, then a reaction job of ``D`` there,
+  :mod:`orccad_app.executive.reaction`);
 - on a periodic *tick* (default: the gcd of the module periods, 1 ms for the arm missions),
   because timers (``await 2 s``, a task's ``duration``, watchdogs, ``within``) are data tests
   on the clock: a deadline is seen at the first tick at or after it — exactly at it when it is a

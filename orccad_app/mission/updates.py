@@ -5,8 +5,9 @@ in that instant from the *current* parameters of X's running Module-Tasks (``min
 1.5, 800.0)`` compounds on every repetition and stays under 800), sets it on the running module
 and returns the :class:`~orccad_app.mission.result.UpdateRecord` (old and new value) that the
 report and the trace log. A ramp ``ramp(START, END, D)`` sets ``START`` at once, then at every
-release of the module within ``D`` the value interpolated at that instant, then ``END``; a new
-update of the same parameter, or the end of the task's run, stops it.
+release of the module within ``D`` the value interpolated at that instant, then ``END`` (a
+sporadic module: every minimum inter-arrival time from the update); a new update of the same
+parameter, or the end of the task's run, stops it.
 
 A computed value is checked when it is applied, like a written one (type, declared range,
 finiteness; for a ramp both ends): a bad value raises :class:`UpdateError`, which ends the run
@@ -27,6 +28,7 @@ from orccad_app.mission.result import RampRecord, UpdateRecord
 from orccad_app.robottask.updates import compute
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import ModuleTask
+from orccad_app.tcs.phasing import Activation
 
 __all__ = ["UpdateError", "TypeOneUpdates"]
 
@@ -44,6 +46,8 @@ class _Ramp:
     t0_ns: int
     duration_ns: int
     period_ns: int
+    origin_ns: int
+    """An instant of the module's release grid (its first release)."""
     entry: Any = None
 
     def value(self, t_ns: int) -> Any:
@@ -93,8 +97,11 @@ class TypeOneUpdates:
         start, end = (self._value(update, e, exception) for e in form.expressions)
         self._check(update, end, exception, "the end of its ramp")
         self._set(update, start, exception)
+        task = self._task(update.module)
+        periodic = task.activation is Activation.PERIODIC
+        origin = self._activated.get(update.module, now) + task.offset_ns if periodic else now
         ramp = _Ramp(update.module, update.param, start, end, now, form.ramp.duration_ns,
-                     self._task(update.module).period_ns)
+                     task.period_ns, origin)
         self._ramps[key] = ramp
         self._schedule(ramp, update, exception)
         return UpdateRecord(update.module, update.param, old, start,
@@ -144,7 +151,7 @@ class TypeOneUpdates:
     def _schedule(self, ramp: _Ramp, update: ParamUpdate, exception: str) -> None:
         """The ramp's next step: the module's next release after now (or its end)."""
         now = self._kernel.now
-        origin = self._activated.get(ramp.module, ramp.t0_ns)
+        origin = ramp.origin_ns
         step = origin + ((now - origin) // ramp.period_ns + 1) * ramp.period_ns
         step = min(step, ramp.t0_ns + ramp.duration_ns)
         ramp.entry = self._kernel.schedule(step, EventClass.CONTROL, self._step,

@@ -28,7 +28,12 @@ from orccad_app.reactive.engine import BOOT, Outcome, react
 from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
 
-__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL", "state_budget_error"]
+__all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL", "state_budget_error",
+           "StateBudgetExceeded"]
+
+class StateBudgetExceeded(OrccadError):
+    """The program has more reachable states (or transitions of one state) than the budget."""
+
 
 #: Default state budget; ``orccad compile --max-states`` changes it.
 DEFAULT_MAX_STATES = 20_000
@@ -155,7 +160,7 @@ class _Explorer:
     def _count(self, leaves: int) -> None:
         self.leaves += leaves
         if self.leaves > MAX_LEAVES_PER_STATE:
-            raise OrccadError(
+            raise StateBudgetExceeded(
                 f"state explosion: one state of '{self.prep.program.name}' needs more than "
                 f"{MAX_LEAVES_PER_STATE} transitions", self.prep.program.loc)
 
@@ -237,9 +242,9 @@ def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES
     return minimize(program, trees, BOOT, waiting, labels, prep.data_tests, _variables(prep))
 
 
-def state_budget_error(program: ir.Program, max_states: int) -> OrccadError:
+def state_budget_error(program: ir.Program, max_states: int) -> StateBudgetExceeded:
     """The located error of a program with more than ``max_states`` reachable states."""
-    return OrccadError(f"state budget exceeded: '{program.name}' has more than {max_states} "
+    return StateBudgetExceeded(f"state budget exceeded: '{program.name}' has more than {max_states} "
                        "reachable control states (raise the budget with --max-states)",
                        program.loc)
 

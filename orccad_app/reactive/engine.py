@@ -198,62 +198,62 @@ class _Walk:
 
     # ------------------------------------------------------------------ the walk
     def go(self, node: KNode, depth: bool, sure: bool, scope: dict) -> tuple[int | None, int]:
-        """Returns (must code or None, bitmask of codes the statement can return)."""
-        kind = node.kind
-        if kind == SEQ:
-            return self._seq(node, depth, sure, scope)
-        if kind == PAUSE:
-            if depth:
-                return 0, 1
-            if sure:
-                self.next.append(node.pid)
-            return 1, 2
-        if kind == EMIT:
-            self._emit(node, sure, scope)
+        """Returns (must code or None, bitmask of codes the statement can return).
+
+        The walk's own recursion calls ``_GO[kind]`` directly (one Python call per statement
+        instead of two: the walk is the compiler's hot loop)."""
+        return _GO[node.kind](self, node, depth, sure, scope)
+
+    def _pause(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        if depth:
             return 0, 1
-        if kind == PRESENT:
-            return self._present(node, depth, sure, scope)
-        if kind == LOOP:
-            return self._loop(node, depth, sure, scope)
-        if kind == PAR:
-            return self._par(node, depth, sure, scope)
-        if kind == TRAP:
-            return self._trap(node, depth, sure, scope)
-        if kind == EXIT:
-            return node.code, 1 << node.code
-        if kind == SUSPEND:
-            return self._suspend(node, depth, sure, scope)
-        if kind == ASSIGN:
-            if not sure:
-                return None, 1
-            stmt = node.src
-            waiting = self.missing(stmt.expr, scope)
-            if waiting or stmt.var in self.deferred_vars:
-                # the assignment waits for a value; what reads the variable waits for it
-                self.block(waiting, stmt.loc)
-                self.deferred_vars.add(stmt.var)
-                return 0, 1
-            self.record(node.index, ("assign", stmt.var, _fresh_pre(self.prep, stmt.expr, scope),
-                                     None, self.read_keys(stmt.expr, scope), stmt.loc))
+        if sure:
+            self.next.append(node.pid)
+        return 1, 2
+
+    def _emit_stmt(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        self._emit(node, sure, scope)
+        return 0, 1
+
+    def _exit(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        return node.code, 1 << node.code
+
+    def _assign(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        if not sure:
+            return None, 1
+        stmt = node.src
+        waiting = self.missing(stmt.expr, scope)
+        if waiting or stmt.var in self.deferred_vars:
+            # the assignment waits for a value; what reads the variable waits for it
+            self.block(waiting, stmt.loc)
+            self.deferred_vars.add(stmt.var)
             return 0, 1
-        if kind == LOCAL:
-            inner = dict(scope)
-            for decl in node.src.signals:
-                inner[decl] = (decl, depth)
-                if not depth and sure:
-                    self.fresh.add(decl)
-                    if decl in self.old_reads:
-                        # the old incarnation's value is still to be read in this instant
-                        self.deferred_keys.add((decl, False))
-                        self.unready.add((decl, False))
-                    elif decl.valued and (decl.init is not None or node.in_loop):
-                        # a new incarnation: ?S starts from the initial value (or none)
-                        self.record(node.index, ("init", decl, None, (decl, False), (),
-                                                 node.src.loc))
-            return self.go(node.children[0], depth, sure, inner)
-        if kind == MARK:
-            return self.go(node.children[0], depth, sure, scope)
-        assert kind == NOTHING
+        self.record(node.index, ("assign", stmt.var, _fresh_pre(self.prep, stmt.expr, scope),
+                                 None, self.read_keys(stmt.expr, scope), stmt.loc))
+        return 0, 1
+
+    def _local(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        inner = dict(scope)
+        for decl in node.src.signals:
+            inner[decl] = (decl, depth)
+            if not depth and sure:
+                self.fresh.add(decl)
+                if decl in self.old_reads:
+                    # the old incarnation's value is still to be read in this instant
+                    self.deferred_keys.add((decl, False))
+                    self.unready.add((decl, False))
+                elif decl.valued and (decl.init is not None or node.in_loop):
+                    # a new incarnation: ?S starts from the initial value (or none)
+                    self.record(node.index, ("init", decl, None, (decl, False), (),
+                                             node.src.loc))
+        child = node.children[0]
+        return _GO[child.kind](self, child, depth, sure, inner)
+
+    def _mark(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        child = node.children[0]
+        return _GO[child.kind](self, child, depth, sure, scope)
+
+    def _nothing(self, node: KNode, depth: bool, sure: bool, scope: dict):
         return 0, 1
 
     def _emit(self, node: KNode, sure: bool, scope: dict) -> bool:
@@ -287,14 +287,16 @@ class _Walk:
             # the last child starting at or before that pause holds it (pause-less
             # children share their ``lo`` with the next child)
             start = bisect_right(node.child_los, first) - 1
-            must, child_codes = self.go(children[start], True, sure, scope)
+            child = children[start]
+            must, child_codes = _GO[child.kind](self, child, True, sure, scope)
             codes = child_codes & ~1
             if not child_codes & 1:
                 return (must if sure else None), codes
             sure = sure and must == 0
             start += 1
         for index in range(start, len(children)):  # no slice: a mission's top sequence is long
-            must, child_codes = self.go(children[index], False, sure, scope)
+            child = children[index]
+            must, child_codes = _GO[child.kind](self, child, False, sure, scope)
             codes |= child_codes & ~1
             if not child_codes & 1:
                 return (must if sure else None), codes
@@ -305,22 +307,22 @@ class _Walk:
         then, orelse = node.children
         if depth:
             branch = then if self.selected(then) else orelse
-            return self.go(branch, True, sure, scope)
+            return _GO[branch.kind](self, branch, True, sure, scope)
         status = self.test(node.src.test, scope, sure)
         if status is True:
-            return self.go(then, False, sure, scope)
+            return _GO[then.kind](self, then, False, sure, scope)
         if status is False:
-            return self.go(orelse, False, sure, scope)
-        _, a = self.go(then, False, False, scope)
-        _, b = self.go(orelse, False, False, scope)
+            return _GO[orelse.kind](self, orelse, False, sure, scope)
+        _, a = _GO[then.kind](self, then, False, False, scope)
+        _, b = _GO[orelse.kind](self, orelse, False, False, scope)
         return None, a | b
 
     def _loop(self, node: KNode, depth: bool, sure: bool, scope: dict):
         body = node.children[0]
-        must, codes = self.go(body, depth, sure, scope)
+        must, codes = _GO[body.kind](self, body, depth, sure, scope)
         if not (depth and codes & 1):
             return must, codes
-        again_must, again = self.go(body, False, sure and must == 0, scope)
+        again_must, again = _GO[body.kind](self, body, False, sure and must == 0, scope)
         if must == 0:
             result = again_must
         else:
@@ -333,7 +335,7 @@ class _Walk:
         for branch in node.children:
             if depth and not self.selected(branch):
                 continue  # a branch that has terminated counts as terminated
-            branch_must, branch_codes = self.go(branch, depth, sure, scope)
+            branch_must, branch_codes = _GO[branch.kind](self, branch, depth, sure, scope)
             # max_combine(codes, branch_codes) inlined and without loops: a code of one side
             # is a max iff it is ≥ the other side's smallest code (x & -x: lowest bit of x)
             if codes and branch_codes:
@@ -347,7 +349,8 @@ class _Walk:
 
     def _trap(self, node: KNode, depth: bool, sure: bool, scope: dict):
         mark = len(self.next)
-        must, codes = self.go(node.children[0], depth, sure, scope)
+        body = node.children[0]
+        must, codes = _GO[body.kind](self, body, depth, sure, scope)
         own = node.code
         if must == own:
             del self.next[mark:]  # the exit kills the body: drop the pauses it reached
@@ -359,18 +362,28 @@ class _Walk:
     def _suspend(self, node: KNode, depth: bool, sure: bool, scope: dict):
         body = node.children[0]
         if not depth:
-            return self.go(body, False, sure, scope)
+            return _GO[body.kind](self, body, False, sure, scope)
         status = self.test(node.src.test, scope, sure)
         if status is False:
-            return self.go(body, True, sure, scope)
+            return _GO[body.kind](self, body, True, sure, scope)
         if status is True:
             if sure:
                 lo, hi = bisect_left(self.active, node.lo), bisect_left(self.active, node.hi)
                 self.next.extend(self.active[lo:hi])
             return 1, 2
-        _, codes = self.go(body, True, False, scope)
+        _, codes = _GO[body.kind](self, body, True, False, scope)
         return None, codes | 2
 
+
+#: The walk's handler of each statement kind (see :meth:`_Walk.go`).
+_GO: list = [None] * 13
+for _kind, _handler in ((SEQ, _Walk._seq), (PAUSE, _Walk._pause), (EMIT, _Walk._emit_stmt),
+                        (PRESENT, _Walk._present), (LOOP, _Walk._loop), (PAR, _Walk._par),
+                        (TRAP, _Walk._trap), (EXIT, _Walk._exit), (SUSPEND, _Walk._suspend),
+                        (ASSIGN, _Walk._assign), (LOCAL, _Walk._local), (MARK, _Walk._mark),
+                        (NOTHING, _Walk._nothing)):
+    _GO[_kind] = _handler
+assert None not in _GO
 
 #: Walks allowed for one reaction (each walk decides at least one status or value).
 MAX_WALKS = 10_000

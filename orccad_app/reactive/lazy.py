@@ -28,10 +28,10 @@ from __future__ import annotations
 
 from typing import Container, Iterator
 
-from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import TERMINAL, Action, DataBranch, InputTest, Leaf, Node
-from orccad_app.reactive.compiler import (DEFAULT_MAX_STATES, MAX_LEAVES_PER_STATE, _Explorer,
+from orccad_app.reactive.compiler import (DEFAULT_MAX_STATES, MAX_LEAVES_PER_STATE,
+                                          StateBudgetExceeded, _Explorer,
                                           _forced, _labels, _labels_by_pause, _variables,
                                           _waiting, state_budget_error)
 from orccad_app.reactive.engine import BOOT, Outcome, react
@@ -189,7 +189,7 @@ class LazyAutomaton:
             runs.append(react(prep, key, oracle))
             self._leaves[state] += 1
             if self._leaves[state] > MAX_LEAVES_PER_STATE:
-                raise OrccadError(
+                raise StateBudgetExceeded(
                     f"state explosion: one state of '{prep.program.name}' needs more than "
                     f"{MAX_LEAVES_PER_STATE} transitions", prep.program.loc)
             prefix = oracle.answers

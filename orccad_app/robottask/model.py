@@ -263,6 +263,10 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
     except OrccadError as error:
         raise _located(error, target.loc) from None
 
+    if form.ramp is not None and spec.type not in ("float", "float|vector", "vector", "matrix"):
+        raise OrccadError(f"a ramp moves a real parameter; {target.component}.{target.port} is "
+                          f"a {spec.type}", adjust.value.loc)
+
     def read(name: str, param: str) -> Any:
         if name not in fresh:
             raise OrccadError(_unknown_module(name, inst))

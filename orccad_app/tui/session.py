@@ -122,11 +122,25 @@ def _diagnostic(severity: str, error: Any, path: str | None = None) -> FileDiagn
                       message)
 
 
+#: States the browser's summary compiles at most: a larger mission is summarized without its
+#: automaton (a run builds the states it reaches; ``check`` explores them all).
+SUMMARY_MAX_STATES = 2000
+
+
 def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     from orccad_app.pipeline import compose_mission
+    from orccad_app.reactive.compiler import StateBudgetExceeded
     from orccad_app.reactive.export import to_summary
 
-    composition = compose_mission(source, mission)
+    try:
+        composition = compose_mission(source, mission, max_states=SUMMARY_MAX_STATES)
+    except StateBudgetExceeded:
+        composition = compose_mission(source, mission, lazy=True)
+        tasks = ", ".join(dict.fromkeys(site.task for site in composition.sites)) or "-"
+        inputs = [s.name for s in composition.automaton.inputs if "." not in s.name]
+        return (f"mission {mission.name}: more than {SUMMARY_MAX_STATES} states (a run builds "
+                f"the states it reaches; orccad check explores them all)\n"
+                f"  Robot-Tasks: {tasks}\n"), inputs
     automaton, sites = composition.automaton, composition.sites
     tasks = ", ".join(dict.fromkeys(site.task for site in sites)) or "-"
     inputs = [s.name for s in automaton.inputs if "." not in s.name]

@@ -29,8 +29,9 @@ class Case:
     trace: bool = False
 
 
-def _compile(stem: str, mission: str) -> Case:
-    return Case(f"compile-{stem}", ("compile", f"missions/{stem}.orc", "-m", mission, "--format", "json"))
+def _compile(stem: str, mission: str, name: str | None = None) -> Case:
+    return Case(f"compile-{name or stem}",
+                ("compile", f"missions/{stem}.orc", "-m", mission, "--format", "json"))
 
 
 def _run(name: str, stem: str, *args: str, trace: bool = False) -> Case:
@@ -45,6 +46,10 @@ CASES: tuple[Case, ...] = (
     _compile("arm_recovery", "ArmRecovery"),
     _compile("auv_survey", "AuvSurvey"),
     _compile("false_property", "PickPlace"),
+    _compile("arm_computed_torque_multirate", "ArmComputedTorqueMultirate"),
+    _compile("arm_interrupts", "ArmInterrupts"),
+    _compile("arm_interrupts", "ArmInterruptsTight", "arm_interrupts-tight"),
+    _compile("arm_retune", "ArmRetune"),
     _compile("auv_waypoints", "AuvWaypoints"),
     # full runs: the report covers the whole mission
     _run("arm_computed_torque", "arm_computed_torque"),
@@ -54,6 +59,11 @@ CASES: tuple[Case, ...] = (
     _run("auv_survey", "auv_survey"),
     _run("auv_survey-leak", "auv_survey", "--inject", "auv.leak=1@100"),
     _run("false_property", "false_property"),
+    _run("arm_computed_torque_multirate", "arm_computed_torque_multirate"),
+    _run("arm_interrupts", "arm_interrupts", "-m", "ArmInterrupts"),
+    _run("arm_interrupts-tight", "arm_interrupts", "-m", "ArmInterruptsTight"),
+    _run("arm_retune", "arm_retune"),
+    _run("auv_waypoints", "auv_waypoints", "--until", "60", "--inject", "Waypoint([15, 0, 5])@1"),
     # traces: short horizons keep the references small (each crosses a Robot-Task boundary
     # where the mission has one)
     _run("arm_pid-trace", "arm_pid", "--until", "0.3", trace=True),
@@ -61,8 +71,13 @@ CASES: tuple[Case, ...] = (
     _run("arm_recovery-trace", "arm_recovery", "--until", "1.6", trace=True),
     _run("auv_survey-trace", "auv_survey", "--until", "12", trace=True),
     _run("false_property-trace", "false_property", "--until", "2", trace=True),
-    # run-time arguments: a waypoint's start (its arguments in the trace) and a refused one
-    _run("auv_waypoints-trace", "auv_waypoints", "--inject", "Waypoint([15, 0, 5])@1",
-         "--until", "2", trace=True),
+    _run("arm_computed_torque_multirate-trace", "arm_computed_torque_multirate", "--until", "0.3",
+         trace=True),
+    _run("arm_interrupts-trace", "arm_interrupts", "-m", "ArmInterrupts", "--until", "0.3",
+         trace=True),
+    _run("arm_retune-trace", "arm_retune", "--until", "0.5", trace=True),
+    _run("auv_waypoints-trace", "auv_waypoints", "--until", "10", "--inject",
+         "Waypoint([15, 0, 5])@1", trace=True),
+    # a run-time argument refused when its task starts: failed at the argument
     _run("auv_waypoints-refused", "auv_waypoints", "--inject", "Waypoint([15, 0, -5])@1"),
 )

@@ -252,3 +252,12 @@ def test_sub_missions_on_one_robot_in_parallel_branches_are_a_resource_conflict(
             "Park both use robot 'arm' and may run in parallel branches (Park in sub-mission "
             "'Parking')") in err
     assert f"{tmp_path / 'lib' / 'homing.orc'}:9:5: note: Home runs here" in err
+
+
+def test_a_campaign_sees_an_edited_library(tmp_path):
+    from orccad_app.campaign.adapter import CompiledMission
+
+    _write(tmp_path, {"lib/greet.orc": GREET, "main.orc": MAIN})
+    before = CompiledMission(str(tmp_path / "main.orc")).digest
+    (tmp_path / "lib" / "greet.orc").write_text(GREET + "// edited\n", encoding="utf-8")
+    assert CompiledMission(str(tmp_path / "main.orc")).digest != before  # resume refuses

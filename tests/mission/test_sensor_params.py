@@ -140,7 +140,20 @@ def test_a_campaign_varies_the_arms_noise(tmp_path):
     runs = json.loads(result.stdout)["results"]
     drawn = [run["setting"]["values"]["arm.noise_std"] for run in runs]
     assert len(set(drawn)) == 3 and all(0.0 <= v <= 0.01 for v in drawn)
+    rms = [run["metrics"]["TrackPID.tracking_error.rms"] for run in runs]
+    assert rms.index(max(rms)) == drawn.index(max(drawn))  # the noisiest run tracks worst
     for run in runs:  # each run's replay command carries its noise
         assert any(f"arm.noise_std={value!r}" in arg
                    for value in [run["setting"]["values"]["arm.noise_std"]]
                    for arg in run["setting"]["sets"]), run["setting"]
+
+
+def test_orccad_plugins_lists_the_sensor_parameters_with_their_range_and_unit():
+    listing = json.loads(orccad("plugins", "--json").stdout)
+    arm = next(r for r in listing["robot_types"] if r["name"] == "arm3dof")
+    noise = next(p for p in arm["params"] if p["name"] == "noise_std")
+    assert (noise["type"], noise["default"], noise["minimum"], noise["maximum"]) == \
+        ("float", 0.0, 0.0, 0.1)
+    assert noise["doc"].endswith("[rad]")
+    text = orccad("plugins", "-v").stdout
+    assert "param noise_std: float = 0.0  in [0, 0.1]  joint position measurement noise" in text

@@ -52,6 +52,8 @@ def _column(text: str, fragment: str) -> int:
      "ctrl.kp *"),
     ("adjust ctrl.kp = ctrl.anti_windup * 2.0", "computes with numbers, got True",
      "ctrl.anti_windup"),
+    ("adjust ctrl.anti_windup = ramp(0.0, 1.0, 1 s)", "a ramp moves a real parameter; "
+                                                       "ctrl.anti_windup is a bool", "ramp"),
     ("adjust traj.omegaa = 1.0", "trajectory 'cosine') has no parameter 'omegaa' (did you "
                                  "mean 'omega'?); its parameters: q0, omega", "traj.omegaa"),
 ])
