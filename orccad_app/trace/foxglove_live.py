@@ -35,6 +35,15 @@ INSTALL_HINT = ("orccad run --foxglove needs the foxglove-sdk package: "
 _TIME_STEP_NS = 10_000_000
 """The simulated time is broadcast at most every 10 ms of it."""
 
+BACKLOG_MESSAGES = 65_536
+"""Messages queued per client before the server drops the oldest (the SDK's default, 1024, is
+a fraction of a second of a 1 kHz run's topics: a client slowed by a loaded machine lost
+messages, the run's end among them)."""
+
+DRAIN_S = 0.5
+"""Wall time [s] the server stays up after the run's last message, so that the queued
+messages reach the client before it closes."""
+
 
 def _sdk() -> Any:
     try:
@@ -68,7 +77,8 @@ class FoxgloveLiveWriter(TopicWriter):
             self._server = foxglove.start_server(name=name.strip(), host=host, port=port,
                                                  capabilities=[Capability.Time],
                                                  server_listener=_Listener(),
-                                                 context=self._context)
+                                                 context=self._context,
+                                                 message_backlog_size=BACKLOG_MESSAGES)
         except Exception as error:  # the SDK raises a RuntimeError with the OS's reason
             raise OrccadError(f"--foxglove-port {port}: cannot listen on {host}:{port}: "
                               f"{error}") from None
@@ -110,6 +120,8 @@ class FoxgloveLiveWriter(TopicWriter):
 
     def _finish(self) -> None:
         self._server.broadcast_time(max(self._time_ns, self._last_ns))
+        if self._subscribed.is_set():
+            time.sleep(DRAIN_S)
         self._server.stop()
 
 
