@@ -78,4 +78,6 @@ CASES: tuple[Case, ...] = (
     _run("arm_retune-trace", "arm_retune", "--until", "0.5", trace=True),
     _run("auv_waypoints-trace", "auv_waypoints", "--until", "10", "--inject",
          "Waypoint([15, 0, 5])@1", trace=True),
+    # a run-time argument refused when its task starts: failed at the argument
+    _run("auv_waypoints-refused", "auv_waypoints", "--inject", "Waypoint([15, 0, -5])@1"),
 )
