@@ -121,7 +121,9 @@ def test_bad_run_input_exits_2(args, message, capsys, tmp_path, monkeypatch):
     assert message in capsys.readouterr().err
 
 
-def test_ctrl_c_keeps_the_trace_valid_prints_the_report_and_exits_130(tmp_path):
+@pytest.mark.parametrize("sent, reason", [(signal.SIGINT, "interrupted (Ctrl-C)"),
+                                           (signal.SIGTERM, "interrupted (SIGTERM)")])
+def test_ctrl_c_keeps_the_trace_valid_prints_the_report_and_exits_130(tmp_path, sent, reason):
     trace = tmp_path / "run.mcap"
     process = subprocess.Popen([sys.executable, "-m", "orccad_app.cli", "run", PID,
                                 "--realtime", "1", "--trace", str(trace), "--json"],
@@ -130,11 +132,11 @@ def test_ctrl_c_keeps_the_trace_valid_prints_the_report_and_exits_130(tmp_path):
     while not (trace.exists() and trace.stat().st_size) and time.monotonic() < deadline:
         time.sleep(0.05)
     time.sleep(0.5)
-    process.send_signal(signal.SIGINT)
+    process.send_signal(sent)
     out, err = process.communicate(timeout=30)
     assert process.returncode == 130, err
     report = json.loads(out)
-    assert report["status"] == "aborted" and "interrupted" in report["reason"]
+    assert report["status"] == "aborted" and report["reason"] == reason
     assert 0 < report["sim_time_s"] < 4
     with trace.open("rb") as stream:
         topics = {channel.topic for _, channel, _ in make_reader(stream).iter_messages()}

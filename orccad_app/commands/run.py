@@ -186,6 +186,23 @@ def _processors(plan, args: argparse.Namespace) -> list:
             for name in plan.processor_names]
 
 
+def _terminate_like_ctrl_c() -> None:
+    """SIGTERM ends the run as Ctrl-C does (status aborted, report printed, trace complete)
+    instead of killing the process mid-write."""
+    import signal
+    import threading
+
+    from orccad_app.mission.run import Terminated
+
+    if threading.current_thread() is not threading.main_thread():
+        return  # signal handlers belong to the main thread (the TUI runs elsewhere)
+
+    def terminated(signum: int, frame: object) -> None:
+        raise Terminated
+
+    signal.signal(signal.SIGTERM, terminated)
+
+
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.jsonout import dumps
@@ -198,6 +215,7 @@ def run(args: argparse.Namespace) -> int:
                                   report_dict, sensor_ports)
 
     _file_after_injections(args)
+    _terminate_like_ctrl_c()
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")

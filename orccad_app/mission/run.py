@@ -72,12 +72,18 @@ from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "DEFAULT_UNTIL_NS", "run_horizon_s"]
+__all__ = ["MissionRun", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s"]
 
 _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
 _INTERRUPTED = "interrupted (Ctrl-C)"
+_TERMINATED = "interrupted (SIGTERM)"
+
+
+class Terminated(KeyboardInterrupt):
+    """Raised in the main thread by ``orccad run``'s SIGTERM handler (a ``kill``, a CI
+    timeout): the run ends like after Ctrl-C, with its report and a complete trace."""
 _NO_INPUTS: frozenset[str] = frozenset()
 
 
@@ -428,8 +434,9 @@ class MissionRun:
         except _LOCATED_FAILURES as error:
             where = f"{error.location}: " if error.location is not None else ""
             status, reason = "failed", where + error.message
-        except KeyboardInterrupt:
-            status, reason = "aborted", _INTERRUPTED
+        except KeyboardInterrupt as interrupt:
+            status = "aborted"
+            reason = _TERMINATED if isinstance(interrupt, Terminated) else _INTERRUPTED
         wall = time.perf_counter() - wall_start
         if status is None and self._stopped_by is not None and not self.reactor.finished:
             status, reason = "aborted", self._stopped_by
@@ -439,7 +446,7 @@ class MissionRun:
         return RunResult(self.plan.name, status, reason, self.kernel.now, wall, self.records,
                          self.exceptions, stats, self.plan.tcs.modules, self.outputs,
                          self.sim.lateness_s if self.realtime else None, self.seed,
-                         interrupted=reason == _INTERRUPTED)
+                         interrupted=reason in (_INTERRUPTED, _TERMINATED))
 
     def _final_status(self) -> tuple[str, str | None]:
         reactor = self.reactor
