@@ -25,6 +25,9 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
 
 from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
                                            factor, non_negative_int, refuse_overwriting,
@@ -203,6 +206,34 @@ def _terminate_like_ctrl_c() -> None:
     signal.signal(signal.SIGTERM, terminated)
 
 
+@contextmanager
+def _signals_end_the_run(mission_run: Any) -> Iterator[None]:
+    """While the run goes, Ctrl-C and SIGTERM end it after the current event (status aborted,
+    report printed, trace complete: nothing is cut mid-sample); a second one interrupts at
+    once."""
+    import signal
+    import threading
+
+    from orccad_app.mission.run import INTERRUPTED, TERMINATED
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    reasons = {signal.SIGINT: INTERRUPTED, signal.SIGTERM: TERMINATED}
+
+    def on_signal(signum: int, frame: object) -> None:
+        if mission_run.stopping:
+            raise KeyboardInterrupt
+        mission_run.abort(reasons[signal.Signals(signum)])
+
+    previous = {sent: signal.signal(sent, on_signal) for sent in reasons}
+    try:
+        yield
+    finally:
+        for sent, handler in previous.items():
+            signal.signal(sent, handler)
+
+
 def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.jsonout import dumps
@@ -262,7 +293,8 @@ def run(args: argparse.Namespace) -> int:
         mission_run.add_observer(TraceRecorder(live))
     try:
         try:
-            result = mission_run.run()
+            with _signals_end_the_run(mission_run):
+                result = mission_run.run()
         finally:
             if progress is not None:
                 progress.close()

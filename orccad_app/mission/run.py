@@ -72,13 +72,14 @@ from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s"]
+__all__ = ["MissionRun", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
+           "TERMINATED"]
 
 _CONTROL = EventClass.CONTROL
 DEFAULT_UNTIL_NS = 60_000_000_000
 """Default simulated-time limit of a run [ns] (60 s)."""
-_INTERRUPTED = "interrupted (Ctrl-C)"
-_TERMINATED = "interrupted (SIGTERM)"
+INTERRUPTED = _INTERRUPTED = "interrupted (Ctrl-C)"
+TERMINATED = _TERMINATED = "interrupted (SIGTERM)"
 
 
 class Terminated(KeyboardInterrupt):
@@ -252,6 +253,11 @@ class MissionRun:
         if name not in {s.name for s in self.plan.automaton.inputs}:
             raise OrccadError(f"{name}: not an input of mission '{self.plan.name}'")
         self._post(name, value)
+
+    @property
+    def stopping(self) -> bool:
+        """:meth:`abort` was called: the run ends after the current event."""
+        return self._stopped_by is not None
 
     def abort(self, reason: str = "stopped by the user") -> None:
         """End the run after the current event with status ``aborted`` (from a callback)."""

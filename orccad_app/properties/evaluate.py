@@ -180,16 +180,16 @@ class PropertyMonitor:
 
     def _signal_result(self, signal: _Signal) -> PropertyResult:
         recorder = self.recorder
-        count = len(recorder.sample_events)
+        count = recorder.complete_samples()
         samples: dict[str, list[float]] = {}
         for name, component in signal.stl.ports.items():
-            values = recorder.port_values[(component.robot, component.port)]
+            values = recorder.port_values[(component.robot, component.port)][:count]
             index = component.index
             samples[name] = [float(v) if index is None and v.ndim == 0 else
                              float(v.reshape(-1)[index or 0]) for v in values]
         for name, key in signal.stl.events.items():
             samples[name] = [math.inf if key in events or key == ("true",) else -math.inf
-                             for events in recorder.sample_events]
+                             for events in recorder.sample_events[:count]]
         if not count:  # the run never reacted: nothing to judge
             return PropertyResult(signal.prop.name, PropertyKind.SIGNAL, Verdict.UNDECIDED,
                                   None, signal.unit, 0)

@@ -86,6 +86,11 @@ class PropertyRecorder(MissionObserver):
     def wants_write(self, module: str, port: str) -> bool:
         return port == "e" and module in self._error_robot
 
+    def complete_samples(self) -> int:
+        """How many samples every series holds (a run interrupted inside
+        :meth:`_new_sample` leaves its last sample partial: it is not counted)."""
+        return min([len(self.sample_events), *map(len, self.port_values.values())])
+
     def _new_sample(self) -> None:
         self.sample_events.append(set())
         plants = self._run.sim.plants
