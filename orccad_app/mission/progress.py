@@ -68,30 +68,20 @@ class ProgressLine(MissionObserver):
 
     def __init__(self, stream: TextIO, until_ns: int, *, delay_s: float = 1.0,
                  interval_s: float = 0.5) -> None:
-        self._stream = stream
+        self._line = StatusLine(stream, delay_s=delay_s, interval_s=interval_s)
         self._until_ns = until_ns
-        self._start = time.monotonic()
-        self._next = self._start + delay_s
-        self._interval_s = interval_s
-        self._shown = False
 
     def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
                     status: str) -> None:
-        now = time.monotonic()
-        if now < self._next:
+        line = self._line
+        if not line.due():
             return
-        self._next = now + self._interval_s
         simulated_s = t_ns / 1e9
-        ratio = simulated_s / max(now - self._start, 1e-9)
+        ratio = simulated_s / max(time.monotonic() - line.start, 1e-9)
         percent = 100.0 * t_ns / self._until_ns if self._until_ns else 0.0
-        self._stream.write(f"\r  simulated {simulated_s:.1f} s of {self._until_ns / 1e9:g} s "
-                           f"({percent:.0f} %), {ratio:.1f}x real time ")
-        self._stream.flush()
-        self._shown = True
+        line.show(f"simulated {simulated_s:.1f} s of {self._until_ns / 1e9:g} s "
+                  f"({percent:.0f} %), {ratio:.1f}x real time")
 
     def close(self) -> None:
         """Erase the line (if one was shown) so that the report starts on a clean line."""
-        if self._shown:
-            self._stream.write("\r\033[K")
-            self._stream.flush()
-            self._shown = False
+        self._line.close()

@@ -25,7 +25,7 @@ def test_the_progress_line_reports_simulated_time_against_the_horizon():
     progress = ProgressLine(stream, 300_000_000, delay_s=0.0, interval_s=0.0)
     _run([progress])
     text = stream.getvalue()
-    assert "\r  simulated" in text and "of 0.3 s" in text and "real time" in text
+    assert "\r\033[K  simulated" in text and "of 0.3 s" in text and "real time" in text
     progress.close()
     assert stream.getvalue().endswith("\r\033[K")  # erased before the report
 
