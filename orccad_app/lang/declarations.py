@@ -38,35 +38,29 @@ def check_unique(items: Iterable, what: str, problems: Problems) -> dict:
     return seen
 
 
-def _names(expr) -> Iterable[ast.Name]:
-    if isinstance(expr, ast.Name):
+def _leaves(expr, kind: type) -> Iterable:
+    """Every node of type ``kind`` in ``expr`` (not below one, nor inside port references)."""
+    if isinstance(expr, kind):
         yield expr
         return
     if isinstance(expr, ast.Arg):
-        yield from _names(expr.value)
+        yield from _leaves(expr.value, kind)
         return
     for field in getattr(expr, "__dataclass_fields__", ()):
         value = getattr(expr, field)
         for item in value if isinstance(value, tuple) else (value,):
             if hasattr(item, "__dataclass_fields__") and not isinstance(
                     item, ast.PortRef | SourceLocation):
-                yield from _names(item)
+                yield from _leaves(item, kind)
+
+
+def _names(expr) -> Iterable[ast.Name]:
+    return _leaves(expr, ast.Name)
 
 
 def _param_refs(expr) -> Iterable[ast.ParamRef]:
     """Every ``module.param`` read in ``expr``."""
-    if isinstance(expr, ast.ParamRef):
-        yield expr
-        return
-    if isinstance(expr, ast.Arg):
-        yield from _param_refs(expr.value)
-        return
-    for field in getattr(expr, "__dataclass_fields__", ()):
-        value = getattr(expr, field)
-        for item in value if isinstance(value, tuple) else (value,):
-            if hasattr(item, "__dataclass_fields__") and not isinstance(
-                    item, ast.PortRef | SourceLocation):
-                yield from _param_refs(item)
+    return _leaves(expr, ast.ParamRef)
 
 
 def _task_expressions(task: ast.RobotTask):
