@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from orccad_app.lang import ast
+from orccad_app.lang.scope import expr_children
 
 __all__ = ["StaticType", "is_constant", "runtime_reads", "static_type", "param_type",
            "argument_problem"]
@@ -44,23 +45,11 @@ class StaticType:
 _UNKNOWN = StaticType()
 
 
-def _children(expr: ast.Expr) -> tuple[ast.Expr, ...]:
-    if isinstance(expr, ast.Unary):
-        return (expr.operand,)
-    if isinstance(expr, ast.Binary):
-        return (expr.left, expr.right)
-    if isinstance(expr, ast.Vector):
-        return expr.items
-    if isinstance(expr, ast.Call):
-        return tuple(a.value for a in expr.args)
-    return ()
-
-
 def runtime_reads(expr: ast.Expr) -> tuple[ast.Expr, ...]:
     """The variables (``Name``) and signal values (``?S``, ``pre(?S)``) ``expr`` reads."""
     if isinstance(expr, (ast.Name, ast.LastValue, ast.PreValue)):
         return (expr,)
-    return tuple(leaf for child in _children(expr) for leaf in runtime_reads(child))
+    return tuple(leaf for child in expr_children(expr) for leaf in runtime_reads(child))
 
 
 def is_constant(expr: ast.Expr) -> bool:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from orccad_app.diagnostics import Diagnostic, OrccadError, SourceLocation
 from orccad_app.lang import ast
 
-__all__ = ["NameKind", "ConditionKind", "Binding", "Scope", "Problems", "classify_condition",
+__all__ = ["expr_children", "NameKind", "ConditionKind", "Binding", "Scope", "Problems", "classify_condition",
            "signal_leaves"]
 
 
@@ -119,11 +119,12 @@ def signal_leaves(expr: ast.Expr) -> tuple[ast.Expr, ...] | None:
 def _names_in(expr: ast.Expr):
     if isinstance(expr, ast.Name):
         yield expr
-    for child in _children(expr):
+    for child in expr_children(expr):
         yield from _names_in(child)
 
 
-def _children(expr: ast.Expr) -> tuple:
+def expr_children(expr: ast.Expr) -> tuple:
+    """The direct sub-expressions of ``expr`` (operands, vector items, call arguments)."""
     if isinstance(expr, ast.Unary):
         return (expr.operand,)
     if isinstance(expr, ast.Binary):
