@@ -14,7 +14,6 @@ overrides: cheap) and runs one setting against fresh plants.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -76,18 +75,31 @@ class CompiledMission:
         self.digest = self.source.digest  # the file's and its imports' texts
         self.composition = compose_mission(self.source, self.mission, lazy=True)
 
+    def options(self, setting: RunSetting, observers: tuple = (),
+                trace: str | None = None) -> Any:
+        """``setting`` as the :class:`~orccad_app.session.RunOptions` of ``orccad run FILE
+        --mission M`` with its arguments (the default processors and bus, no pacing)."""
+        from orccad_app.mission.injection import parse_injection
+        from orccad_app.mission.overrides import PlanOverrides
+        from orccad_app.session import RunOptions
+
+        return RunOptions(
+            overrides=PlanOverrides.from_arguments(list(setting.sets), list(setting.timings)),
+            injections=tuple(parse_injection(text) for text in setting.injections),
+            seed=setting.seed, until_s=setting.until_s, trace=trace, observers=observers)
+
     def plan(self, setting: RunSetting) -> Any:
         """The mission's plan with ``setting``'s overrides."""
-        from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
+        from orccad_app.mission.overrides import plan_with_overrides
 
-        overrides = PlanOverrides.from_arguments(list(setting.sets), list(setting.timings))
-        return plan_with_overrides(self.source, self.mission, overrides, self.composition)
+        return plan_with_overrides(self.source, self.mission, self.options(setting).overrides,
+                                   self.composition)
 
     def default_until_s(self) -> float:
         """``orccad run``'s default horizon for this mission [s]."""
-        from orccad_app.mission.run import run_horizon_s
+        from orccad_app.session.options import DEFAULT_UNTIL_S
 
-        return run_horizon_s(self.plan(RunSetting(0, 0, 1.0)), 60.0)
+        return float(self.plan(RunSetting(0, 0, 1.0)).run_horizon_s(DEFAULT_UNTIL_S))
 
     def property_names(self) -> tuple[str, ...]:
         """The mission's declared properties (those each run judges)."""
@@ -95,27 +107,14 @@ class CompiledMission:
 
         return tuple(p.name for p in applicable(self.source.program.properties, self.mission))
 
-    def monitor(self, mission_run: Any) -> Any:
-        """The monitor judging every property of the mission on ``mission_run`` (attached to
-        it: build it before the run), as ``orccad run`` does."""
-        from orccad_app.properties import PropertyMonitor
+    def session(self, setting: RunSetting, observers: tuple = (),
+                trace: str | None = None) -> Any:
+        """A planned, ready :class:`~orccad_app.session.RunSession` of ``setting`` (bad input
+        in it raises a located :class:`OrccadError` here)."""
+        from orccad_app.session import RunSession
 
-        return PropertyMonitor(self.source.program, self.mission, mission_run)
-
-    def mission_run(self, setting: RunSetting, observers: tuple = ()) -> Any:
-        """A ready :class:`~orccad_app.mission.run.MissionRun` of ``setting``."""
-        from orccad_app.executive.bus import Bus
-        from orccad_app.executive.processor import Processor
-        from orccad_app.mission.injection import parse_injection
-        from orccad_app.mission.run import MissionRun
-
-        plan = self.plan(setting)
-        injections = [parse_injection(text) for text in setting.injections]
-        names = dict.fromkeys(task.processor for task in plan.tcs.module_tasks)
-        processors = [Processor(name, "fp", 0) for name in names]
-        return MissionRun(plan, seed=setting.seed, until_ns=int(round(setting.until_s * 1e9)),
-                          injections=injections, processors=processors, bus=Bus(transfer_ns=0),
-                          observers=observers)
+        return RunSession(self.source, self.mission, self.options(setting, observers, trace),
+                          composition=self.composition)
 
 
 _CACHE: dict[tuple[str, str | None, str], CompiledMission] = {}
@@ -135,32 +134,32 @@ def compiled_for(file: str, mission: str | None, digest: str) -> CompiledMission
 
 
 def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, ...] = (),
-            checks: tuple = (), observers: tuple = ()) -> RunRecord:
-    """Run ``setting`` and gather its outcome, metrics and property results. Bad input in
-    the setting is an :class:`OrccadError`; anything else propagates (a crash)."""
+            checks: tuple = (), observers: tuple = (), trace: str | None = None) -> RunRecord:
+    """Run ``setting`` (with a trace written to ``trace`` if given) and gather its outcome,
+    metrics and property results. Bad input in the setting is an :class:`OrccadError`;
+    anything else propagates (a crash)."""
     extrema = SignalExtrema(signals)
-    mission_run = compiled.mission_run(setting, observers=(extrema, *observers))
-    extrema.bind(mission_run.sim)
-    monitor = compiled.monitor(mission_run)
-    start = time.perf_counter()
-    result = mission_run.run()
-    wall = time.perf_counter() - start
+    session = compiled.session(setting, observers=(extrema, *observers), trace=trace)
+    extrema.bind(session.run.sim)
+    report = session.execute()
+    result = report.result
     if result.interrupted:
         raise KeyboardInterrupt
     metrics = run_metrics(result, extrema)
     properties = {name: PropertyResult(holds, robustness)
                   for name, (holds, robustness) in check_results(checks, metrics).items()}
-    properties.update(_verdicts(monitor))
+    properties.update(_verdicts(report.properties))
     return RunRecord(setting, result.status, result.reason,
                      outcome_label(result.status, result.reason), result.sim_time_ns / 1e9,
-                     wall, {k: _finite(v) for k, v in metrics.items()}, properties)
+                     result.wall_time_s, {k: _finite(v) for k, v in metrics.items()},
+                     properties)
 
 
-def _verdicts(monitor: Any) -> dict[str, PropertyResult]:
+def _verdicts(verdicts: Any) -> dict[str, PropertyResult]:
     """The mission's properties judged on the run (:mod:`orccad_app.properties`): ``holds``
     from the verdict (``None`` when undecided), the robustness when finite."""
     found = {}
-    for verdict in monitor.results():
+    for verdict in verdicts:
         holds = {"true": True, "false": False}.get(verdict.verdict.value)
         value = verdict.robustness
         finite = value is not None and math.isfinite(value)

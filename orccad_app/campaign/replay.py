@@ -13,12 +13,4 @@ def replay_with_trace(compiled: CompiledMission, setting: RunSetting, spec: Camp
                       path: str) -> RunRecord:
     """Run ``setting`` again, writing its trace to ``path`` (``.csv`` or ``.mcap``), the
     same trace ``orccad run … --trace path`` writes."""
-    from orccad_app.trace import TraceRecorder, open_trace
-
-    writer = open_trace(path, {"mission": compiled.name, "file": compiled.file,
-                               "seed": str(setting.seed)})
-    try:
-        return execute(compiled, setting, spec.signals, spec.checks,
-                       observers=(TraceRecorder(writer),))
-    finally:
-        writer.close()
+    return execute(compiled, setting, spec.signals, spec.checks, trace=path)

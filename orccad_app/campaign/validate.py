@@ -75,14 +75,14 @@ def _check_injection(compiled: CompiledMission, spec: CampaignSpec, entry: Any,
             text = injection_text(entry, value, float(time_s))
             setting = RunSetting(0, 0, until_s, injections=(text,))
             _located(spec, (*entry.key, "event"),
-                     lambda s=setting: compiled.mission_run(s))
+                     lambda s=setting: compiled.session(s))
 
 
 def _check_signals(compiled: CompiledMission, spec: CampaignSpec, until_s: float) -> None:
     extrema = SignalExtrema(spec.signals)
-    mission_run = compiled.mission_run(RunSetting(0, 0, until_s))
-    _located(spec, ("signals",), lambda: extrema.bind(mission_run.sim))
-    tasks = {site.task for site in mission_run.plan.sites}
+    session = compiled.session(RunSetting(0, 0, until_s))
+    _located(spec, ("signals",), lambda: extrema.bind(session.run.sim))
+    tasks = {site.task for site in session.plan.sites}
     taken = set(compiled.property_names())
     for check in spec.checks:
         signal = metric_signal(check.metric)

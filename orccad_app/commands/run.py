@@ -25,8 +25,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Iterator
-from contextlib import contextmanager
 from typing import Any
 
 from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
@@ -129,39 +127,12 @@ def _injection(text: str):
     return parse_injection(text)
 
 
-def _check_values(injections, inputs) -> list:
-    """Each injected value typed against its input: none for a pure input, one of the
-    declared type (finite, integers within 64 bits, a vector as [x, y, ...]) for a valued
-    one; fault values finite."""
-    import math
-
-    from orccad_app.diagnostics import OrccadError
-    from orccad_app.mission.injection import typed_injections
-
-    for injection in injections:
-        value = injection.value
-        if injection.fault and isinstance(value, float) and not math.isfinite(value):
-            raise OrccadError(f"--inject {injection.name}: the value must be a finite number, "
-                              f"got {value}")
-    return typed_injections(injections, inputs)
-
-
 def _warn_first_instant(injections) -> None:
     for injection in injections:
         if injection.time_ns == 0 and not injection.fault:
             print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
                   "first instant, where only 'immediate' tests see it (await, abort ... when "
                   "and each look from the next instant on)", file=sys.stderr)
-
-
-def _scripted(path: str, plan) -> list:
-    """The injections of the input script ``path`` (see :mod:`orccad_app.mission.scripted`)."""
-    from orccad_app.mission.scripted import script_injections
-    from orccad_app.pipeline import read_source
-    from orccad_app.reactive.script import parse_script
-
-    instants = parse_script(read_source(path), path, plan.automaton.inputs)
-    return script_injections(instants, plan.tick_ns)
 
 
 def _foxglove(args: argparse.Namespace, mission: str, plan):
@@ -182,142 +153,61 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     return live
 
 
-def _processors(plan, args: argparse.Namespace) -> list:
-    from orccad_app.executive.processor import Processor
+def _options(args: argparse.Namespace) -> Any:
+    """The run's :class:`~orccad_app.session.RunOptions` from the command line (injections
+    and overrides parsed: a malformed one is refused before the file is loaded)."""
+    from orccad_app.mission.overrides import PlanOverrides
+    from orccad_app.session import InputScript, RunOptions
 
-    return [Processor(name, args.scheduler, args.context_switch_us * 1000)
-            for name in plan.processor_names]
-
-
-def _terminate_like_ctrl_c() -> None:
-    """SIGTERM ends the run as Ctrl-C does (status aborted, report printed, trace complete)
-    instead of killing the process mid-write."""
-    import signal
-    import threading
-
-    from orccad_app.mission.run import Terminated
-
-    if threading.current_thread() is not threading.main_thread():
-        return  # signal handlers belong to the main thread (the TUI runs elsewhere)
-
-    def terminated(signum: int, frame: object) -> None:
-        raise Terminated
-
-    signal.signal(signal.SIGTERM, terminated)
+    injections = tuple(_injection(text) for text in args.inject)
+    _warn_first_instant(injections)
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
+    realtime = 1.0 if args.foxglove and args.realtime is None else args.realtime
+    return RunOptions(overrides=overrides, injections=injections,
+                      script=InputScript.from_file(args.inject_from) if args.inject_from
+                      else None,
+                      seed=args.seed, until_s=args.until, scheduler=args.scheduler,
+                      context_switch_ns=args.context_switch_us * 1000,
+                      bus_transfer_ns=args.bus_us * 1000, realtime=realtime,
+                      trace=args.trace, trace_file=args.file, signals_end_run=True)
 
 
-@contextmanager
-def _signals_end_the_run(mission_run: Any) -> Iterator[None]:
-    """While the run goes, Ctrl-C and SIGTERM end it after the current event (status aborted,
-    report printed, trace complete: nothing is cut mid-sample); a second one interrupts at
-    once."""
-    import signal
-    import threading
-
-    from orccad_app.mission.run import INTERRUPTED, TERMINATED
-
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    reasons = {signal.SIGINT: INTERRUPTED, signal.SIGTERM: TERMINATED}
-
-    def on_signal(signum: int, frame: object) -> None:
-        if mission_run.stopping:
-            raise KeyboardInterrupt
-        mission_run.abort(reasons[signal.Signals(signum)])
-
-    previous = {sent: signal.signal(sent, on_signal) for sent in reasons}
-    try:
-        yield
-    finally:
-        for sent, handler in previous.items():
-            signal.signal(sent, handler)
-
-
-def run(args: argparse.Namespace) -> int:
-    from orccad_app.executive.bus import Bus
-    from orccad_app.jsonout import dumps
-    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
-    from orccad_app.mission.run import MissionRun, run_horizon_s
-    from orccad_app.pipeline import load, select_mission
-    from orccad_app.properties import PropertyMonitor, results_dict
-    from orccad_app.properties.report import format_properties
-    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict, sensor_ports)
-
-    _file_after_injections(args)
-    _terminate_like_ctrl_c()
+def _check_foxglove(args: argparse.Namespace) -> None:
+    """``--foxglove-port`` and ``--foxglove-wait`` need ``--foxglove``, which needs its extra
+    (said before the run is planned)."""
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
-    if args.foxglove:  # before the run is planned: a missing extra is said at once
+    if args.foxglove:
         from orccad_app.trace.foxglove_live import require_foxglove
 
         require_foxglove()
-    injections = [_injection(text) for text in args.inject]
-    _warn_first_instant(injections)
-    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
-    refuse_overwriting(args.trace, args.file)
-    source = load(args.file)
-    source.print_warnings()
-    mission = select_mission(source, args.mission)
-    plan = plan_with_overrides(source, mission, overrides)
-    injections = _check_values(injections, plan.automaton.inputs)
-    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
-    if args.inject_from:
-        scripted = _scripted(args.inject_from, plan)
-        injections += scripted
-        injected += [InjectionRecord(i.time_ns, i.name, i.value, False,
-                                     f"--inject-from {args.inject_from}") for i in scripted]
-    writer = None
-    until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
-                  MAX_SECONDS)
-    mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
-                             injections=injections, processors=_processors(plan, args),
-                             bus=Bus(transfer_ns=args.bus_us * 1000),
-                             realtime=1.0 if args.foxglove and args.realtime is None
-                             else args.realtime)
-    monitor = PropertyMonitor(source.program, mission, mission_run)
-    progress = None
-    if sys.stderr.isatty():  # a progress line on long runs, never in a pipe or a file
+
+
+def _observe(args: argparse.Namespace, session: Any) -> None:
+    """The command's own observers: a progress line on a terminal (never in a pipe or a
+    file) and the ``--foxglove`` stream."""
+    if sys.stderr.isatty():
         from orccad_app.mission.progress import ProgressLine
 
-        progress = ProgressLine(sys.stderr, mission_run.until_ns)
-        mission_run.add_observer(progress)
-    if args.trace:
-        writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)}, sensor_ports(plan))
-        mission_run.add_observer(TraceRecorder(writer))
-    live = _foxglove(args, mission.name, plan) if args.foxglove else None
-    if live is not None:
-        mission_run.add_observer(TraceRecorder(live))
-    try:
-        try:
-            with _signals_end_the_run(mission_run):
-                result = mission_run.run()
-        finally:
-            if progress is not None:
-                progress.close()
-            if writer is not None:
-                writer.close()
-            if live is not None:
-                live.close()
-    except OSError as error:  # the trace's disk is full or gone
-        if not args.trace:
-            raise
-        from orccad_app.diagnostics import OrccadError
-        raise OrccadError(f"{args.trace}: cannot write the trace: "
-                          f"{error.strerror or error}") from None
-    injected.sort(key=lambda record: record.time_ns)
-    verdicts = monitor.results()
+        progress = ProgressLine(sys.stderr, session.until_ns)
+        session.add_observer(progress, progress.close)
+    if args.foxglove:
+        from orccad_app.trace import TraceRecorder
+
+        live = _foxglove(args, session.mission.name, session.plan)
+        session.add_observer(TraceRecorder(live), live.close)
+
+
+def _render(args: argparse.Namespace, report: Any) -> int:
+    """Print the report (text or JSON) and what went wrong; the exit status."""
+    from orccad_app.jsonout import dumps
+
+    result = report.result
     if args.json:
-        report = report_dict(result, injected)
-        report["properties"] = results_dict(verdicts)
-        print(dumps(report, indent=2))
+        print(dumps(report.as_dict(), indent=2))
     else:
-        print(format_report(result, injected))
-        if verdicts:
-            print("\n".join(format_properties(verdicts)))
+        print(report.text())
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.interrupted:
@@ -325,8 +215,23 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
-    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    violated = report.violated
     if violated and not args.json:
         print(f"orccad: propert{'ies' if len(violated) > 1 else 'y'} violated on this run: "
               f"{', '.join(violated)}", file=sys.stderr)
-    return max(result.exit_status, 1 if violated else 0)
+    return report.exit_status
+
+
+def run(args: argparse.Namespace) -> int:
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.session import RunSession
+
+    _file_after_injections(args)
+    _check_foxglove(args)
+    options = _options(args)
+    refuse_overwriting(args.trace, args.file)
+    source = load(args.file)
+    source.print_warnings()
+    session = RunSession(source, select_mission(source, args.mission), options)
+    _observe(args, session)
+    return _render(args, session.execute())

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from orccad_app.diagnostics import OrccadError
-from orccad_app.trace.report import InjectionRecord
+from orccad_app.session import InputScript, RunOptions, RunSession
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
@@ -226,30 +226,9 @@ def check_text(report: Any) -> str:
     return "\n".join(lines)
 
 
-@dataclass(frozen=True)
-class ScriptedInputs:
-    """The inputs of a counterexample, to run against the plant (the Check tab's "run").
-
-    :param instants: the script's instants (:class:`~orccad_app.reactive.script.Instant`).
-    :param by: who raised them, for the log and the report (``counterexample to P``).
-    """
-
-    instants: tuple[Any, ...]
-    by: str
-
-    @classmethod
-    def of(cls, outcome: Any) -> ScriptedInputs:
-        """The script of a failed property's ``PropertyOutcome``."""
-        from orccad_app.verify.replay import script_instants
-
-        return cls(tuple(script_instants(outcome.script)),
-                   f"counterexample to {outcome.name}")
-
-    def injections(self, tick_ns: int) -> list[Any]:
-        """The injections at the instants' times (:mod:`orccad_app.mission.scripted`)."""
-        from orccad_app.mission.scripted import script_injections
-
-        return script_injections(self.instants, tick_ns)
+ScriptedInputs = InputScript
+"""The inputs of a counterexample, run against the plant (the Check tab's "run"):
+:meth:`InputScript.of` a failed property's outcome."""
 
 
 def failed_outcomes(report: Any) -> list[Any]:
@@ -270,11 +249,9 @@ class _Spool:
     not fill the memory); :meth:`export` copies it, or converts it to MCAP."""
 
     def __init__(self) -> None:
-        from orccad_app.trace import CsvTraceWriter
-
         self._folder = tempfile.TemporaryDirectory(prefix="orccad-tui-")
         self.path = Path(self._folder.name) / "trace.csv"
-        self.writer = CsvTraceWriter(self.path)
+        """Where the run writes it (the session's ``trace``, closed when the run ends)."""
 
     def export(self, path: str, metadata: dict[str, str],
                sensors: dict[tuple[str, str], str] | None = None,
@@ -282,7 +259,6 @@ class _Spool:
         """Write the trace to ``path`` (``progress`` gets the fraction done)."""
         from orccad_app.trace import TraceRow, open_trace
 
-        self.writer.close()
         if Path(path).suffix.lower() == ".csv":
             shutil.copyfile(self.path, path)
             if progress is not None:
@@ -315,82 +291,66 @@ class LiveSession:
     """
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
-                 speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0,
+                 speed: float | None = 1.0, seed: int = 0, until_s: float | None = None,
                  script: Any = None) -> None:
-        from orccad_app.mission.plan import plan_mission
-        from orccad_app.mission.run import MissionRun
         from orccad_app.pipeline import load, select_mission
-        from orccad_app.trace import TraceRecorder
-
-        from orccad_app.mission import run as mission_run
 
         source = load(path)
         self.path, self.seed = path, seed
         self.text = source.text
         """The mission file's text (the run screen shows where the mission waits in it)."""
-        self.mission = select_mission(source, mission).name
-        plan = plan_mission(source, source.program.mission(self.mission))
+        selected = select_mission(source, mission)
+        self.mission = selected.name
+        self._trace = _Spool()
+        self.session = RunSession(source, selected, RunOptions(
+            script=script, seed=seed, until_s=until_s,
+            trace=str(self._trace.path)))
+        """The run, planned (:class:`~orccad_app.session.RunSession`)."""
+        self.run = self.session.run
+        plan = self.session.plan
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
         """The mission's declared inputs (``SignalDecl``)."""
         self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
-        horizon = getattr(mission_run, "run_horizon_s", None)  # robots with long missions
-        until_s = horizon(plan, until_s) if horizon is not None else until_s
         self.script = script
         """The counterexample run against the plant, or ``None``."""
-        injections = [] if script is None else script.injections(plan.tick_ns)
-        self.scripted = [InjectionRecord(i.time_ns, i.name, i.value, False, script.by)
-                         for i in injections]
+        self.scripted = list(self.session.injected)
         """The script's injections, for the report."""
-        self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)),
-                              injections=injections)
         self.faults = _faults(self.run)
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
             (record.time_ns, record.name) for record in self.scripted},
             scripted_by=script.by if script is not None else "")
-        self._trace = _Spool()
-        self.run.add_observer(self.observer)
-        self.run.add_observer(TraceRecorder(self._trace.writer))
-        from orccad_app.properties import PropertyMonitor
-
-        self.monitor = PropertyMonitor(source.program, source.program.mission(self.mission),
-                                       self.run)
-        """Judges the mission's properties on the run (``orccad run``'s list)."""
+        self.session.add_observer(self.observer)
         self.result: Any = None
+        self.run_report: Any = None
+        """The :class:`~orccad_app.session.RunReport` of the finished run."""
 
     def execute(self) -> Any:
         """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
-        try:
-            self.result = self.run.run()
-        finally:
-            self._trace.writer.close()
+        self.run_report = self.session.execute()
+        self.result = self.run_report.result
         self.observer.flush(self.run.kernel.now)
         return self.result
 
     def report(self) -> str:
-        """``orccad run``'s text report of the finished run (with the properties' verdicts),
-        the real-time ratio computed without the time spent paused (said on the second
-        line)."""
+        """``orccad run``'s text report of the finished run (with the properties' verdicts)
+        and what the user raised, the real-time ratio computed without the time spent paused
+        (said on the second line)."""
         import dataclasses
 
-        from orccad_app.properties.report import format_properties
-        from orccad_app.trace import format_report
-
         paused = self.pace.paused_s
-        result = self.result
-        if paused > 0:
-            result = dataclasses.replace(result, wall_time_s=max(result.wall_time_s - paused,
-                                                                 1e-9))
-        injected = sorted([*self.scripted, *self.observer.injected],
+        report = self.run_report
+        injected = sorted([*report.injections, *self.observer.injected],
                           key=lambda record: record.time_ns)
-        lines = format_report(result, injected).split("\n")
+        report = dataclasses.replace(report, injections=tuple(injected))
+        if paused > 0:
+            report = dataclasses.replace(report, result=dataclasses.replace(
+                report.result, wall_time_s=max(report.result.wall_time_s - paused, 1e-9)))
+        lines = report.text().split("\n")
         if paused > 0:
             lines.insert(2, f"  paused {paused:.2f} s of wall time, not counted above")
-        verdicts = self.monitor.results()
-        if verdicts:
-            lines.extend(format_properties(verdicts))
         return "\n".join(lines)
 
     def export(self, path: str, *, overwrite: bool = False,

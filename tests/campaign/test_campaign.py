@@ -14,9 +14,7 @@ from orccad_app.campaign.adapter import CompiledMission
 from orccad_app.campaign.executor import PoolBackend
 from orccad_app.campaign.runner import Campaign, CampaignOptions
 from orccad_app.campaign.spec import load_spec
-from orccad_app.mission.injection import parse_injection
-from orccad_app.properties import results_dict
-from orccad_app.trace import InjectionRecord, report_dict
+from orccad_app.trace import report_dict
 
 from .conftest import AUV, orccad
 
@@ -63,13 +61,8 @@ def test_the_replay_command_reproduces_the_run_bit_for_bit(leak_spec, tmp_path):
     replayed = orccad(*command.split()[1:], "--json")
     report = json.loads(replayed.stdout)
     # the same run in this process, through the campaign's adapter
-    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault)
-                for i in map(parse_injection, record.setting.injections)]
     compiled = CompiledMission(AUV)
-    mission_run = compiled.mission_run(record.setting)
-    monitor = compiled.monitor(mission_run)
-    here = report_dict(mission_run.run(), injected)
-    here["properties"] = results_dict(monitor.results())
+    here = compiled.session(record.setting).execute().as_dict()
     for data in (report, here):
         data.pop("wall_time_s")
     assert {p["name"] for p in report["properties"]} >= {"leak_surfaces", "safe_depth"}
@@ -88,7 +81,7 @@ def test_observing_signal_extrema_does_not_change_the_run(leak_spec):
 
     compiled = CompiledMission(AUV)
     setting = draw_setting(load_spec(leak_spec), 2, 30.0)
-    plain = report_dict(compiled.mission_run(setting).run())
+    plain = report_dict(compiled.session(setting).execute().result)
     watched = execute(compiled, setting, ("auv.depth", "auv.attitude[1]"))
     assert watched.sim_time_s == plain["sim_time_s"] and watched.status == plain["status"]
     assert watched.metrics["max(auv.depth)"] > 1.0
