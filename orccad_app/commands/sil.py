@@ -1,0 +1,159 @@
+"""``orccad sil FILE --lockstep``: the mission's Module-Tasks as a real controller process.
+
+::
+
+    orccad sil FILE [--mission M] --lockstep [--until S] [--seed N] [--inject SIG@T ...]
+                    [--trace OUT.csv|OUT.mcap] [--json] [--heartbeat-s S] [--build-dir DIR]
+
+The Module-Tasks of every Robot-Task the mission runs are emitted as C
+(:mod:`orccad_app.sil.emit`), compiled with the runtime library into the controller
+(:mod:`orccad_app.sil.build`) and started as their own process; the plant server — this
+process: the executive's timing model, the automaton and the MuJoCo plant — sends it one
+request per job over a Unix socket (:mod:`orccad_app.sil.lockstep`). The report, ``--json``,
+``--trace`` and ``--inject`` are ``orccad run``'s; the report adds the controller process.
+A controller that crashes or misses its heartbeat (no answer within ``--heartbeat-s``) ends the
+run ``failed`` with the reason; it is always killed and reaped. Exit status as ``orccad run``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+
+from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, non_negative_int,
+                                           refuse_overwriting, seconds)
+
+__all__ = ["register", "run"]
+
+
+def _heartbeat(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0.01 <= value <= 3600:
+        raise argparse.ArgumentTypeError(f"expected seconds in [0.01, 3600], got {text!r}")
+    return value
+
+
+def register(sub) -> None:
+    parser = sub.add_parser("sil", help="run the mission's Module-Tasks as a C controller "
+                                        "process against the plant",
+                            description="Software in the loop: the Module-Tasks emitted as C, "
+                                        "compiled and run in their own process against the "
+                                        "MuJoCo plant.")
+    parser.add_argument("file", metavar="FILE", help="the .orc file")
+    add_mission(parser)
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--lockstep", action="store_true",
+                      help="one exchange per job over a Unix socket; the plant advances by "
+                           "the declared execution times (reproducible)")
+    mode.add_argument("--realtime", action="store_true",
+                      help="wall-clock periods on real threads (not available yet: refused)")
+    parser.add_argument("--until", type=seconds, default=None, metavar="S",
+                        help="simulated-time limit [s] (default as orccad run)")
+    parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
+                        help="seed of execution times and sensor noise (default 0)")
+    parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
+                        help="raise input SIG at simulated time T [s] (as orccad run)")
+    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
+    parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    parser.add_argument("--heartbeat-s", type=_heartbeat, default=None, metavar="S",
+                        help="the controller must answer each request within S wall seconds "
+                             "(default 10), else the run ends failed")
+    parser.add_argument("--build-dir", metavar="DIR",
+                        help="where the generated C goes (default: a temporary directory)")
+    parser.set_defaults(func=run)
+
+
+def _injections(texts: list[str], inputs) -> list:
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.mission.injection import parse_injection, typed_injections
+
+    parsed = []
+    for text in texts:
+        when = text.rpartition("@")[2]
+        try:
+            time_s = float(when)
+        except ValueError:
+            time_s = 0.0  # parse_injection names the problem
+        if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
+            raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds "
+                              f"in [0, {MAX_SECONDS:.0f}] (one year)")
+        parsed.append(parse_injection(text))
+    return typed_injections(parsed, inputs)
+
+
+def run(args: argparse.Namespace) -> int:
+    import tempfile
+    from pathlib import Path
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.executive.bus import Bus
+    from orccad_app.executive.processor import Processor
+    from orccad_app.jsonout import dumps
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.run import MissionRun, run_horizon_s
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.properties import PropertyMonitor, results_dict
+    from orccad_app.properties.report import format_properties
+    from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S
+    from orccad_app.sil.lockstep import controller_for, remote_sites, start_controller
+    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
+                                  report_dict, sensor_ports)
+
+    if args.realtime:
+        raise OrccadError("orccad sil --realtime is not available yet: use --lockstep")
+    refuse_overwriting(args.trace, args.file)
+    source = load(args.file)
+    source.print_warnings()
+    mission = select_mission(source, args.mission)
+    plan = plan_mission(source, mission)
+    injections = _injections(args.inject, plan.automaton.inputs)
+    injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
+    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+        build_dir = Path(args.build_dir) if args.build_dir else Path(scratch)
+        table, executable = controller_for(plan, args.file, build_dir)
+        until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
+                      MAX_SECONDS)
+        controller = start_controller(table, executable, args.heartbeat_s or DEFAULT_HEARTBEAT_S)
+        writer = None
+        try:
+            remote_sites(plan, table, controller)
+            mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
+                                     injections=injections,
+                                     processors=[Processor(name) for name in
+                                                 plan.processor_names],
+                                     bus=Bus())
+            monitor = PropertyMonitor(source.program, mission, mission_run)
+            if args.trace:
+                writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
+                                                 "seed": str(args.seed)}, sensor_ports(plan))
+                mission_run.add_observer(TraceRecorder(writer))
+            try:
+                result = mission_run.run()
+            finally:
+                if writer is not None:
+                    writer.close()
+        finally:
+            controller.close()
+    verdicts = monitor.results()
+    if args.json:
+        report = report_dict(result, injected)
+        report["properties"] = results_dict(verdicts)
+        report["controller"] = {"mode": "lockstep", "pid": controller.pid,
+                                "module_tasks": len(table.entries)}
+        print(dumps(report, indent=2))
+    else:
+        print(format_report(result, injected))
+        if verdicts:
+            print("\n".join(format_properties(verdicts)))
+        print(f"Controller: process {controller.pid}, {len(table.entries)} Module-Tasks in C, "
+              f"lockstep over a Unix socket")
+        if args.trace:
+            print(f"Trace: {args.trace}")
+    if result.status != "done" and not args.json:
+        print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
+    violated = [v.name for v in verdicts if v.verdict.value == "false"]
+    return max(result.exit_status, 1 if violated else 0)
