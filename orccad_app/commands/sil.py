@@ -86,7 +86,6 @@ def _injections(texts: list[str], inputs) -> list:
 
 
 def run(args: argparse.Namespace) -> int:
-    import tempfile
     from pathlib import Path
 
     from orccad_app.diagnostics import OrccadError
@@ -99,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
     from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S
-    from orccad_app.sil.lockstep import controller_for, remote_sites, start_controller
+    from orccad_app.sil.lockstep import lockstep
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict, sensor_ports)
 
@@ -112,44 +111,39 @@ def run(args: argparse.Namespace) -> int:
     plan = plan_mission(source, mission)
     injections = _injections(args.inject, plan.automaton.inputs)
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
-    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        build_dir = Path(args.build_dir) if args.build_dir else Path(scratch)
-        table, executable = controller_for(plan, args.file, build_dir)
-        until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
-                      MAX_SECONDS)
-        controller = start_controller(table, executable, args.heartbeat_s or DEFAULT_HEARTBEAT_S)
+    until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
+                  MAX_SECONDS)
+    build_dir = Path(args.build_dir) if args.build_dir else None
+    with lockstep(plan, args.file, build_dir,
+                  args.heartbeat_s or DEFAULT_HEARTBEAT_S) as controller:
+        mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
+                                 injections=injections,
+                                 processors=[Processor(name) for name in plan.processor_names],
+                                 bus=Bus())
+        monitor = PropertyMonitor(source.program, mission, mission_run)
         writer = None
+        if args.trace:
+            writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
+                                             "seed": str(args.seed)}, sensor_ports(plan))
+            mission_run.add_observer(TraceRecorder(writer))
         try:
-            remote_sites(plan, table, controller)
-            mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
-                                     injections=injections,
-                                     processors=[Processor(name) for name in
-                                                 plan.processor_names],
-                                     bus=Bus())
-            monitor = PropertyMonitor(source.program, mission, mission_run)
-            if args.trace:
-                writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                                 "seed": str(args.seed)}, sensor_ports(plan))
-                mission_run.add_observer(TraceRecorder(writer))
-            try:
-                result = mission_run.run()
-            finally:
-                if writer is not None:
-                    writer.close()
+            result = mission_run.run()
         finally:
-            controller.close()
+            if writer is not None:
+                writer.close()
+    modules = len(plan.tcs.module_tasks)
     verdicts = monitor.results()
     if args.json:
         report = report_dict(result, injected)
         report["properties"] = results_dict(verdicts)
         report["controller"] = {"mode": "lockstep", "pid": controller.pid,
-                                "module_tasks": len(table.entries)}
+                                "module_tasks": modules}
         print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
         if verdicts:
             print("\n".join(format_properties(verdicts)))
-        print(f"Controller: process {controller.pid}, {len(table.entries)} Module-Tasks in C, "
+        print(f"Controller: process {controller.pid}, {modules} Module-Tasks in C, "
               f"lockstep over a Unix socket")
         if args.trace:
             print(f"Trace: {args.trace}")

@@ -17,6 +17,9 @@ instances.
 from __future__ import annotations
 
 import dataclasses
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -26,7 +29,7 @@ from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerFailure, Co
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
 from orccad_app.sil.remote import RemoteModule
 
-__all__ = ["RemoteSite", "controller_for", "remote_sites", "start_controller"]
+__all__ = ["RemoteSite", "controller_for", "lockstep", "remote_sites", "start_controller"]
 
 
 @dataclasses.dataclass
@@ -82,3 +85,19 @@ def remote_sites(plan: MissionPlan, table: ModuleTable,
     plan.sites = sites
     for task in plan.tcs.module_tasks:
         task.compute = _NotInController(task.name)
+
+
+@contextmanager
+def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> Iterator[ControllerProcess]:
+    """While in the block, ``plan``'s Module-Tasks compute in a controller process built for
+    it (emitted into ``build_dir``, a temporary directory by default); the process is ended
+    and reaped when the block ends, however it ends."""
+    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+        table, executable = controller_for(plan, source, build_dir or Path(scratch))
+        controller = start_controller(table, executable, heartbeat_s)
+        try:
+            remote_sites(plan, table, controller)
+            yield controller
+        finally:
+            controller.close()

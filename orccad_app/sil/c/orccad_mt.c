@@ -179,11 +179,16 @@ static void pid(orc_mt *m, double t_s)
     double *est_q = &m->s[2 + 2 * dof], *est_r = est_q + 2 + 2 * dof;
     const double *pos, *vel, *q, *qdot;
     double dt, tau[ORC_MAX_DIM], e[ORC_MAX_DIM], flag;
-    if (!m->in[0].present || !m->in[3].present) {
+    if (!m->in[0].present) {
         return;
     }
+    /* the reference's estimator sees every reference sample, even without q (as in
+     * module_kinds.py: the reference is read before q is checked) */
     pos = m->in[0].v;
     vel = m->in[1].present ? m->in[1].v : backward(est_r, dof, t_s, pos, 1);
+    if (!m->in[3].present) {
+        return;
+    }
     q = m->in[3].v;
     qdot = m->in[4].present ? m->in[4].v : backward(est_q, dof, t_s, q, 0);
     dt = 0.0;
