@@ -50,7 +50,9 @@ def register(sub) -> None:
                       help="one exchange per job over a Unix socket; the plant advances by "
                            "the declared execution times (reproducible)")
     mode.add_argument("--realtime", action="store_true",
-                      help="wall-clock periods on real threads (not available yet: refused)")
+                      help="real threads per processor, wall-clock periods "
+                           "(clock_nanosleep, SCHED_FIFO where permitted), the plant over "
+                           "shared memory; the report adds the measured release lateness")
     parser.add_argument("--until", type=seconds, default=None, metavar="S",
                         help="simulated-time limit [s] (default as orccad run)")
     parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
@@ -85,10 +87,44 @@ def _injections(texts: list[str], inputs) -> list:
     return typed_injections(parsed, inputs)
 
 
+def _controller(args: argparse.Namespace, plan, build_dir, heartbeat_s: float):
+    """The controller of the mode (a context manager)."""
+    if args.realtime:
+        from orccad_app.sil.realtime import realtime
+
+        return realtime(plan, args.file, build_dir, heartbeat_s)
+    from orccad_app.sil.lockstep import lockstep
+
+    return lockstep(plan, args.file, build_dir, heartbeat_s)
+
+
+def _timing_dict(timing) -> dict:
+    lateness = timing.lateness_s
+    return {"module": timing.name, "released": timing.released,
+            "lateness_s": None if lateness is None else
+            {"median": lateness[0], "p99": lateness[1], "max": lateness[2]},
+            "overruns": timing.overruns, "deadline_misses": timing.deadline_misses,
+            "response_time_max_s": timing.response_max_s,
+            "tcs_response_time_s": timing.predicted_s}
+
+
+def _timing_lines(timings) -> list[str]:
+    lines = ["Measured on the controller's threads (release lateness [µs]: median / p99 / "
+             "max), beside orccad tcs's response-time bound:",
+             f"  {'Module-Task':<28} {'jobs':>6} {'lateness':>24} {'overruns':>8} "
+             f"{'misses':>6} {'R measured':>11} {'R tcs':>9}"]
+    for t in timings:
+        late = "—" if t.lateness_s is None else " / ".join(f"{v * 1e6:.0f}"
+                                                           for v in t.lateness_s)
+        predicted = "—" if t.predicted_s is None else f"{t.predicted_s * 1e3:.3f} ms"
+        lines.append(f"  {t.name:<28} {t.released:>6} {late:>24} {t.overruns:>8} "
+                     f"{t.deadline_misses:>6} {t.response_max_s * 1e3:>8.3f} ms {predicted:>9}")
+    return lines
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from orccad_app.diagnostics import OrccadError
     from orccad_app.executive.bus import Bus
     from orccad_app.executive.processor import Processor
     from orccad_app.jsonout import dumps
@@ -98,12 +134,9 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
     from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S
-    from orccad_app.sil.lockstep import lockstep
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict, sensor_ports)
 
-    if args.realtime:
-        raise OrccadError("orccad sil --realtime is not available yet: use --lockstep")
     refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
@@ -113,13 +146,20 @@ def run(args: argparse.Namespace) -> int:
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),
                   MAX_SECONDS)
+    options = dict(seed=args.seed, until_ns=int(round(until_s * 1e9)), injections=injections,
+                   processors=[Processor(name) for name in plan.processor_names], bus=Bus())
     build_dir = Path(args.build_dir) if args.build_dir else None
-    with lockstep(plan, args.file, build_dir,
-                  args.heartbeat_s or DEFAULT_HEARTBEAT_S) as controller:
-        mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
-                                 injections=injections,
-                                 processors=[Processor(name) for name in plan.processor_names],
-                                 bus=Bus())
+    heartbeat_s = args.heartbeat_s or DEFAULT_HEARTBEAT_S
+    timings = None
+    with _controller(args, plan, build_dir, heartbeat_s) as started:
+        if args.realtime:
+            from orccad_app.sil.realtime import RealtimeRun
+
+            table, controller, shared = started
+            mission_run: MissionRun = RealtimeRun(plan, table, controller, shared, **options)
+        else:
+            controller = started
+            mission_run = MissionRun(plan, **options)
         monitor = PropertyMonitor(source.program, mission, mission_run)
         writer = None
         if args.trace:
@@ -131,20 +171,27 @@ def run(args: argparse.Namespace) -> int:
         finally:
             if writer is not None:
                 writer.close()
+        if args.realtime:
+            timings = mission_run.timings()  # type: ignore[attr-defined]
     modules = len(plan.tcs.module_tasks)
     verdicts = monitor.results()
     if args.json:
         report = report_dict(result, injected)
         report["properties"] = results_dict(verdicts)
-        report["controller"] = {"mode": "lockstep", "pid": controller.pid,
-                                "module_tasks": modules}
+        report["controller"] = {"mode": "realtime" if args.realtime else "lockstep",
+                                "pid": controller.pid, "module_tasks": modules}
+        if timings is not None:
+            report["controller"]["timing"] = [_timing_dict(t) for t in timings]
         print(dumps(report, indent=2))
     else:
         print(format_report(result, injected))
         if verdicts:
             print("\n".join(format_properties(verdicts)))
-        print(f"Controller: process {controller.pid}, {modules} Module-Tasks in C, "
-              f"lockstep over a Unix socket")
+        how = ("real-time threads, the plant over shared memory" if args.realtime
+               else "lockstep over a Unix socket")
+        print(f"Controller: process {controller.pid}, {modules} Module-Tasks in C, {how}")
+        if timings is not None:
+            print("\n".join(_timing_lines(timings)))
         if args.trace:
             print(f"Trace: {args.trace}")
     if result.status != "done" and not args.json:

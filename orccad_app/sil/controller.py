@@ -45,6 +45,10 @@ class Op(IntEnum):
     COMPUTE = 5
     PING = 6
     QUIT = 7
+    ACTIVATE = 8
+    KILL = 9
+    RESET = 10
+    EPOCH = 11
 
 
 class ControllerFailure(ComputeError):
@@ -61,13 +65,15 @@ class ControllerProcess:
     """
 
     def __init__(self, executable: Path, modules: int, digest: str,
-                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                 arguments: tuple[str, ...] = ()) -> None:
         self.heartbeat_s = heartbeat_s
         self.failure: str | None = None
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.process = subprocess.Popen(
-                [str(executable), "--fd", str(theirs.fileno())], pass_fds=[theirs.fileno()],
+                [str(executable), "--fd", str(theirs.fileno()), *arguments],
+                pass_fds=[theirs.fileno()],
                 stdin=subprocess.DEVNULL, start_new_session=True)
         except OSError as error:
             ours.close()

@@ -76,6 +76,25 @@ int orc_mt_set_param(orc_mt *m, int offset, const double *values, int n);
 extern const orc_mt_def ORC_MODULES[];
 extern const int ORC_N_MODULES;
 extern const char ORC_TABLE_DIGEST[];
+/* A connection of the TCS (RR-1801 §3.2.1): module -1 is the robot (its port index in
+ * ORC_ROBOT_PORTS); protocol 0 is asyn/asyn (the only one the real-time runtime runs). */
+typedef struct {
+    int src_module, src_slot, dst_module, dst_slot, protocol;
+} orc_connection;
+
+/* A robot port a Module-Task reads (a sensor) or writes (an actuator). */
+typedef struct {
+    const char *name;  /* "arm.q" */
+    int dim;
+    int actuator;
+} orc_robot_port;
+
+extern const orc_connection ORC_CONNECTIONS[];
+extern const int ORC_N_CONNECTIONS;
+extern const orc_robot_port ORC_ROBOT_PORTS[];
+extern const int ORC_N_ROBOT_PORTS;
+extern const int ORC_N_PROCESSORS;
+
 /* The generated instances' memory, one per table entry (no allocation at run time). */
 extern orc_mt ORC_INSTANCES[];
 
