@@ -59,7 +59,7 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     digest = hashlib.sha256()
     for part in (cc, *CFLAGS, *libraries):
         digest.update(part.encode() + b"\0")
-    for path in [*sources, C_DIR / "orccad_mt.h"]:
+    for path in [*sources, C_DIR / "orccad_mt.h", C_DIR / "orccad_io.h"]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     target_dir = _cache_dir() / "sil" / digest.hexdigest()[:24]
     target = target_dir / name

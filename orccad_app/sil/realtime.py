@@ -13,8 +13,12 @@ decides (start, kill, type-1 updates, fresh ports) goes to the controller over t
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
-Only ``asyn/asyn`` connections run in real time; a mission with another protocol is refused
-with the connection and the reason (the lockstep mode runs every protocol, in the executive).
+Only ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
+releases) do not: a mission with another protocol or a ramp is refused with what and why (the
+lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
+(the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
+at most that long — a delay the simulated run does not have, so the tracking errors differ a
+little (docs/deploy.md).
 """
 
 from __future__ import annotations
@@ -34,7 +38,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun
-from orccad_app.sil.build import build_executable
+from orccad_app.sil.build import C_DIR, build_executable
 from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
 from orccad_app.sil.lockstep import RemoteSite
@@ -92,7 +96,14 @@ class ModuleTiming:
     predicted_s: float | None
 
 
-def _refuse_protocols(plan: MissionPlan) -> None:
+def _refuse_unsupported(plan: MissionPlan) -> None:
+    """Refuse what the real-time mode does not run, naming it and why."""
+    for site in plan.sites:
+        for exception, update in site.adjustments.items():
+            if update.form is not None and update.form.ramp is not None:
+                raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
+                                  f"is stepped at the executive's releases, which the real-time "
+                                  f"mode does not have (use --lockstep)", update.loc)
     for connection in plan.tcs.connections:
         if connection.protocol.value != "asyn/asyn":
             raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
@@ -244,15 +255,16 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
              ) -> Iterator[tuple[ModuleTable, ControllerProcess, SharedMemory]]:
     """While in the block, the real-time controller of ``plan`` runs (its threads idle until
     activated); ended, reaped and its shared memory removed when the block ends."""
-    _refuse_protocols(plan)
+    _refuse_unsupported(plan)
     table = module_table(plan)
     shared = SharedMemory(len(table.robot_ports), len(table.entries))
     try:
         with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
             sources = write_generated(table, build_dir or Path(scratch), source, "orccad_rt.c")
+            sources.append(C_DIR / "orccad_io_shm.c")
             executable = build_executable(sources, "orccad_controller_rt", ("-lm", "-pthread"))
         controller = ControllerProcess(executable, len(table.entries), table.digest,
-                                       heartbeat_s, ("--shm", shared.path))
+                                       heartbeat_s, ("--io", shared.path))
         try:
             sites = []
             for site in plan.sites:

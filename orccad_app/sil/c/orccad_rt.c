@@ -7,10 +7,10 @@
  * Module-Task priority), else under the default policy after a warning on stderr.
  *
  * Ports: connections between Module-Tasks are asyn/asyn buffers (the last value; "none yet"
- * before the first write, and again after a reset). Robot ports are in the shared memory the
- * plant server maps: a sensor is written by the plant server, an actuator by the runtime,
- * each under a sequence lock. Each Module-Task's outputs and measured timing (releases,
- * release lateness, overruns, deadline misses, response times) are mirrored there too.
+ * before the first write, and again after a reset). Robot ports go through the I/O functions
+ * of orccad_io.h: over the plant server's shared memory in SIL (orccad_io_shm.c), the
+ * hardware's on a robot. Each job's measured timing (release lateness, overruns, deadline
+ * misses, response time) and outputs are published through them too.
  *
  * The plant server drives the Robot-Tasks' lifecycle over the socket (file descriptor
  * argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1 update), INIT,
@@ -33,6 +33,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "orccad_io.h"
 #include "orccad_mt.h"
 
 enum { OP_HELLO = 1, OP_START = 2, OP_PARAM = 3, OP_INIT = 4, OP_PING = 6, OP_QUIT = 7,
@@ -41,11 +42,6 @@ enum { OP_HELLO = 1, OP_START = 2, OP_PARAM = 3, OP_INIT = 4, OP_PING = 6, OP_QU
 #define MAX_MODULES 64
 #define MAX_CONNECTIONS 256
 #define MAX_PROCESSORS 16
-#define ROBOT_WORDS (1 + ORC_MAX_DIM)
-#define MODULE_HEAD 8
-#define MODULE_WORDS (MODULE_HEAD + ORC_MAX_PORTS * (1 + ORC_MAX_DIM))
-#define LATENESS_RING 16384
-#define HEADER_WORDS 8
 #define MAX_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
 
 typedef struct {
@@ -77,7 +73,6 @@ static rt_task tasks[MAX_MODULES];
 static rt_buffer buffers[MAX_CONNECTIONS];
 static volatile int stopping;
 static int64_t epoch_ns;
-static int64_t *shm_words; /* the shared memory, as 8-byte words */
 static double data_in[MAX_DOUBLES];
 
 static int64_t now_ns(void)
@@ -87,85 +82,7 @@ static int64_t now_ns(void)
     return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
-/* ---- shared memory: words, sequence locks ------------------------------------------------ */
-
-static double *robot_port(int k)
-{
-    return (double *)&shm_words[HEADER_WORDS + k * ROBOT_WORDS];
-}
-
-static int64_t *module_words(int m)
-{
-    return &shm_words[HEADER_WORDS + ORC_N_ROBOT_PORTS * ROBOT_WORDS + m * MODULE_WORDS];
-}
-
-static double *lateness_ring(int m)
-{
-    return (double *)&shm_words[HEADER_WORDS + ORC_N_ROBOT_PORTS * ROBOT_WORDS
-                                + ORC_N_MODULES * MODULE_WORDS + (int64_t)m * LATENESS_RING];
-}
-
-static void read_sensor(int k, orc_value *into)
-{
-    volatile int64_t *seq = (volatile int64_t *)robot_port(k);
-    int64_t before, after;
-    int i, dim = ORC_ROBOT_PORTS[k].dim;
-    do {
-        before = *seq;
-        __sync_synchronize();
-        for (i = 0; i < dim; i++) {
-            into->v[i] = robot_port(k)[1 + i];
-        }
-        __sync_synchronize();
-        after = *seq;
-    } while (before != after || (before & 1));
-    into->present = before > 0; /* 0: the plant server has not written it yet */
-}
-
-static void write_actuator(int k, const orc_value *value)
-{
-    volatile int64_t *seq = (volatile int64_t *)robot_port(k);
-    int i;
-    *seq += 1;
-    __sync_synchronize();
-    for (i = 0; i < ORC_ROBOT_PORTS[k].dim; i++) {
-        robot_port(k)[1 + i] = value->v[i];
-    }
-    __sync_synchronize();
-    *seq += 1;
-}
-
-/* The mirror of Module-Task m: [seq, released, overruns, misses, events, lateness count,
- * response max (double), unused] then its output slots [present, v...]. */
-static void mirror(int m, const orc_mt *mt)
-{
-    volatile int64_t *w = module_words(m);
-    double *slots = (double *)&module_words(m)[MODULE_HEAD];
-    int s, i;
-    w[0] += 1;
-    __sync_synchronize();
-    w[1] = tasks[m].released;
-    w[2] = tasks[m].overruns;
-    w[3] = tasks[m].misses;
-    w[4] = tasks[m].events;
-    ((volatile double *)w)[6] = tasks[m].response_max_ns;
-    for (s = 0; s < mt->n_out; s++) {
-        slots[s * (1 + ORC_MAX_DIM)] = mt->out[s].present ? 1.0 : 0.0;
-        for (i = 0; i < mt->out[s].dim; i++) {
-            slots[s * (1 + ORC_MAX_DIM) + 1 + i] = mt->out[s].v[i];
-        }
-    }
-    __sync_synchronize();
-    w[0] += 1;
-}
-
-static void record_lateness(int m, double lateness_ns)
-{
-    volatile int64_t *w = module_words(m);
-    lateness_ring(m)[w[5] % LATENESS_RING] = lateness_ns;
-    __sync_synchronize();
-    w[5] += 1;
-}
+/* ---- I/O: orccad_io.h (the SIL implementation: orccad_io_shm.c) ---------------------- */
 
 /* ---- one job ----------------------------------------------------------------------------- */
 
@@ -184,7 +101,7 @@ static void read_inputs(int m)
         }
         slot = &mt->in[k->dst_slot];
         if (k->src_module < 0) {
-            read_sensor(k->src_slot, slot);
+            orc_io_read_sensor(k->src_slot, slot);
         } else {
             slot->present = buffers[c].present;
             memcpy(slot->v, buffers[c].v, sizeof slot->v);
@@ -209,7 +126,7 @@ static void write_outputs(int m)
         }
         out = &mt->out[k->src_slot];
         if (k->dst_module < 0) {
-            write_actuator(k->dst_slot, out);
+            orc_io_write_actuator(k->dst_slot, out);
         } else {
             buffers[c].present = 1;
             memcpy(buffers[c].v, out->v, sizeof buffers[c].v);
@@ -225,7 +142,7 @@ static void run_job(int m, int64_t release_ns, int64_t woke_ns)
     const orc_mt_def *def = &ORC_MODULES[m];
     double response;
     tasks[m].released += 1;
-    record_lateness(m, (double)(woke_ns - release_ns));
+    orc_io_lateness(m, (double)(woke_ns - release_ns));
     read_inputs(m);
     orc_mt_compute(&ORC_INSTANCES[m], (double)(release_ns - epoch_ns) * 1e-9);
     write_outputs(m);
@@ -236,7 +153,8 @@ static void run_job(int m, int64_t release_ns, int64_t woke_ns)
     if (response > (double)def->period_ns) {
         tasks[m].misses += 1;
     }
-    mirror(m, &ORC_INSTANCES[m]);
+    orc_io_publish(m, &ORC_INSTANCES[m], tasks[m].released, tasks[m].overruns, tasks[m].misses,
+                   tasks[m].events, tasks[m].response_max_ns);
 }
 
 /* ---- processor threads ------------------------------------------------------------------- */
@@ -378,8 +296,8 @@ static uint32_t command(const request_t *req, double *answer, uint32_t *n)
     if (req->op == OP_PING) {
         return 0;
     }
-    if (req->op == OP_EPOCH) { /* the plant server's t = 0, written in word 1 */
-        epoch_ns = shm_words[1];
+    if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's) */
+        epoch_ns = orc_io_epoch_ns(epoch_ns);
         return 0;
     }
     if (req->module >= (uint32_t)ORC_N_MODULES) {
@@ -415,27 +333,14 @@ static uint32_t command(const request_t *req, double *answer, uint32_t *n)
     }
 }
 
-static int64_t *map_shared(const char *path)
-{
-    int fd = open(path, O_RDWR);
-    struct stat st;
-    void *p;
-    if (fd < 0 || fstat(fd, &st) != 0) {
-        return NULL;
-    }
-    p = mmap(NULL, (size_t)st.st_size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-    close(fd);
-    return p == MAP_FAILED ? NULL : (int64_t *)p;
-}
-
 int main(int argc, char **argv)
 {
     pthread_t threads[MAX_PROCESSORS];
     int fd, p, warned = 0, status = 0;
     request_t req;
     double answer[9];
-    if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--shm") != 0) {
-        fprintf(stderr, "usage: %s --fd N --shm PATH (started by orccad sil --realtime)\n",
+    if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
+        fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
                 argv[0]);
         return 2;
     }
@@ -445,9 +350,8 @@ int main(int argc, char **argv)
         return 2;
     }
     fd = atoi(argv[2]);
-    shm_words = map_shared(argv[4]);
-    if (shm_words == NULL) {
-        fprintf(stderr, "orccad_rt: cannot map %s\n", argv[4]);
+    if (orc_io_open(argv[4]) != 0) {
+        fprintf(stderr, "orccad_rt: the robot's I/O cannot start (%s)\n", argv[4]);
         return 2;
     }
     epoch_ns = now_ns();
