@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
+from orccad_app.mission.run import MissionRun
 from orccad_app.reactive.ir import SignalDecl
 from orccad_app.reactive.script import Instant
 
@@ -82,6 +84,10 @@ class RunOptions:
         source's path).
     :param observers: observers of the run (executive callbacks and the mission hooks,
         :mod:`orccad_app.mission.observer`).
+    :param run_factory: makes the :class:`~orccad_app.mission.run.MissionRun` from the plan
+        and its keyword arguments (``seed``, ``until_ns``, ``injections``, ``processors``,
+        ``bus``, ``observers``, ``realtime``): a subclass for another way of executing the
+        Module-Tasks (``orccad sil``); default :class:`MissionRun` itself.
     :param signals_end_run: Ctrl-C and SIGTERM end the run after the current event (status
         ``aborted``, report and trace complete), a second one at once; the handlers are
         installed for the run only, and only from the main thread.
@@ -99,4 +105,5 @@ class RunOptions:
     trace: str | None = None
     trace_file: str | None = None
     observers: tuple[Any, ...] = ()
+    run_factory: Callable[..., MissionRun] | None = None
     signals_end_run: bool = False

@@ -70,10 +70,11 @@ class RunSession:
         """The records of what the options inject (the report lists them)."""
         processors = [Processor(name, options.scheduler, options.context_switch_ns)
                       for name in self.plan.processor_names]
-        self.run = MissionRun(self.plan, seed=options.seed, until_ns=self.until_ns,
-                              injections=injections, processors=processors,
-                              bus=Bus(transfer_ns=options.bus_transfer_ns),
-                              observers=options.observers, realtime=options.realtime)
+        make = options.run_factory or MissionRun
+        self.run: MissionRun = make(self.plan, seed=options.seed, until_ns=self.until_ns,
+                                    injections=injections, processors=processors,
+                                    bus=Bus(transfer_ns=options.bus_transfer_ns),
+                                    observers=options.observers, realtime=options.realtime)
         """The :class:`~orccad_app.mission.run.MissionRun` (observe it, do not reach in)."""
         self.monitor = PropertyMonitor(source.program, mission, self.run)
         """Judges every property of the mission on the run."""
