@@ -66,9 +66,11 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
     assert _controllers_of(os.getpid()) == []
 
 
-def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason():
-    with pytest.raises(OrccadError, match="ramp"):
-        with realtime(plan_of("arm_retune.orc"), "arm_retune.orc"):
+@pytest.mark.parametrize("file,mission,words", [
+    ("arm_retune.orc", None, "ramp"), ("arm_interrupts.orc", "ArmInterrupts", "sporadic")])
+def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason(file, mission, words):
+    with pytest.raises(OrccadError, match=words):
+        with realtime(plan_of(file, mission), file):
             pass
 
 
