@@ -209,10 +209,17 @@ class RealtimeRun(MissionRun):
 
     def run(self) -> Any:
         """The run, with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
-        below the controller's threads, so that the plant keeps to the wall clock on a busy
-        machine; the previous policy is restored after."""
-        with _fifo(_PLANT_FIFO_PRIORITY):
-            return super().run()
+        below the controller's threads, and Python's cyclic garbage collector paused, so that
+        the plant keeps to the wall clock on a busy machine; both restored after."""
+        import gc
+
+        gc.collect()  # the cyclic collector paused during the run: a pause of the plant
+        gc.disable()  # server is a plant falling behind the wall clock
+        try:
+            with _fifo(_PLANT_FIFO_PRIORITY):
+                return super().run()
+        finally:
+            gc.enable()
 
     def timings(self) -> list[ModuleTiming]:
         """What was measured per Module-Task (read once the run has ended), the runtime
