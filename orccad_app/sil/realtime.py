@@ -48,6 +48,8 @@ from orccad_app.tcs.module_task import Activation
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
 _HEARTBEAT_NS = 100_000_000
+_EXCHANGE = EventClass.DELIVERY
+"""The exchange with the controller is a delivery: first in its instant."""
 _PLANT_FIFO_PRIORITY = 60
 """The plant server's SCHED_FIFO priority, below the controller's threads' (80 minus the
 best Module-Task priority)."""
@@ -170,14 +172,17 @@ class RealtimeRun(MissionRun):
                         for m, entry in enumerate(table.entries)
                         if "e" in [p.name for p in entry.layout.outputs]]
         self._next_ping = 0
-        self.kernel.schedule(0, EventClass.CONTROL, self._exchange)
+        # before the instant's reactions: at t = 0 the epoch and the first sensors are there
+        # before the automaton activates anything (a trajectory's clock then starts with the
+        # plant's), and at every exchange the events are read before the instant's tick
+        self.kernel.schedule(0, _EXCHANGE, self._exchange)
 
     def _exchange(self, _: object) -> None:
         now = self.kernel.now
         if now == 0:
             self._shared.set_epoch(time.monotonic_ns())
             self._controller.request(Op.EPOCH)
-        self.kernel.schedule(now + self.exchange_ns, EventClass.CONTROL, self._exchange)
+        self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = self.sim.plants
         shared = self._shared
         for k, port, robot, name in self._ports:

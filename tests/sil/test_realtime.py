@@ -54,8 +54,11 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
     plan = plan_of("arm_pid.orc")
 
     class Kill:
+        sent = False
+
         def on_reaction(self, now, inputs, outputs, status):
-            if now >= 500_000_000 and not _gone(controller.pid):
+            if now >= 500_000_000 and not self.sent:
+                self.sent = True
                 os.kill(controller.pid, signal.SIGKILL)
 
     with realtime(plan, "arm_pid.orc") as (table, controller, shared):
