@@ -79,7 +79,7 @@ VERDICT_SCHEMA = {
 
 def state_message(state: int, waiting_at: Sequence[Any], status: str) -> dict[str, Any]:
     """``/mission/state``'s message: the state, the statements it waits at, the status."""
-    at = [str(location) for location in waiting_at]
+    at = list(dict.fromkeys(str(location) for location in waiting_at))  # unique, in order
     return {"state": state, "at": ", ".join(at), "waiting_at": at, "status": status}
 
 
