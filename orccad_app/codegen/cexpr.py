@@ -19,7 +19,7 @@ from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 from orccad_app.reactive.expr import _divide, format_expr
 
-__all__ = ["Places", "ExprWriter", "c_type", "c_literal", "StringTable"]
+__all__ = ["Places", "Place", "ExprWriter", "c_type", "c_literal", "c_string", "StringTable"]
 
 
 def _python_message(left: object, right: object) -> str:
@@ -111,13 +111,15 @@ class ExprWriter:
     def action(self, kind: str, target: object, expr: ir.Expr) -> list[str]:
         """The body of ``int f(mem *m)`` performing one action."""
         self._begin(expr)
-        place = (self.places.variables[target] if kind == "assign"  # type: ignore[index]
-                 else self.places.values[target])  # type: ignore[index]
+        table = self.places.variables if kind == "assign" else self.places.values
+        place = table.get(target)  # type: ignore[call-overload]
         if type(expr) is ir.Const and expr.value is ir.NO_VALUE:
-            self._emit(f"{place.has} = false;")
+            if place is not None:  # (a place never given a value has no field)
+                self._emit(f"{place.has} = false;")
         else:
             value = self._value(expr)
             if value is not None:
+                assert place is not None, "a typed value always has its place"
                 self._store(place, value)
                 self._emit(f"{place.has} = true;")
         self._emit("return 0;")
@@ -357,3 +359,16 @@ class ExprWriter:
             return f"(0 {op} cmp_if({b}, {a}))"
         return f"({a} {op} {b})"
 
+
+def c_string(text: str) -> str:
+    """A C string literal of ``text`` (UTF-8 bytes, octal escapes for the rest)."""
+    out = []
+    for byte in text.encode("utf-8"):
+        char = chr(byte)
+        if char in '"\\?':
+            out.append("\\" + char)
+        elif 32 <= byte < 127:
+            out.append(char)
+        else:
+            out.append(f"\\{byte:03o}")
+    return '"' + "".join(out) + '"'

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from importlib.resources import files
 
-from orccad_app.codegen.generate import CProgram, _c_string
+from orccad_app.codegen.cexpr import c_string
+from orccad_app.codegen.generate import CProgram
 from orccad_app.lang.limits import MAX_DURATION_NS
 
 __all__ = ["main_source"]
@@ -15,7 +16,7 @@ __all__ = ["main_source"]
 def main_source(program: CProgram) -> str:
     """The text of ``PREFIX_main.c`` for ``program``."""
     template = files("orccad_app.codegen").joinpath("main_template.c").read_text("utf-8")
-    types = ", ".join(_c_string(s.decl.type or "") for s in program.interface.inputs) or '""'
+    types = ", ".join(c_string(s.decl.type or "") for s in program.interface.inputs) or '""'
     return (template.replace("@INPUT_TYPES@", types)
             .replace("@MAX_DURATION_NS@", str(MAX_DURATION_NS))
             .replace("@UP@", program.prefix.upper())

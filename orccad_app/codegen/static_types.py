@@ -57,6 +57,11 @@ class CType:
         return _WORD[self.kind]
 
 
+def _a(ctype: CType) -> str:
+    text = str(ctype)
+    return ("an " if text[0] in "aeiou" else "a ") + text
+
+
 _WORD = {Kind.INT: "int", Kind.FLOAT: "float", Kind.BOOL: "bool", Kind.STRING: "string",
          Kind.NEVER: "error", Kind.VECTOR: "vector"}
 
@@ -131,7 +136,7 @@ class TypeTable:
             what = (f"variable '{decl.name}'" if isinstance(decl, ir.VarDecl)
                     else f"signal {decl.name}")  # type: ignore[attr-defined]
             raise CodegenError(
-                f"{what} holds a {ctype} here and a {known} at {self.origin[decl]}: the C code "
+                f"{what} holds {_a(ctype)} here and {_a(known)} at {self.origin[decl]}: the C code "
                 "gives every variable and signal one static type (write the same type "
                 "everywhere, e.g. 1.0 for a float)", loc)
         return False
@@ -177,7 +182,7 @@ def infer(actions: list[tuple[str, object, ir.Expr]], tests: list[ir.Expr],
             if ctype.kind is Kind.VECTOR and ctype.element is not Kind.FLOAT:
                 raise CodegenError(f"input {signal.name}: a script gives vectors of floats, "
                                    "the program an int vector", signal.loc)
-    for _kind, target, expr in actions:
+    for _kind, _target, expr in actions:
         _expr(expr, table, final=True)
     for expr in tests:
         _expr(expr, table, final=True)
@@ -249,7 +254,7 @@ def _binary(op: str, left: CType, right: CType, loc: SourceLocation) -> CType:
         return right
     if op in ("min", "max"):
         if left != right or left.kind not in _NUMBERS + (Kind.STRING, Kind.BOOL):
-            raise CodegenError(f"{op} of a {left} and a {right}: the type of the result would "
+            raise CodegenError(f"{op} of {_a(left)} and {_a(right)}: the type of the result would "
                                "depend on the values (write both sides of one type)", loc)
         return left
     if op in COMPARISON:
@@ -260,13 +265,13 @@ def _binary(op: str, left: CType, right: CType, loc: SourceLocation) -> CType:
         return _elementwise(op, left, right, loc)
     if left.kind in _NUMBERS and right.kind in _NUMBERS:
         return INT if left.kind is right.kind is Kind.INT else FLOAT
-    raise CodegenError(f"'{op}' on a {left} and a {right} has no C translation", loc)
+    raise CodegenError(f"'{op}' on {_a(left)} and {_a(right)} has no C translation", loc)
 
 
 def _elementwise(op: str, left: CType, right: CType, loc: SourceLocation) -> CType:
     for side in (left, right):
         if side.kind not in _NUMBERS and side.kind is not Kind.VECTOR:
-            raise CodegenError(f"'{op}' on a {left} and a {right} has no C translation", loc)
+            raise CodegenError(f"'{op}' on {_a(left)} and {_a(right)} has no C translation", loc)
     elements = [t.element if t.kind is Kind.VECTOR else t.kind for t in (left, right)]
     element = Kind.INT if elements == [Kind.INT, Kind.INT] else Kind.FLOAT
     sizes = {t.size for t in (left, right) if t.kind is Kind.VECTOR}
@@ -282,4 +287,4 @@ def _comparable(op: str, left: CType, right: CType, loc: SourceLocation) -> None
         return
     if op in ("==", "!=") and left.kind is right.kind is Kind.VECTOR:
         return
-    raise CodegenError(f"'{op}' between a {left} and a {right} has no C translation", loc)
+    raise CodegenError(f"'{op}' between {_a(left)} and {_a(right)} has no C translation", loc)
