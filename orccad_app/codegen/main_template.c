@@ -10,7 +10,8 @@
  * ending failed or aborted exits 1. With --trace (for differential tests), each record also
  * has "state" (the state reached) and "step_status" (the instant's status), and a run-time
  * error is printed on standard output as {"instant": N, "error": {file, line, col, message,
- * code}}.
+ * code}}. `./a.out --trace S1.in S2.in ...` runs several scripts, each from a reset automaton
+ * and announced by a record {"script": PATH}.
  *
  * Differences from the Python reader: a string value must be one the program names (the C
  * automaton has a fixed string table), a vector input must have the size the automaton gives
@@ -629,7 +630,8 @@ static void check_utf8(const char *text, size_t len)
     }
 }
 
-int main(int argc, char **argv)
+/* Run one script: the exit status (0, 1 failed/aborted, 2 a run-time error). */
+static int run_script(const char *path, int trace)
 {
     static instant now;
     static @P@_mem memory;
@@ -637,18 +639,13 @@ int main(int argc, char **argv)
     FILE *file;
     size_t len, start, next, end;
     const char *text = script;
-    int number, timed = 0, record = 0, status = @UP@_RUNNING, pass, trace = 0;
+    int number, timed = 0, record = 0, status = @UP@_RUNNING, pass;
     int64_t clock = 0;
-    if (argc == 3 && strcmp(argv[2], "--trace") == 0) trace = 1;
-    if (argc != 2 && !trace) {
-        fprintf(stderr, "usage: %s SCRIPT.in [--trace]\n", argv[0]);
-        return 2;
-    }
-    script_name = argv[1];
-    file = fopen(argv[1], "rb");
+    script_name = path;
+    file = fopen(path, "rb");
     if (file == NULL) {
         char message[4200];
-        snprintf(message, sizeof message, "%.4000s: %s", argv[1],
+        snprintf(message, sizeof message, "%.4000s: %s", path,
                  errno == ENOENT ? "no such file" : "cannot read");
         fail(message);
     }
@@ -657,7 +654,7 @@ int main(int argc, char **argv)
     if (len > MAX_SCRIPT_BYTES) {
         char message[4200];
         snprintf(message, sizeof message, "%.4000s: larger than the %d bytes an input may have",
-                 argv[1], MAX_SCRIPT_BYTES);
+                 path, MAX_SCRIPT_BYTES);
         fail(message);
     }
     if (len >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB
@@ -690,6 +687,7 @@ int main(int argc, char **argv)
                            error->col);
                     json_string(error->message, strlen(error->message));
                     printf(", \"code\": %d}}\n", code);
+                    return 2;
                 }
                 if (error->kind == 2) fail_at(now.number, 1, error->message);
                 fflush(stdout);
@@ -749,4 +747,26 @@ int main(int argc, char **argv)
         if (pass == 0) timed = pass_timed;
     }
     return (status == @UP@_FAILED || status == @UP@_ABORTED) ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    int i, worst = 0;
+    if (argc == 3 && strcmp(argv[2], "--trace") == 0) return run_script(argv[1], 1);
+    if (argc == 2 && strcmp(argv[1], "--trace") != 0) return run_script(argv[1], 0);
+    if (argc >= 3 && strcmp(argv[1], "--trace") == 0) {
+        /* several scripts, each from a reset automaton, each announced by {"script": PATH} */
+        for (i = 2; i < argc; ++i) {
+            int code;
+            fputs("{\"script\": ", stdout);
+            json_string(argv[i], strlen(argv[i]));
+            fputs("}\n", stdout);
+            code = run_script(argv[i], 1);
+            if (code > worst) worst = code;
+        }
+        return worst;
+    }
+    fprintf(stderr, "usage: %s SCRIPT.in [--trace]\n       %s --trace SCRIPT.in...\n",
+            argv[0], argv[0]);
+    return 2;
 }

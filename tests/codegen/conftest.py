@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-import pytest
 
 from orccad_app.codegen.generate import CProgram
 from orccad_app.codegen.mission import default_prefix, generate_mission
@@ -49,6 +48,12 @@ def generated(stem: str, mission: str) -> Generated:
     return _CACHE[key]
 
 
-@pytest.fixture(scope="session")
-def shipped():
-    return generated
+#: lines printed at the end of the session (tests/codegen/test_coverage.py)
+COVERAGE: list[str] = []
+
+
+def pytest_terminal_summary(terminalreporter):
+    if COVERAGE:
+        terminalreporter.section("codegen: transition coverage of the differential tests")
+        for line in COVERAGE:
+            terminalreporter.write_line(line)
