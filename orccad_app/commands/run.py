@@ -193,10 +193,7 @@ def _observe(args: argparse.Namespace, session: Any) -> None:
         progress = ProgressLine(sys.stderr, session.until_ns)
         session.add_observer(progress, progress.close)
     if args.foxglove:
-        from orccad_app.trace import TraceRecorder
-
-        live = _foxglove(args, session.mission.name, session.plan)
-        session.add_observer(TraceRecorder(live), live.close)
+        session.record(_foxglove(args, session.mission.name, session.plan))
 
 
 def _render(args: argparse.Namespace, report: Any) -> int:

@@ -34,8 +34,9 @@ from orccad_app.properties.evaluate import PropertyMonitor
 from orccad_app.session.options import DEFAULT_UNTIL_S, MAX_RUN_S, RunOptions
 from orccad_app.session.report import RunReport
 from orccad_app.session.signals import signals_end_the_run
-from orccad_app.trace.recorder import TraceRecorder
 from orccad_app.trace.report import InjectionRecord
+from orccad_app.trace.run_topics import trace_recorder
+from orccad_app.trace.state_topics import VerdictSample
 from orccad_app.trace.writers import open_trace, sensor_ports
 
 __all__ = ["RunSession", "run_mission"]
@@ -106,8 +107,19 @@ class RunSession:
         metadata = {"mission": self.mission.name,
                     "file": self.options.trace_file or self.source.path,
                     "seed": str(self.options.seed)}
-        writer = open_trace(path, metadata, sensor_ports(self.plan))
-        self.add_observer(TraceRecorder(writer), writer.close)
+        self.record(open_trace(path, metadata, sensor_ports(self.plan)))
+
+    def record(self, writer: Any) -> None:
+        """Write the run's trace to ``writer`` (a CSV, MCAP or live Foxglove writer) as
+        ``orccad run --trace`` does: the events, and for a topic writer the run's state
+        topics and the properties' running verdicts; closed when the run ends."""
+        recorder = trace_recorder(writer, self.run, verdicts=self.verdict_samples)
+        self.add_observer(recorder, recorder.close)
+
+    def verdict_samples(self) -> list[VerdictSample]:
+        """Every property's verdict on the run so far (the trace's ``/properties`` topics)."""
+        return [VerdictSample(r.name, r.verdict.value, r.robustness, r.unit, r.samples)
+                for r in self.monitor.running()]
 
     def add_observer(self, observer: Any, close: Callable[[], None] | None = None) -> None:
         """Observe the run (before :meth:`execute`); ``close`` is called once it ends, even
