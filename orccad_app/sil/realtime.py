@@ -283,6 +283,7 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
             executable = build_executable(sources, "orccad_controller_rt", ("-lm", "-pthread"))
         controller = ControllerProcess(executable, len(table.entries), table.digest,
                                        heartbeat_s, ("--io", shared.path))
+        shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
             sites = []
             for site in plan.sites:
