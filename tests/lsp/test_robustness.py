@@ -1,0 +1,102 @@
+"""The server's robustness: a plugin that raises, a document that does not parse (outline
+and folding still given)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+import pytest_lsp
+from lsprotocol import types
+from pytest_lsp import ClientServerConfig, LanguageClient
+
+from tests.lsp.conftest import (MISSIONS, ROOT, SERVER, close_document, initialize,
+                                open_document, uri)
+
+pytestmark = pytest.mark.asyncio(loop_scope="module")
+
+PLUGINS = Path(__file__).parent / "data" / "raising_plugins"
+ENV = {**os.environ, "ORCCAD_DISABLE_PLUGINS": "",
+       "PYTHONPATH": os.pathsep.join([str(PLUGINS), str(ROOT), os.environ.get("PYTHONPATH", "")])}
+
+
+@pytest_lsp.fixture(scope="module",
+                    config=ClientServerConfig(server_command=SERVER, server_env=ENV))
+async def client(lsp_client: LanguageClient):
+    await initialize(lsp_client)
+    yield
+    await lsp_client.shutdown_session()
+
+
+async def test_a_plugin_that_raises_is_one_diagnostic_and_the_rest_works(client):
+    path = MISSIONS / "arm_pid.orc"
+    diagnostics = await open_document(client, path)
+    about_plugin = [d for d in diagnostics if "lsp_raising" in d.message]
+    assert len(about_plugin) == 1
+    assert "broken on purpose" in about_plugin[0].message
+    assert about_plugin[0].severity == types.DiagnosticSeverity.Warning
+    assert [d for d in diagnostics if d.severity == types.DiagnosticSeverity.Error] == []
+    close_document(client, path)
+
+
+BROKEN = """robot arm : arm3dof;
+input Go;
+output Done;
+
+mission First {
+    await Go;
+    emit Done;
+}
+
+mission Broken {
+    await Go
+    emit (Done;
+    par { nothing; } || {
+        nothing;
+    }
+}
+
+robottask Later() on arm {
+    duration 1 s;
+}
+
+property First.done_after_go: always (Done -> once Go);
+"""
+
+
+async def test_a_syntax_error_in_the_middle_still_gets_an_outline_and_folding(client, tmp_path):
+    path = tmp_path / "broken.orc"
+    diagnostics = await open_document(client, path, BROKEN)
+    assert len(diagnostics) == 1 and diagnostics[0].range.start.line == 10  # the missing ;
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(types.TextDocumentIdentifier(uri(path))))
+    names = [(s.name, s.kind) for s in symbols]
+    assert names == [("arm", types.SymbolKind.Object), ("Go", types.SymbolKind.Event),
+                     ("Done", types.SymbolKind.Event), ("First", types.SymbolKind.Function),
+                     ("Broken", types.SymbolKind.Function), ("Later", types.SymbolKind.Class),
+                     ("First.done_after_go", types.SymbolKind.Boolean)]
+    broken = symbols[4]
+    assert (broken.range.start.line, broken.range.end.line) == (9, 15)
+    folds = await client.text_document_folding_range_async(
+        types.FoldingRangeParams(types.TextDocumentIdentifier(uri(path))))
+    assert {(f.start_line, f.end_line) for f in folds} >= {(4, 6), (9, 14), (12, 13), (17, 18)}
+    close_document(client, path)
+
+
+async def test_the_outline_of_a_mission_that_parses(client):
+    path = MISSIONS / "arm_recovery.orc"
+    await open_document(client, path)
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(types.TextDocumentIdentifier(uri(path))))
+    by_name = {s.name: s for s in symbols}
+    task = by_name["TrackPID"]
+    assert task.kind == types.SymbolKind.Class
+    assert [c.name for c in task.children] == ["q0", "kp", "traj", "ctrl", "jl", "JointLimit",
+                                               "TrackingLost", "Saturated"]
+    assert task.selection_range.start.line == 16 and task.selection_range.start.character == 10
+    mission = by_name["ArmRecovery"]
+    runs = [c.name for c in mission.children if c.detail in ("run", "run mission")]
+    assert runs == ["Homing", "TrackPID", "Homing", "Parking"]
+    assert "ArmRecovery.finished_once" in by_name
+    close_document(client, path)
