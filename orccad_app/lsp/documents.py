@@ -10,6 +10,7 @@ from typing import Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lsp.analysis import Analysis, refusal
+from orccad_app.lsp.index import Index
 from orccad_app.lsp.tokens import Tok, tokens
 from orccad_app.pipeline import read_source
 
@@ -32,6 +33,16 @@ class DocumentState:
     analysed_version: int | None = None
     parsed: Analysis | None = None
     _tokens: tuple[str, list[Tok]] | None = field(default=None, repr=False)
+    _index: tuple[Analysis, Index] | None = field(default=None, repr=False)
+
+    def index(self) -> Index | None:
+        """The names of the latest parsed version (cached per analysis), or ``None``."""
+        parsed = self.parsed
+        if parsed is None or parsed.program is None:
+            return None
+        if self._index is None or self._index[0] is not parsed:
+            self._index = (parsed, Index(parsed.program))
+        return self._index[1]
 
     def tokens(self, text: str) -> list[Tok]:
         """The tokens of ``text`` (cached for the last text asked)."""

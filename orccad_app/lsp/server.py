@@ -16,6 +16,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 from lsprotocol import types
@@ -26,7 +27,8 @@ from orccad_app.diagnostics import SourceLocation
 from orccad_app.lsp.analysis import Analysis, Problem, Severity, analyze
 from orccad_app.lsp.documents import DocumentState, buffer_reader, depends_on, text_of
 from orccad_app.lsp.positions import TextLines, path_of_uri, same_file
-from orccad_app.lsp.problems import diagnostics_by_uri
+from orccad_app.lsp.problems import SOURCE, diagnostics_by_uri, to_range
+from orccad_app.lsp.proof import ProofRunner, Verdict, verdict_diagnostics, verdicts_of
 
 __all__ = ["OrccadLanguageServer", "DEBOUNCE_S", "serve"]
 
@@ -52,6 +54,9 @@ class OrccadLanguageServer(LanguageServer):
         self._host = None
         self._host_problems: tuple[Problem, ...] = ()
         self._host_loaded = False
+        self._host_lock = threading.Lock()
+        self.proofs = ProofRunner(proof_budget_s)
+        self.verdicts: dict[str, dict[tuple[str | None, str], Verdict]] = {}
 
     # -- documents ---------------------------------------------------------------------
 
@@ -78,6 +83,18 @@ class OrccadLanguageServer(LanguageServer):
 
     def doc_lines(self, uri: str) -> TextLines:
         return TextLines(self.doc_text(uri), self.encoding)
+
+    def file_text(self, path: str) -> str | None:
+        """The text of any file: its open buffer, else the disk (``None`` if unreadable)."""
+        return text_of(self.buffers())(path)
+
+    def snippets(self) -> bool:
+        """Whether the client takes completion snippets."""
+        try:
+            item = self.client_capabilities.text_document.completion.completion_item
+            return bool(item.snippet_support)
+        except AttributeError:
+            return False
 
     def buffers(self) -> dict[str, str]:
         """Real path → unsaved text of every open document."""
@@ -141,20 +158,24 @@ class OrccadLanguageServer(LanguageServer):
     def host(self):
         """The plugin host, loaded once; a plugin that fails is one problem, not a dead
         server (see :attr:`_host_problems`)."""
-        if not self._host_loaded:
-            self._host_loaded = True
-            from orccad_app.plugin_host.host import PluginHost
-            try:
-                self._host = PluginHost.load()
-                self._host_problems = tuple(
-                    Problem(Severity.WARNING, failure.format(), None)
-                    for failure in self._host.failures)
-            except Exception as error:  # noqa: BLE001 - the plugin machinery itself failed
-                logger.exception("loading the plugins failed")
-                self._host_problems = (Problem(
-                    Severity.ERROR, f"the plugins could not be loaded: "
-                    f"{type(error).__name__}: {error}", None),)
+        with self._host_lock:
+            if not self._host_loaded:
+                self._load_host()
         return self._host
+
+    def _load_host(self) -> None:
+        from orccad_app.plugin_host.host import PluginHost
+
+        self._host_loaded = True
+        try:
+            self._host = PluginHost.load()
+            self._host_problems = tuple(Problem(Severity.WARNING, failure.format(), None)
+                                        for failure in self._host.failures)
+        except Exception as error:  # noqa: BLE001 - the plugin machinery itself failed
+            logger.exception("loading the plugins failed")
+            self._host_problems = (Problem(
+                Severity.ERROR, f"the plugins could not be loaded: "
+                f"{type(error).__name__}: {error}", None),)
 
     # -- publishing --------------------------------------------------------------------
 
@@ -190,9 +211,67 @@ class OrccadLanguageServer(LanguageServer):
         """The editor changed ``uri``: what was judged on the old text no longer holds
         (the proof's verdicts are dropped, a running proof is cancelled)."""
         self.extra.pop(uri, None)
-        proofs = getattr(self, "proofs", None)
-        if proofs is not None:
-            proofs.cancel(uri)
+        self.verdicts.pop(uri, None)
+        if self.proofs.cancel(uri):
+            self.log(f"proof of {uri} cancelled: the document changed")
+
+    def log(self, message: str) -> None:
+        """A line in the editor's log of this server (``window/logMessage``)."""
+        self.window_log_message(types.LogMessageParams(types.MessageType.Info, message))
+
+    # -- the proof ---------------------------------------------------------------------
+
+    def verdict_text(self, uri: str):
+        """``(mission, property) -> the last verdict's text`` for the hover of ``uri``."""
+        verdicts = self.verdicts.get(uri, {})
+
+        def text(mission: str | None, name: str) -> str | None:
+            verdict = verdicts.get((mission, name))
+            return None if verdict is None else verdict.text()
+
+        return text
+
+    def prove(self, uri: str) -> str:
+        """Start the proof of ``uri``'s current text; what was done, in words."""
+        state = self.state(uri)
+        analysis = state.analysis
+        text = self.doc_text(uri)
+        if analysis is None or analysis.text != text or not analysis.checked:
+            message = f"proof of {uri} not started: the document has errors (or is being analysed)"
+            self.log(message)
+            return message
+        version = self.doc_version(uri)
+        program = analysis.program
+        assert program is not None
+
+        def done(answer: dict) -> None:
+            if self.doc_version(uri) != version or uri not in self.workspace.text_documents:
+                return
+            self._proved(uri, state.path, program, answer)
+
+        def started(pid: int) -> None:
+            self.log(f"proof of {uri} started (process {pid})")
+
+        self.proofs.start(uri, state.path, text, self.buffers(), done, started)
+        return f"proof of {uri} started"
+
+    def _proved(self, uri: str, path: str, program, answer: dict) -> None:
+        lines = self.doc_lines(uri)
+        error = answer.get("error")
+        if error is not None:
+            where = SourceLocation(path, max(error.get("line") or 1, 1),
+                                   max(error.get("col") or 1, 1))
+            self.extra[uri] = [types.Diagnostic(
+                to_range(where, lines), error["message"], source=SOURCE, code="proof",
+                severity=types.DiagnosticSeverity.Warning)]
+            self.log(f"proof of {uri} not done: {error['message']}")
+        else:
+            verdicts = verdicts_of(path, program, answer)
+            self.verdicts[uri] = {(v.mission, v.name): v for v in verdicts}
+            self.extra[uri] = verdict_diagnostics(program, verdicts, lines, path)
+            false = sum(v.state == "false" for v in verdicts)
+            self.log(f"proof of {uri} done: {len(verdicts)} properties, {false} false")
+        self.publish(uri)
 
     def close(self, uri: str) -> None:
         """Forget ``uri`` and clear what it published."""

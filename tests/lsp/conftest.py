@@ -16,7 +16,8 @@ import pytest
 pytest.importorskip("pytest_lsp")
 
 from lsprotocol import types  # noqa: E402
-from pytest_lsp import LanguageClient  # noqa: E402
+from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
+from pytest_lsp.client import make_test_lsp_client  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 MISSIONS = ROOT / "missions"
@@ -36,37 +37,60 @@ async def initialize(client: LanguageClient) -> None:
         workspace_folders=[types.WorkspaceFolder(uri=uri(ROOT), name="orccad")]))
 
 
+def make_client() -> LanguageClient:
+    """pytest-lsp's client, also recording every publication of diagnostics with its
+    document version in ``client.published`` (to wait for the one of a given version, not a
+    stale one, such as the clearing that follows a close)."""
+    client = make_test_lsp_client()
+    client.published = []
+    recorder = client.protocol.fm._features[types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS]
+
+    def record(params: types.PublishDiagnosticsParams) -> None:
+        client.published.append(params)
+        recorder(params)
+
+    client.protocol.fm._features[types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS] = record
+    return client
+
+
+def config(**extra) -> ClientServerConfig:
+    """The server under test, with this module's client."""
+    return ClientServerConfig(server_command=SERVER, client_factory=make_client, **extra)
+
+
+async def diagnostics_of(client: LanguageClient, target: str, version: int | None = None,
+                         since: int = 0, timeout_s: float = 60.0) -> list[types.Diagnostic]:
+    """The diagnostics of ``target`` published after ``client.published[since]`` (for
+    document ``version`` when given), waiting for them."""
+    async def arrived():
+        while True:
+            for params in client.published[since:]:
+                if params.uri == target and (version is None or params.version == version):
+                    return list(params.diagnostics)
+            await asyncio.sleep(0.01)
+    return await asyncio.wait_for(arrived(), timeout_s)
+
+
 async def open_document(client: LanguageClient, path: Path | str, text: str | None = None,
                         version: int = 1, timeout_s: float = 60.0) -> list[types.Diagnostic]:
     """Open ``path`` (with ``text``, else its content) and wait for its diagnostics."""
     target = uri(path)
-    client.diagnostics.pop(target, None)
+    since = len(client.published)
     client.text_document_did_open(types.DidOpenTextDocumentParams(
         types.TextDocumentItem(uri=target, language_id="orccad", version=version,
                                text=Path(path).read_text() if text is None else text)))
-    return await diagnostics_of(client, target, timeout_s)
-
-
-async def diagnostics_of(client: LanguageClient, target: str,
-                         timeout_s: float = 60.0) -> list[types.Diagnostic]:
-    """Wait until diagnostics for ``target`` arrive (after they were cleared from the
-    client's record), and return them."""
-    async def arrived():
-        while target not in client.diagnostics:
-            await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
-        return list(client.diagnostics[target])
-    return await asyncio.wait_for(arrived(), timeout_s)
+    return await diagnostics_of(client, target, version, since, timeout_s)
 
 
 async def change_document(client: LanguageClient, path: Path | str, text: str,
                           version: int) -> list[types.Diagnostic]:
     """Replace the whole text of ``path`` and wait for its new diagnostics."""
     target = uri(path)
-    client.diagnostics.pop(target, None)
+    since = len(client.published)
     client.text_document_did_change(types.DidChangeTextDocumentParams(
         text_document=types.VersionedTextDocumentIdentifier(uri=target, version=version),
         content_changes=[types.TextDocumentContentChangeWholeDocument(text=text)]))
-    return await diagnostics_of(client, target)
+    return await diagnostics_of(client, target, version, since)
 
 
 def close_document(client: LanguageClient, path: Path | str) -> None:

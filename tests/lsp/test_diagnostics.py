@@ -7,15 +7,15 @@ from pathlib import Path
 import pytest
 import pytest_lsp
 from lsprotocol import types
-from pytest_lsp import ClientServerConfig, LanguageClient
+from pytest_lsp import LanguageClient
 
-from tests.lsp.conftest import (MISSIONS, SERVER, change_document, close_document, initialize,
-                                open_document, uri)
+from tests.lsp.conftest import (MISSIONS, change_document, close_document, config,
+                                diagnostics_of, initialize, open_document, uri)
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
 
 
-@pytest_lsp.fixture(scope="module", config=ClientServerConfig(server_command=SERVER))
+@pytest_lsp.fixture(scope="module", config=config())
 async def client(lsp_client: LanguageClient):
     await initialize(lsp_client)
     yield
@@ -104,7 +104,7 @@ async def test_an_error_in_an_imported_file_is_shown_at_the_import_and_in_that_f
     library.write_text("mission Hello [output Hi] {\n    emit Hello2;\n}\n")
     main = tmp_path / "main.orc"
     text = 'from "lib/h.orc" import Hello;\nmission M { output Hi; run mission Hello; }\n'
-    client.diagnostics.pop(uri(library), None)
+    since = len(client.published)
     diagnostics = await open_document(client, main, text)
     assert len(diagnostics) == 1
     at_import = diagnostics[0]
@@ -112,7 +112,7 @@ async def test_an_error_in_an_imported_file_is_shown_at_the_import_and_in_that_f
     related = at_import.related_information
     assert related and related[0].location.uri == uri(library)
     assert related[0].location.range.start.line == 1
-    in_library = client.diagnostics[uri(library)]
+    in_library = await diagnostics_of(client, uri(library), None, since)
     assert [d.range.start.line for d in in_library] == [1]
     close_document(client, main)
 
@@ -125,10 +125,9 @@ async def test_an_import_reads_the_unsaved_buffer_of_an_open_document(client, tm
     assert await open_document(client, library) == []
     assert await open_document(client, main, text) == []
     # the library is renamed in the editor, not saved: the importer sees the buffer
-    client.diagnostics.pop(uri(main), None)
+    since = len(client.published)
     await change_document(client, library, "mission Hola [output Hi] { emit Hi; }\n", 2)
-    from tests.lsp.conftest import diagnostics_of
-    diagnostics = await diagnostics_of(client, uri(main))
+    diagnostics = await diagnostics_of(client, uri(main), 1, since)
     assert len(diagnostics) == 1 and "no mission 'Hello'" in diagnostics[0].message
     close_document(client, main)
     close_document(client, library)

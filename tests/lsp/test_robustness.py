@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 import pytest_lsp
 from lsprotocol import types
-from pytest_lsp import ClientServerConfig, LanguageClient
+from pytest_lsp import LanguageClient
 
-from tests.lsp.conftest import (MISSIONS, ROOT, SERVER, close_document, initialize,
+from tests.lsp.conftest import (MISSIONS, ROOT, close_document, config, initialize,
                                 open_document, uri)
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
@@ -22,7 +22,7 @@ ENV = {**os.environ, "ORCCAD_DISABLE_PLUGINS": "",
 
 
 @pytest_lsp.fixture(scope="module",
-                    config=ClientServerConfig(server_command=SERVER, server_env=ENV))
+                    config=config(server_env=ENV))
 async def client(lsp_client: LanguageClient):
     await initialize(lsp_client)
     yield
