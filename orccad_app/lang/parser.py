@@ -182,6 +182,13 @@ def parse(text: str, filename: str = "<input>") -> ast.Program:
     return _parse(text, filename)
 
 
+#: Parsed texts kept (the AST is immutable, so a repeated parse of the same text, such as
+#: the libraries a file imports, re-analysed at each keystroke by the language server,
+#: returns the same tree); errors are not kept.
+PARSE_CACHE_SIZE = 16
+
+
+@functools.lru_cache(maxsize=PARSE_CACHE_SIZE)
 def _parse(text: str, filename: str) -> ast.Program:
     try:
         tree = _lark().parse(text)

@@ -231,8 +231,9 @@ def hover_registry(name: str, host: Any) -> str | None:
         if params:
             text += "\n\n| parameter | type | default | range | meaning |\n|---|---|---|---|---|"
             for spec in params:
-                text += (f"\n| `{spec.name}` | {spec.type} | {_default(spec)} | {_range(spec)} "
-                         f"| {spec.doc} |")
+                cells = (f"`{spec.name}`", str(spec.type), _default(spec), _range(spec),
+                         str(spec.doc))
+                text += "\n| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |"
         return text
     return None
 

@@ -112,7 +112,7 @@ async def test_hover_on_a_law_gives_units_and_ranges(client):
     await open_document(client, path)
     line = next(i for i, t in enumerate(text.split("\n")) if t.strip().startswith("law pid"))
     hover = await _hover(client, path, types.Position(line, text.split("\n")[line].index("pid")))
-    assert "| `kp` | float|vector | `400` | (0, ∞) | proportional gain [N·m/rad] |" in hover
+    assert "| `kp` | float\\|vector | `400` | (0, ∞) | proportional gain [N·m/rad] |" in hover
     close_document(client, path)
 
 
