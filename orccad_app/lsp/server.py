@@ -261,9 +261,11 @@ class OrccadLanguageServer(LanguageServer):
         if error is not None:
             where = SourceLocation(path, max(error.get("line") or 1, 1),
                                    max(error.get("col") or 1, 1))
+            located = error.get("file") is not None  # a compile error, not a budget
             self.extra[uri] = [types.Diagnostic(
                 to_range(where, lines), error["message"], source=SOURCE, code="proof",
-                severity=types.DiagnosticSeverity.Warning)]
+                severity=types.DiagnosticSeverity.Error if located
+                else types.DiagnosticSeverity.Warning)]
             self.log(f"proof of {uri} not done: {error['message']}")
         else:
             verdicts = verdicts_of(path, program, answer)

@@ -100,3 +100,34 @@ async def test_the_outline_of_a_mission_that_parses(client):
     assert runs == ["Homing", "TrackPID", "Homing", "Parking"]
     assert "ArmRecovery.finished_once" in by_name
     close_document(client, path)
+
+
+async def test_bad_requests_get_answers_and_the_server_goes_on(client, tmp_path):
+    path = tmp_path / "small.orc"
+    await open_document(client, path, "mission M { output O; emit O; }\n")
+    target = types.TextDocumentIdentifier(uri(path))
+    far = types.Position(1000, 1000)
+    assert await client.text_document_hover_async(types.HoverParams(target, far)) is None
+    assert await client.text_document_definition_async(
+        types.DefinitionParams(target, far)) is None
+    items = await client.text_document_completion_async(types.CompletionParams(target, far))
+    assert items is not None
+    # a change to a document the server was never told of, then a normal request
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri(tmp_path / "nope.orc"),
+                                                            version=2),
+        content_changes=[types.TextDocumentContentChangeWholeDocument(text="x")]))
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(target))
+    assert [s.name for s in symbols] == ["M"]
+    close_document(client, path)
+
+
+async def test_an_import_cycle_is_located_at_the_import_that_closes_it(client, tmp_path):
+    a, b = tmp_path / "a.orc", tmp_path / "b.orc"
+    b.write_text('from "a.orc" import A;\nmission B [output O] { run mission A; }\n')
+    a.write_text('from "b.orc" import B;\nmission A [output O] { emit O; }\n')
+    diagnostics = await open_document(client, a)
+    assert len(diagnostics) == 1 and "import cycle" in diagnostics[0].message
+    assert diagnostics[0].range.start.line == 0
+    close_document(client, a)
