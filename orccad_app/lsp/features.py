@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from lsprotocol import types
 
+from orccad_app.lsp.analysis import refusal
 from orccad_app.lsp.completion import completions
 from orccad_app.lsp.hover import hover_declaration, hover_registry
 from orccad_app.lsp.index import token_at
@@ -75,6 +76,8 @@ def _navigation(server) -> None:
     @server.feature(types.TEXT_DOCUMENT_HOVER)
     def hover(ls, params: types.HoverParams) -> types.Hover | None:
         uri = params.text_document.uri
+        if refusal(ls.doc_text(uri)) is not None:
+            return None
         toks, index, lines, col = _where(ls, uri, params.position)
         at = token_at(toks, params.position.line, col)
         if at is None or toks[at].kind != "NAME":
@@ -123,6 +126,8 @@ def _completion(server) -> None:
     def complete(ls, params: types.CompletionParams) -> types.CompletionList:
         uri = params.text_document.uri
         text = ls.doc_text(uri)
+        if refusal(text) is not None:  # too large or binary: no work at all
+            return types.CompletionList(is_incomplete=False, items=[])
         lines = ls.doc_lines(uri)
         offset = lines.offset(params.position.line, params.position.character)
         parsed = ls.state(uri).parsed

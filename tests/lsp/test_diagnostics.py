@@ -137,6 +137,14 @@ async def test_a_huge_or_binary_buffer_is_refused_with_one_message(client, tmp_p
     huge = "// " + "x" * 600_000 + "\nmission M { }\n"
     diagnostics = await open_document(client, tmp_path / "huge.orc", huge)
     assert len(diagnostics) == 1 and "512000 bytes" in diagnostics[0].message
+    target = types.TextDocumentIdentifier(uri(tmp_path / "huge.orc"))
+    end = types.Position(1, 12)
+    completion = await client.text_document_completion_async(
+        types.CompletionParams(target, end))
+    assert completion.items == []
+    assert await client.text_document_hover_async(types.HoverParams(target, end)) is None
+    assert await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(target)) == []
     diagnostics = await open_document(client, tmp_path / "bin.orc", "mission\0\0\x01")
     assert len(diagnostics) == 1 and "binary" in diagnostics[0].message
     # the server still answers
