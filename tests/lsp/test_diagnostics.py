@@ -141,10 +141,10 @@ async def test_a_huge_or_binary_buffer_is_refused_with_one_message(client, tmp_p
     end = types.Position(1, 12)
     completion = await client.text_document_completion_async(
         types.CompletionParams(target, end))
-    assert completion.items == []
+    assert list(completion.items) == []
     assert await client.text_document_hover_async(types.HoverParams(target, end)) is None
     assert await client.text_document_document_symbol_async(
-        types.DocumentSymbolParams(target)) == []
+        types.DocumentSymbolParams(target)) in ([], ())
     diagnostics = await open_document(client, tmp_path / "bin.orc", "mission\0\0\x01")
     assert len(diagnostics) == 1 and "binary" in diagnostics[0].message
     # the server still answers
