@@ -13,7 +13,7 @@ decides (start, kill, type-1 updates, fresh ports) goes to the controller over t
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
-Only ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
+Only periodic Module-Tasks and ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
 releases) do not: a mission with another protocol or a ramp is refused with what and why (the
 lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
@@ -43,10 +43,13 @@ from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
 from orccad_app.sil.lockstep import RemoteSite
 from orccad_app.sil.shared import SharedMemory
+from orccad_app.tcs.module_task import Activation
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
 _HEARTBEAT_NS = 100_000_000
+_EXCHANGE = EventClass.DELIVERY
+"""The exchange with the controller is a delivery: first in its instant."""
 _PLANT_FIFO_PRIORITY = 60
 """The plant server's SCHED_FIFO priority, below the controller's threads' (80 minus the
 best Module-Task priority)."""
@@ -104,6 +107,11 @@ def _refuse_unsupported(plan: MissionPlan) -> None:
                 raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
                                   f"is stepped at the executive's releases, which the real-time "
                                   f"mode does not have (use --lockstep)", update.loc)
+    for task in plan.tcs.module_tasks:
+        if task.activation is not Activation.PERIODIC:
+            raise OrccadError(f"orccad sil --realtime runs periodic Module-Tasks only: "
+                              f"'{task.name}' is sporadic (released by interrupts; use "
+                              f"--lockstep)", task.location)
     for connection in plan.tcs.connections:
         if connection.protocol.value != "asyn/asyn":
             raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
@@ -164,14 +172,17 @@ class RealtimeRun(MissionRun):
                         for m, entry in enumerate(table.entries)
                         if "e" in [p.name for p in entry.layout.outputs]]
         self._next_ping = 0
-        self.kernel.schedule(0, EventClass.CONTROL, self._exchange)
+        # before the instant's reactions: at t = 0 the epoch and the first sensors are there
+        # before the automaton activates anything (a trajectory's clock then starts with the
+        # plant's), and at every exchange the events are read before the instant's tick
+        self.kernel.schedule(0, _EXCHANGE, self._exchange)
 
     def _exchange(self, _: object) -> None:
         now = self.kernel.now
         if now == 0:
             self._shared.set_epoch(time.monotonic_ns())
             self._controller.request(Op.EPOCH)
-        self.kernel.schedule(now + self.exchange_ns, EventClass.CONTROL, self._exchange)
+        self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = self.sim.plants
         shared = self._shared
         for k, port, robot, name in self._ports:
@@ -203,10 +214,17 @@ class RealtimeRun(MissionRun):
 
     def run(self) -> Any:
         """The run, with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
-        below the controller's threads, so that the plant keeps to the wall clock on a busy
-        machine; the previous policy is restored after."""
-        with _fifo(_PLANT_FIFO_PRIORITY):
-            return super().run()
+        below the controller's threads, and Python's cyclic garbage collector paused, so that
+        the plant keeps to the wall clock on a busy machine; both restored after."""
+        import gc
+
+        gc.collect()  # the cyclic collector paused during the run: a pause of the plant
+        gc.disable()  # server is a plant falling behind the wall clock
+        try:
+            with _fifo(_PLANT_FIFO_PRIORITY):
+                return super().run()
+        finally:
+            gc.enable()
 
     def timings(self) -> list[ModuleTiming]:
         """What was measured per Module-Task (read once the run has ended), the runtime

@@ -54,8 +54,11 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
     plan = plan_of("arm_pid.orc")
 
     class Kill:
+        sent = False
+
         def on_reaction(self, now, inputs, outputs, status):
-            if now >= 500_000_000 and not _gone(controller.pid):
+            if now >= 500_000_000 and not self.sent:
+                self.sent = True
                 os.kill(controller.pid, signal.SIGKILL)
 
     with realtime(plan, "arm_pid.orc") as (table, controller, shared):
@@ -66,9 +69,11 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
     assert _controllers_of(os.getpid()) == []
 
 
-def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason():
-    with pytest.raises(OrccadError, match="ramp"):
-        with realtime(plan_of("arm_retune.orc"), "arm_retune.orc"):
+@pytest.mark.parametrize("file,mission,words", [
+    ("arm_retune.orc", None, "ramp"), ("arm_interrupts.orc", "ArmInterrupts", "sporadic")])
+def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason(file, mission, words):
+    with pytest.raises(OrccadError, match=words):
+        with realtime(plan_of(file, mission), file):
             pass
 
 

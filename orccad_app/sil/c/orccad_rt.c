@@ -16,7 +16,9 @@
  * argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1 update), INIT,
  * ACTIVATE (first release at a given instant), KILL, RESET (its ports' values dropped), PING
  * (the heartbeat) and QUIT, with the frames of orccad_lockstep.c. Commands and jobs take one
- * runtime lock: a command is applied between two jobs.
+ * runtime lock: a command is applied between two jobs. The commands' thread runs under
+ * SCHED_FIFO too (priority 70) when the processor threads do: a supervisor waiting for an
+ * answer holds the plant.
  *
  * C99 + POSIX threads; no allocation after start, no recursion. */
 #define _POSIX_C_SOURCE 200809L
@@ -360,6 +362,11 @@ int main(int argc, char **argv)
             fprintf(stderr, "orccad_rt: cannot start the thread of processor %d\n", p);
             return 2;
         }
+    }
+    if (!warned) { /* the commands' thread: above the plant server, below the processors */
+        struct sched_param command_param;
+        command_param.sched_priority = 70;
+        (void)pthread_setschedparam(pthread_self(), SCHED_FIFO, &command_param);
     }
     for (;;) {
         uint32_t n, code;
