@@ -7,11 +7,13 @@ submitting when
 
 - every run ``0 … runs−1`` is recorded (``--runs``), or
 - with ``--epsilon``, every estimate's Clopper–Pearson half-width is at most ``ε`` on the
-  runs ``0 … n−1`` recorded so far (the *prefix*, so the result does not depend on which
-  worker was faster), or the Chernoff–Hoeffding cap is reached, or
+  runs ``0 … n−1`` (the *prefix*), or the Chernoff–Hoeffding cap is reached, or
 - with ``--hypothesis``, the SPRT has decided on the prefix.
 
-Statistics are computed on that prefix; runs finished beyond it stay in the database.
+``n`` is the smallest prefix length where the rule holds (every length is tested in order,
+even when several runs finish at once), so the answer does not depend on which worker was
+faster. Statistics are computed on exactly those ``n`` runs; runs finished beyond them stay in
+the database.
 """
 
 from __future__ import annotations
@@ -81,6 +83,7 @@ class Campaign:
         self.hypothesis = Hypothesis.parse(options.hypothesis) if options.hypothesis else None
         self.limit = self._limit()
         self.stop_n = 0
+        self._tested = 0  # prefix lengths already tested against the stopping rule
         self.store = CampaignStore(options.db)
         self.store.start({"file": file, "mission": self.compiled.name,
                           "digest": self.compiled.digest, "spec": spec.text,
@@ -156,16 +159,43 @@ class Campaign:
         return stopped or "runs"
 
     def _stop(self, records: dict[int, RunRecord]) -> str | None:
-        """Why to stop submitting, if the prefix already answers."""
+        """Why to stop submitting, if the prefix already answers.
+
+        The rule is tested at every prefix length ``n`` not tested before, in order, and the
+        campaign stops at the *smallest* ``n`` where it holds (``stop_n``): when runs finish out
+        of order the prefix can grow by several runs at once, and testing only its new length
+        would make the answer depend on which worker was faster.
+        """
         if self.hypothesis is None and self.options.epsilon is None:
             return None
         prefix = _prefix(records)
-        self.stop_n = len(prefix)
-        if self.hypothesis is not None and self._sprt(prefix).decision is not None:
+        decided = self._sprt_decided_at(prefix) if self.hypothesis is not None else None
+        precise = None
+        if self.options.epsilon is not None:
+            for n in range(self._tested + 1, len(prefix) + 1):
+                if decided is not None and n >= decided:
+                    break
+                if precise_enough(prefix[:n], self.options.epsilon, self.options.confidence):
+                    precise = n
+                    break
+        self._tested = len(prefix)
+        if decided is not None and (precise is None or decided <= precise):
+            self.stop_n = decided
             return "hypothesis"
-        if (self.options.epsilon is not None
-                and precise_enough(prefix, self.options.epsilon, self.options.confidence)):
+        if precise is not None:
+            self.stop_n = precise
             return "epsilon"
+        self.stop_n = len(prefix)
+        return None
+
+    def _sprt_decided_at(self, prefix: list[RunRecord]) -> int | None:
+        """The number of prefix runs after which the SPRT decides, or ``None``."""
+        alpha = 1.0 - self.options.confidence
+        assert self.hypothesis is not None
+        test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
+        for n, record in enumerate(prefix, start=1):
+            if test.add(record) is not None:
+                return n
         return None
 
     def _sprt(self, prefix: list[RunRecord]) -> Sprt:

@@ -9,8 +9,9 @@
 
 See docs/campaigns.md and :mod:`orccad_app.campaign`. Exit status: 0; 1 when the hypothesis
 is rejected; 2 on bad input (the spec's errors name its line); 3 when a run crashed twice (an
-internal error; the others are kept); 130 on Ctrl-C (every finished run is in the database:
-``--resume`` continues).
+internal error; the others are kept); 130 on Ctrl-C or SIGTERM (the workers are stopped, the
+report of the finished runs is printed and every finished run is in the database: ``--resume``
+continues).
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from contextlib import contextmanager
+from typing import Iterator
 
 from orccad_app.commands.arguments import positive_int, seconds
 
@@ -86,6 +89,30 @@ def register(sub) -> None:
     parser.set_defaults(func=run)
 
 
+@contextmanager
+def _sigterm_interrupts() -> Iterator[list[int]]:
+    """While the campaign runs, SIGTERM interrupts it as Ctrl-C does (the workers stopped, the
+    finished runs reported and kept); the list it yields holds the signal once received."""
+    import signal
+    import threading
+
+    received: list[int] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield received
+        return
+
+    def on_sigterm(signum: int, frame: object) -> None:
+        if not received:
+            received.append(signum)
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, on_sigterm)
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def default_db(spec_path: str) -> str:
     name = os.path.basename(spec_path)
     return (name[:-5] if name.endswith(".toml") else name) + ".db"
@@ -102,11 +129,12 @@ def run(args: argparse.Namespace) -> int:
                               args.db or default_db(args.spec), args.resume, args.epsilon,
                               args.confidence, args.hypothesis, args.delta, args.until)
     campaign = Campaign(args.file, spec, options, args.mission)
-    if sys.stderr.isatty() and not args.json:
-        with Progress(args.confidence) as progress:
-            result = campaign.run(progress)
-    else:
-        result = campaign.run()
+    with _sigterm_interrupts() as terminated:
+        if sys.stderr.isatty() and not args.json:
+            with Progress(args.confidence) as progress:
+                result = campaign.run(progress)
+        else:
+            result = campaign.run()
     if args.report:
         from orccad_app.campaign.report import write_report
         write_report(result, args.report)
@@ -117,7 +145,8 @@ def run(args: argparse.Namespace) -> int:
         if args.report:
             print(f"Report: {args.report}")
     if result.interrupted:
-        print("orccad: interrupted; continue with --resume", file=sys.stderr)
+        why = "terminated (SIGTERM)" if terminated else "interrupted"
+        print(f"orccad: {why}; continue with --resume", file=sys.stderr)
         return 130
     if any(r.status == "crashed" for r in result.records):
         print("orccad: some runs crashed twice (status 'crashed' in the database)",

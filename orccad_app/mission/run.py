@@ -433,8 +433,9 @@ class MissionRun:
         """Run until the mission ends, ``until_ns``, a run-time failure or Ctrl-C."""
         wall_start = time.perf_counter()
         status, reason = None, None
-        try:
-            self.sim.run(self.until_ns, realtime=self.realtime)
+        try:  # aborted before it started (Ctrl-C while waiting for Foxglove): no event runs
+            until_ns = self.kernel.now if self._stopped_by is not None else self.until_ns
+            self.sim.run(until_ns, realtime=self.realtime)
         except _RUN_FAILURES as error:
             status, reason = "failed", error.message
         except _LOCATED_FAILURES as error:

@@ -57,3 +57,9 @@ class Trajectory(ABC):
     def with_start(self, start: np.ndarray) -> Trajectory:
         """This trajectory starting from the measured ``start`` (no-op if not needed)."""
         return self
+
+    def continuing(self, previous: Trajectory, previous_t_s: float, at_s: float) -> float:
+        """The time shift [s] with which this trajectory, replacing ``previous`` (sampled at
+        ``previous_t_s``) at task time ``at_s``, keeps its phase; 0 for a kind without phase
+        (see :mod:`orccad_app.control.trajectories.retuned`)."""
+        return 0.0

@@ -26,6 +26,12 @@ class Cosine(Trajectory):
     def dim(self) -> int:
         return self.q0.size
 
+    def continuing(self, previous: Trajectory, previous_t_s: float, at_s: float) -> float:
+        """The shift giving, at ``at_s``, the phase ``omega·t`` the previous cosine had."""
+        if not isinstance(previous, Cosine) or self.omega == 0.0:
+            return 0.0
+        return previous.omega * previous_t_s / self.omega - at_s
+
     def sample(self, t_s: float) -> Sample:
         phase = self.omega * t_s
         cos = math.cos(phase)
