@@ -346,7 +346,10 @@ def run(args: argparse.Namespace) -> int:
     if result.interrupted:
         print("orccad: interrupted", file=sys.stderr)
         return 130
-    if result.status != "done" and not args.json:
+    if result.status == "recovering" and not args.json:
+        print(f"orccad: mission aborted by {result.reason}, its 'on fatal' recovery cut by the "
+              f"horizon (status recovering)", file=sys.stderr)
+    elif result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = [v.name for v in verdicts if v.verdict.value == "false"]
     if violated and not args.json:

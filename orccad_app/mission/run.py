@@ -65,7 +65,7 @@ from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.mission.result import RECOVERING, ExceptionRecord, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError, plain_arguments
@@ -459,7 +459,9 @@ class MissionRun:
         reactor = self.reactor
         if reactor.finished:
             return reactor.status, reactor.reason
-        if reactor.status in ("failed", "aborted"):
+        if reactor.status == "aborted":  # the 'on fatal' recovery was cut by the horizon
+            return RECOVERING, reactor.reason
+        if reactor.status == "failed":
             return reactor.status, reactor.reason
         return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
 
