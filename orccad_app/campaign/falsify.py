@@ -30,7 +30,8 @@ __all__ = ["Falsifier", "FalsifyResult", "SAMPLERS", "UNDEFINED"]
 
 SAMPLERS = ("tpe", "cmaes", "random")
 UNDEFINED = 1e9
-"""Objective of a run on which the property is undefined."""
+"""Objective of a run on which the property is undefined (the search's placeholder, never
+reported as a robustness: :attr:`FalsifyResult.best_robustness` is then ``None``)."""
 
 
 @dataclass
@@ -78,6 +79,9 @@ class Falsifier:
         except optuna.exceptions.DuplicatedStudyError:
             raise OrccadError(f"{storage} already holds this study: --resume it, or choose "
                               f"another --study") from None
+        except (optuna.exceptions.OptunaError, _database_errors()) as error:
+            raise OrccadError(f"--study {storage}: not an optuna study database (corrupt, or "
+                              f"another program's: {type(error).__name__})") from None
 
     @staticmethod
     def _sampler(optuna: Any, name: str, seed: int) -> Any:
@@ -161,8 +165,11 @@ class Falsifier:
             replay = replay_command(self.file, self.compiled.name, setting)
             if best is None:  # found in an earlier (resumed) session
                 best = RunRecord(setting, "unknown", None, "unknown", 0.0, 0.0)
+        value = best_trial.value if best_trial is not None else None
+        if value is not None and value >= UNDEFINED:  # never defined: no robustness to report
+            value = None
         return FalsifyResult(self.prop, self.sampler_name, len(self.study.trials), best,
-                             best_trial.value if best_trial else None, first, replay, history)
+                             value, first, replay, history)
 
 
 def _suggest(trial: Any, name: str, dist: Any) -> Any:
@@ -174,6 +181,15 @@ def _suggest(trial: Any, name: str, dist: Any) -> Any:
     if dist.integral:
         return trial.suggest_int(name, int(low), int(high))
     return float(f"{trial.suggest_float(name, low, high):.6g}")
+
+
+def _database_errors() -> type[Exception]:
+    """SQLAlchemy's base error (optuna's SQLite storage raises it on a corrupt file)."""
+    try:
+        from sqlalchemy.exc import SQLAlchemyError
+    except ImportError:  # pragma: no cover - optuna depends on it
+        return OrccadError
+    return SQLAlchemyError
 
 
 def _first_violation(study: Any) -> int | None:

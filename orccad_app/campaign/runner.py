@@ -19,17 +19,19 @@ the database.
 from __future__ import annotations
 
 import time
+from collections import deque
 from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
 from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
 from orccad_app.campaign.setting import RunSetting, draw_setting, replay_command
-from orccad_app.campaign.spec import CampaignSpec
+from orccad_app.campaign.spec import MAX_RUNS, CampaignSpec
 from orccad_app.campaign.stats import (Hypothesis, Sprt, chernoff_runs, estimates,
                                        precise_enough, summarize)
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.campaign.validate import check_spec
+from orccad_app.diagnostics import OrccadError
 
 __all__ = ["CampaignOptions", "CampaignResult", "Campaign"]
 
@@ -81,6 +83,8 @@ class Campaign:
         self.until_s = (options.until_s or spec.until_s or self.compiled.default_until_s())
         check_spec(self.compiled, spec, self.until_s)
         self.hypothesis = Hypothesis.parse(options.hypothesis) if options.hypothesis else None
+        if self.hypothesis is not None:
+            self._check_event(self.hypothesis.event)
         self.limit = self._limit()
         self.stop_n = 0
         self._tested = 0  # prefix lengths already tested against the stopping rule
@@ -89,13 +93,43 @@ class Campaign:
                           "digest": self.compiled.digest, "spec": spec.text,
                           "until_s": repr(self.until_s)}, options.resume)
 
+    def events(self) -> list[str]:
+        """What a ``--hypothesis`` may name: the outcomes (with the mission's exceptions), its
+        properties and the spec's checks."""
+        exceptions = sorted({s.name[:-len(".raised")] for s in
+                             self.compiled.composition.automaton.outputs
+                             if s.name.endswith(".raised")})
+        statuses = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
+        return [*statuses, *(f"{status}({name})" for status in ("failed", "aborted",
+                                                                 "recovering")
+                             for name in exceptions),
+                *self.compiled.property_names(), *(check.name for check in self.spec.checks)]
+
+    def _check_event(self, event: str) -> None:
+        """Refuse a misspelt ``--hypothesis`` event (it would never happen: a silent P = 0)."""
+        import difflib
+
+        known = self.events()
+        if event not in known:
+            close = difflib.get_close_matches(event, known, n=3)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise OrccadError(f"--hypothesis: '{event}' is no outcome, property or check of "
+                              f"mission {self.compiled.name}{hint} (events: {', '.join(known)})")
+
     def _limit(self) -> int:
+        """The most runs the campaign may make, within ``MAX_RUNS`` (checked before any)."""
         options = self.options
         if options.runs is not None:
-            return options.runs
-        if options.epsilon is not None:
-            return chernoff_runs(options.epsilon, options.confidence)
-        return self.spec.runs
+            limit, why = options.runs, f"--runs {options.runs}"
+        elif options.epsilon is not None:
+            limit = chernoff_runs(options.epsilon, options.confidence)
+            why = (f"--epsilon {options.epsilon:g} (its Chernoff-Hoeffding bound is {limit} "
+                   "runs: give a larger epsilon)")
+        else:
+            limit, why = self.spec.runs, f"runs = {self.spec.runs}"
+        if limit > MAX_RUNS:
+            raise OrccadError(f"{why}: more than the {MAX_RUNS} runs a campaign may make")
+        return limit
 
     def setting(self, index: int) -> RunSetting:
         return draw_setting(self.spec, index, self.until_s)
@@ -114,6 +148,10 @@ class Campaign:
         """Run (or resume) the campaign; ``progress(done, limit, prefix)`` after each run."""
         start = time.perf_counter()
         records = {r.index: r for r in self.store.records()}
+        for record in records.values():  # a resumed database holds this campaign's draws
+            if record.setting != self.setting(record.index):
+                raise OrccadError(f"--resume: {self.store.path}: run {record.index} holds a "
+                                  "setting this campaign does not draw (an edited row?)")
         backend = backend or make_backend(self.options.workers, self.options.cluster)
         self.backend = backend
         interrupted = False
@@ -131,13 +169,13 @@ class Campaign:
 
     def _loop(self, backend: Any, records: dict[int, RunRecord],
               progress: Callable | None) -> str:
-        queue = [i for i in range(self.limit) if i not in records]
+        queue = deque(i for i in range(self.limit) if i not in records)  # <= MAX_RUNS
         flying: dict[Any, Job] = {}
         cap = 2 * max(1, getattr(backend, "workers", 1))
         stopped = self._stop(records)
         while (queue and stopped is None) or flying:
             while queue and stopped is None and len(flying) < cap:
-                job = self.job(queue.pop(0))
+                job = self.job(queue.popleft())
                 flying[backend.submit(job)] = job
             for future in backend.wait(flying):
                 job = flying.pop(future)

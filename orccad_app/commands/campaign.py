@@ -22,9 +22,16 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
-from orccad_app.commands.arguments import positive_int, seconds
+from orccad_app.commands.arguments import bounded_int, positive_int, seconds
 
-__all__ = ["register", "run", "add_common"]
+__all__ = ["register", "run", "add_common", "MAX_WORKERS", "MAX_RUNS"]
+
+MAX_WORKERS = 256
+"""Most local worker processes (each is a forked interpreter holding the compiled mission)."""
+
+MAX_RUNS = 1_000_000
+"""Mirrors ``campaign.spec.MAX_RUNS`` (a test keeps them equal; importing the campaign package
+here would slow every command's start-up)."""
 
 
 def _positive_int(text: str) -> int:
@@ -55,8 +62,9 @@ def add_common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--until", type=_seconds, metavar="S",
                         help="simulated-time limit of each run [s] (default: the spec's "
                              "until_s, else orccad run's)")
-    parser.add_argument("--workers", type=_positive_int, metavar="N",
-                        help=f"local worker processes (default: the cores, {os.cpu_count()})")
+    parser.add_argument("--workers", type=bounded_int(1, MAX_WORKERS), metavar="N",
+                        help=f"local worker processes, at most {MAX_WORKERS} (default: the "
+                             f"cores, {os.cpu_count()})")
     parser.add_argument("--cluster", metavar="tcp://HOST:8786",
                         help="run on this Dask scheduler instead (pip install "
                              "'orccad[cluster]')")
@@ -69,7 +77,7 @@ def register(sub) -> None:
                                         "(faults, parameters, timing, seeds) and estimate "
                                         "the probability of every outcome and property.")
     add_common(parser)
-    parser.add_argument("--runs", type=_positive_int, metavar="N",
+    parser.add_argument("--runs", type=bounded_int(1, MAX_RUNS), metavar="N",
                         help="number of runs (default: the spec's runs; with --epsilon, the "
                              "Chernoff-Hoeffding bound)")
     parser.add_argument("--epsilon", type=_probability, metavar="E",
