@@ -134,3 +134,10 @@ def test_clip_with_its_bounds_swapped_is_refused_at_load(tmp_path):
     path.write_text(text[:start] + f"{target} = clip(1.0, 800.0, 150.0)" + text[end:],
                     encoding="utf-8")
     _refused(run_orccad(["compile", str(path)]), "clip(x, lo, hi) needs lo <= hi")
+
+
+def test_the_command_line_mirror_of_the_runs_budget_is_the_campaign_s():
+    from orccad_app.campaign.spec import MAX_RUNS
+    from orccad_app.commands import campaign
+
+    assert campaign.MAX_RUNS == MAX_RUNS
