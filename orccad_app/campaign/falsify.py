@@ -79,7 +79,9 @@ class Falsifier:
         except optuna.exceptions.DuplicatedStudyError:
             raise OrccadError(f"{storage} already holds this study: --resume it, or choose "
                               f"another --study") from None
-        except (optuna.exceptions.OptunaError, _database_errors()) as error:
+        except Exception as error:  # noqa: BLE001 - re-raised unless the storage's
+            if not _storage_error(error, optuna):
+                raise
             raise OrccadError(f"--study {storage}: not an optuna study database (corrupt, or "
                               f"another program's: {type(error).__name__})") from None
 
@@ -183,13 +185,11 @@ def _suggest(trial: Any, name: str, dist: Any) -> Any:
     return float(f"{trial.suggest_float(name, low, high):.6g}")
 
 
-def _database_errors() -> type[Exception]:
-    """SQLAlchemy's base error (optuna's SQLite storage raises it on a corrupt file)."""
-    try:
-        from sqlalchemy.exc import SQLAlchemyError
-    except ImportError:  # pragma: no cover - optuna depends on it
-        return OrccadError
-    return SQLAlchemyError
+def _storage_error(error: Exception, optuna: Any) -> bool:
+    """An error of optuna's storage: its own, or SQLAlchemy's (optuna's SQLite storage raises
+    them on a corrupt file; SQLAlchemy is optuna's dependency, not ours to import)."""
+    return isinstance(error, optuna.exceptions.OptunaError) or any(
+        cls.__module__.startswith("sqlalchemy.") for cls in type(error).__mro__)
 
 
 def _first_violation(study: Any) -> int | None:
