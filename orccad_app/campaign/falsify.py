@@ -21,7 +21,8 @@ from typing import Any, Callable
 
 from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
-from orccad_app.campaign.setting import RunSetting, build_setting, replay_command
+from orccad_app.campaign.setting import (RunSetting, build_setting, replay_command,
+                                         whole_ns_ms)
 from orccad_app.campaign.spec import CampaignSpec
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
@@ -95,8 +96,10 @@ class Falsifier:
 
     def _suggest(self, trial: Any) -> dict[str, Any]:
         values: dict[str, Any] = {}
-        for entry in (*self.spec.params, *self.spec.timings):
+        for entry in self.spec.params:
             values[entry.target] = _suggest(trial, entry.target, entry.dist)
+        for entry in self.spec.timings:  # whole nanoseconds, as --timing takes them
+            values[entry.target] = whole_ns_ms(_suggest(trial, entry.target, entry.dist))
         for number, inject in enumerate(self.spec.injections):
             prefix = f"inject[{number}]"
             if inject.probability in (0.0, 1.0):

@@ -141,3 +141,23 @@ def test_the_command_line_mirror_of_the_runs_budget_is_the_campaign_s():
     from orccad_app.commands import campaign
 
     assert campaign.MAX_RUNS == MAX_RUNS
+
+
+def test_a_timing_finer_than_a_nanosecond_is_refused_not_rounded():
+    pid = str(ROOT / "missions" / "arm_pid.orc")
+    _refused(run_orccad(["run", pid, "--until", "0.01", "--timing",
+                         "TrackPID.ctrl.wcet_ms=0.0000015"]),
+             "0.0000015 ms is not a whole number of nanoseconds", "1.5 ns")
+    check_outcome(run_orccad(["run", pid, "--until", "0.01", "--json", "--timing",
+                              "TrackPID.ctrl.wcet_ms=0.000002"]), json_doc=True)
+
+
+def test_campaign_timing_draws_are_whole_nanoseconds():
+    from orccad_app.campaign.setting import draw_setting
+    from orccad_app.campaign.spec import parse_spec
+    from orccad_app.mission.overrides import parse_timing
+
+    spec = parse_spec(LEAK_SPEC.replace('"U(0.5, 3)"', '"U(0.0001, 0.0002)"'), "s.toml")
+    for index in range(20):
+        for text in draw_setting(spec, index, 30.0).timings:
+            parse_timing(text)  # refused if it were not whole nanoseconds
