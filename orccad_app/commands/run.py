@@ -143,14 +143,35 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     port = DEFAULT_PORT if args.foxglove_port is None else args.foxglove_port
     live = open_foxglove(port, {"mission": mission, "file": args.file, "seed": str(args.seed)},
                          sensor_ports(plan))
-    wait_s = 60.0 if args.foxglove_wait is None else args.foxglove_wait
+    wait_s = _foxglove_wait_s(args)
     print(f"orccad: streaming to Foxglove on {live.url} (in Foxglove: Open connection, "
           "Foxglove WebSocket)" + (f"; the run starts when Foxglove subscribes (at most "
                                    f"{wait_s:g} s from now)" if wait_s > 0 else ""),
           file=sys.stderr, flush=True)
-    if wait_s > 0 and not live.wait_for_client(wait_s):
-        print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
     return live
+
+
+def _foxglove_wait_s(args: argparse.Namespace) -> float:
+    return 60.0 if args.foxglove_wait is None else args.foxglove_wait
+
+
+def _wait_for_foxglove(args: argparse.Namespace, live: Any, mission_run: Any) -> None:
+    """Wait for a Foxglove subscriber (``--foxglove-wait``); Ctrl-C or SIGTERM meanwhile end
+    the run before it starts (``mission_run.abort``: its report and a valid trace are still
+    written)."""
+    import time
+
+    wait_s = _foxglove_wait_s(args)
+    if wait_s <= 0:
+        return
+    deadline = time.monotonic() + wait_s
+    while not mission_run.stopping:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
+            return
+        if live.wait_for_client(min(left, 0.1)):
+            return
 
 
 def _options(args: argparse.Namespace) -> Any:
@@ -184,16 +205,20 @@ def _check_foxglove(args: argparse.Namespace) -> None:
         require_foxglove()
 
 
-def _observe(args: argparse.Namespace, session: Any) -> None:
+def _observe(args: argparse.Namespace, session: Any) -> Any:
     """The command's own observers: a progress line on a terminal (never in a pipe or a
-    file) and the ``--foxglove`` stream."""
+    file) and the ``--foxglove`` stream; what to do when the run is about to start (wait
+    for a Foxglove subscriber), or ``None``."""
     if sys.stderr.isatty():
         from orccad_app.mission.progress import ProgressLine
 
         progress = ProgressLine(sys.stderr, session.until_ns)
         session.add_observer(progress, progress.close)
     if args.foxglove:
-        session.record(_foxglove(args, session.mission.name, session.plan))
+        server = _foxglove(args, session.mission.name, session.plan)
+        session.record(server)
+        return lambda mission_run: _wait_for_foxglove(args, server, mission_run)
+    return None
 
 
 def _render(args: argparse.Namespace, report: Any) -> int:
@@ -210,7 +235,10 @@ def _render(args: argparse.Namespace, report: Any) -> int:
     if result.interrupted:
         print("orccad: interrupted", file=sys.stderr)
         return 130
-    if result.status != "done" and not args.json:
+    if result.status == "recovering" and not args.json:
+        print(f"orccad: mission aborted by {result.reason}, its 'on fatal' recovery cut by the "
+              f"horizon (status recovering)", file=sys.stderr)
+    elif result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = report.violated
     if violated and not args.json:
@@ -230,5 +258,5 @@ def run(args: argparse.Namespace) -> int:
     source = load(args.file)
     source.print_warnings()
     session = RunSession(source, select_mission(source, args.mission), options)
-    _observe(args, session)
-    return _render(args, session.execute())
+    starting = _observe(args, session)
+    return _render(args, session.execute(starting=starting))

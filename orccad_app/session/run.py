@@ -128,12 +128,16 @@ class RunSession:
         if close is not None:
             self._closing.append(close)
 
-    def execute(self) -> RunReport:
-        """Run to the end and return the report (also kept as :attr:`report`). The trace's
+    def execute(self, *, starting: Callable[[MissionRun], None] | None = None) -> RunReport:
+        """Run to the end and return the report (also kept as :attr:`report`); ``starting``
+        is called just before, within the run's signal handling (a wait that Ctrl-C ends:
+        the run then ends ``aborted`` at once, its report and trace written). The trace's
         disk full or gone is an :class:`~orccad_app.diagnostics.OrccadError` naming it."""
         try:
             try:
                 with signals_end_the_run(self.run, enabled=self.options.signals_end_run):
+                    if starting is not None:
+                        starting(self.run)
                     result = self.run.run()
             finally:
                 for close in self._closing:
