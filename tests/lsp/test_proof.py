@@ -133,3 +133,14 @@ async def test_a_change_cancels_a_running_proof_and_kills_its_process(client, tm
              and any(d.code == "proof" for d in p.diagnostics)]
     assert proof == []
     close_document(client, path)
+
+
+async def test_a_compile_error_comes_with_the_proof_at_its_place(client, tmp_path):
+    """Errors only compiling finds (here a non-causal program) are the proof's: located."""
+    path = tmp_path / "causal.orc"
+    text = "mission M {\n    output S;\n    if S { nothing; } else { emit S; }\n}\n"
+    assert await open_document(client, path, text) == []
+    verdicts = await _verdicts(client, path, _save(client, path))
+    assert list(verdicts) == [2], verdicts
+    assert verdicts[2].severity == types.DiagnosticSeverity.Error
+    close_document(client, path)
