@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
@@ -26,7 +26,7 @@ if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a fi
     from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
-__all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
+__all__ = ["Source", "load", "check_source", "read_source", "MAX_SOURCE_BYTES", "select_mission",
            "require_missions", "compile_mission", "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
@@ -84,16 +84,27 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path, host: PluginHost | None = None, text: str | None = None) -> Source:
+def load(path: str | Path, host: PluginHost | None = None, text: str | None = None,
+         read: Callable[[str], str] | None = None) -> Source:
     """Read, parse and check ``path`` (or ``text``, an edited version of it: its imports are
     still resolved from ``path``'s folder); errors are :class:`OrccadError` with locations.
+    ``read(path)`` gives the text of an imported file (default :func:`read_source`: the disk;
+    the language server passes one that prefers the editor's unsaved buffers).
 
     The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
     declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
     their failures printed once on stderr."""
     path = str(path)
     text = read_source(path) if text is None else text
-    program, imported = resolve_imports(parse(text, path), read_source)
+    return check_source(path, text, parse(text, path), host, read)
+
+
+def check_source(path: str, text: str, parsed: ast.Program, host: PluginHost | None = None,
+                 read: Callable[[str], str] | None = None) -> Source:
+    """The steps of :func:`load` after parsing: ``parsed`` (the AST of ``text``) with its
+    imports resolved, names checked and Robot-Tasks instantiated (for a caller that keeps
+    the parsed AST even when the checks fail, as the language server does)."""
+    program, imported = resolve_imports(parsed, read or read_source)
     result = check(program)
     instances = None
     if program.robottasks:

@@ -48,6 +48,7 @@ def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     assert ctrl.predicted_s == pytest.approx(0.0003)
     assert timings["Park.ctrl"].released == 0  # never started
     assert _controllers_of(os.getpid()) == []
+    assert not os.path.exists(shared.path)  # removed once mapped: nothing left in /dev/shm
 
 
 def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
