@@ -6,6 +6,7 @@ chains them and picks the mission a command is about.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
@@ -26,8 +27,9 @@ if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a fi
     from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
-__all__ = ["Source", "load", "check_source", "read_source", "MAX_SOURCE_BYTES", "select_mission",
-           "require_missions", "compile_mission", "compose_mission",
+__all__ = ["require_regular_file", "Source", "load", "check_source", "read_source",
+           "MAX_SOURCE_BYTES", "select_mission", "require_missions", "compile_mission",
+           "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
 
@@ -133,6 +135,26 @@ def _plugins(host: PluginHost | None) -> PluginHost:
 MAX_SOURCE_BYTES = 512_000
 
 
+def require_regular_file(path: str | Path) -> None:
+    """Refuse what is not a regular file before opening it: opening a FIFO blocks until a
+    writer comes, and a device (``/dev/zero``) or a socket never ends."""
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise OrccadError(f"{path}: no such file") from None
+    except OSError as error:
+        raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if stat.S_ISDIR(mode):
+        raise OrccadError(f"{path}: is a folder, not a file")
+    if not stat.S_ISREG(mode):
+        kind = "a FIFO" if stat.S_ISFIFO(mode) else "a device" if \
+            stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket" if stat.S_ISSOCK(mode) \
+            else "not a regular file"
+        raise OrccadError(f"{path}: {kind}, not a regular file (only regular files are read)")
+
+
 def read_source(path: str | bytes, name: str | None = None) -> str:
     """The text of the file ``path`` (or of the bytes ``path``, called ``name``): UTF-8, an
     optional byte-order mark dropped; errors are located :class:`OrccadError`."""
@@ -140,6 +162,7 @@ def read_source(path: str | bytes, name: str | None = None) -> str:
         data, name = path, name or "<input>"
     else:
         name = str(path)
+        require_regular_file(path)
         try:
             with open(path, "rb") as handle:
                 data = handle.read(MAX_SOURCE_BYTES + 1)

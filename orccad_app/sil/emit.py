@@ -37,6 +37,7 @@ class ModuleEntry:
     wcet_ns: int
     processor: int
     priority: int
+    sporadic: bool = False
 
 
 @dataclass(frozen=True)
@@ -98,7 +99,8 @@ def module_table(plan: Any) -> ModuleTable:
             raise NoCImplementation(f"module-task '{task.name}': {error.message}",
                                     task.location) from None
         entries.append(ModuleEntry(task.name, layout, task.period_ns, task.wcet_ns,
-                                   processors.index(task.processor), task.priority))
+                                   processors.index(task.processor), task.priority,
+                                   task.activation.value == "sporadic"))
     connections, robot_ports = _connections(plan.tcs, entries)
     return ModuleTable(plan.name, tuple(entries), processors, connections, robot_ports)
 
@@ -174,7 +176,8 @@ def _entries_text(table: ModuleTable) -> str:
             f"{len(layout.inputs)}, {len(layout.outputs)},\n"
             f"      {_dims(layout.inputs)}, {_dims(layout.outputs)},\n"
             f"      {len(layout.params)}, {{ {params} }},\n"
-            f"      {entry.period_ns}L, {entry.wcet_ns}L, {entry.processor}, {entry.priority} }},")
+            f"      {entry.period_ns}L, {entry.wcet_ns}L, {entry.processor}, {entry.priority}, "
+            f"{int(entry.sporadic)} }},")
     return "\n".join(lines)
 
 

@@ -15,7 +15,7 @@ the task errors of the report).
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
-Only periodic Module-Tasks and ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
+Only ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
 releases) do not: a mission with another protocol or a ramp is refused with what and why (the
 lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
@@ -45,7 +45,6 @@ from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
 from orccad_app.sil.lockstep import RemoteSite
 from orccad_app.sil.shared import SharedMemory
-from orccad_app.tcs.module_task import Activation
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
@@ -109,11 +108,6 @@ def _refuse_unsupported(plan: MissionPlan) -> None:
                 raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
                                   f"is stepped at the executive's releases, which the real-time "
                                   f"mode does not have (use --lockstep)", update.loc)
-    for task in plan.tcs.module_tasks:
-        if task.activation is not Activation.PERIODIC:
-            raise OrccadError(f"orccad sil --realtime runs periodic Module-Tasks only: "
-                              f"'{task.name}' is sporadic (released by interrupts; use "
-                              f"--lockstep)", task.location)
     for connection in plan.tcs.connections:
         if connection.protocol.value != "asyn/asyn":
             raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
