@@ -186,9 +186,7 @@ class LiveObserver(Observer):
         self._next_sample: dict[str, int] = {}
         self._samples: dict[str, list[float]] = {}
         self._log: list[LogEntry] = []
-        self._busy: dict[str, int] = {}
-        self._running: dict[str, int] = {}
-        self._window = (0, {})  # (start instant, busy per processor at it)
+        self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}
         self._flushed_at = 0.0
 
@@ -238,18 +236,22 @@ class LiveObserver(Observer):
         if self._abort is not None:
             self.run.abort(self._abort)
             return
-        for name in inputs:
-            if (t_ns, name) in self._scripted:
-                self._log.append(LogEntry(t_ns, "input", f"{name} raised by the "
-                                                         f"{self._scripted_by}"))
-        present = {name for name in outputs if name in self._outputs}
-        for name in sorted(present - self._present):  # a sustained output is logged once
-            self._log.append(LogEntry(t_ns, "output", name))
-        self._present = present
+        if inputs and self._scripted:
+            for name in inputs:
+                if (t_ns, name) in self._scripted:
+                    self._log.append(LogEntry(t_ns, "input", f"{name} raised by the "
+                                                             f"{self._scripted_by}"))
+        if outputs or self._present:
+            present = {name for name in outputs if name in self._outputs}
+            for name in sorted(present - self._present):  # a sustained output: logged once
+                self._log.append(LogEntry(t_ns, "output", name))
+            self._present = present
         self.inputs.on_reaction(t_ns)
-        if self.pace.paused or time.perf_counter() - self._flushed_at >= self.flush_s:
+        pace = self.pace
+        if pace.factor == 0 or time.perf_counter() - self._flushed_at >= self.flush_s:
             self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
-        self.pace.wait(t_ns)
+        if pace.factor is not None:  # as fast as possible: nothing to wait for
+            pace.wait(t_ns)
 
     def flush(self, t_ns: int) -> None:
         """Post what changed since the last update."""
@@ -257,22 +259,37 @@ class LiveObserver(Observer):
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
                  for site, phase in sorted(self.run.phases.items()) if phase > 0]
+        loads = self._loads(t_ns)
+        self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
-                            self._log, self._samples, self._loads(t_ns), dict(self._misses),
+                            self._log, self._samples, loads, dict(self._misses),
                             time.perf_counter(), self.pace.paused_s, self.held)
         self._log, self._samples = [], {}
         self.post(update)
 
     def _loads(self, t_ns: int) -> dict[str, float]:
+        """Each processor's busy share since the last update, from its statistics."""
         start, busy_then = self._window
-        busy = dict(self._busy)
-        for processor, since in self._running.items():
-            busy[processor] = busy.get(processor, 0) + t_ns - since
+        busy = {name: processor.stats.busy_ns
+                for name, processor in self.run.sim.processors.items()}
         span = t_ns - start
-        loads = {p: (b - busy_then.get(p, 0)) / span if span > 0 else 0.0
+        loads = {p: min(1.0, (b - busy_then.get(p, 0)) / span) if span > 0 else 0.0
                  for p, b in busy.items()}
         self._window = (t_ns, busy)
         return loads
+
+    def _count_misses(self, t_ns: int) -> None:
+        """Deadline misses since the last update, from the Module-Tasks' statistics: one log
+        line per Module-Task that missed (how many, and how)."""
+        for name, runtime in self.run.sim.tasks.items():
+            stats = runtime.stats
+            total = stats.late + stats.overruns
+            new = total - self._misses.get(name, 0)
+            if new > 0:
+                self._misses[name] = total
+                self._log.append(LogEntry(t_ns, "miss", f"{name}: {new} deadline "
+                                                        f"miss{'es' if new > 1 else ''} "
+                                                        f"(finished late or release skipped)"))
 
     def _sample(self, t_ns: int, name: str, values: list[float] | None) -> None:
         if values is None or t_ns < self._next_sample.get(name, 0):
@@ -287,40 +304,22 @@ class LiveObserver(Observer):
 
     def on_read(self, t_ns: int, module: str, port: str, value: Any) -> None:
         sensor = self._sensors.get((module, port))
-        if sensor is not None:
+        if sensor is not None and t_ns >= self._next_sample.get(sensor, 0):
             self._sample(t_ns, sensor, _components(value))
+
+    def wants_write(self, module: str, port: str) -> bool:
+        """Only the set-points and the task errors are plotted."""
+        return port in SETPOINT_PORTS or port == "e"
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port in SETPOINT_PORTS:  # the reference: the set-point of the measured joints
-            self._sample(t_ns, port, _components(value))
+            if t_ns >= self._next_sample.get(port, 0):
+                self._sample(t_ns, port, _components(value))
             return
         if port == "e" and t_ns >= self._next_sample.get("tracking error", 0):
             values = _components(value, limit=1 << 16)
             if values is not None:
                 self._sample(t_ns, "tracking error", [math.sqrt(sum(v * v for v in values))])
-
-    def on_start(self, t_ns: int, module: str, job: int, processor: str) -> None:
-        self._running[processor] = t_ns
-
-    on_resume = on_start
-
-    def on_preempt(self, t_ns: int, module: str, job: int, processor: str) -> None:
-        since = self._running.pop(processor, t_ns)
-        self._busy[processor] = self._busy.get(processor, 0) + t_ns - since
-
-    on_compute_end = on_preempt
-
-    def on_finish(self, t_ns: int, module: str, job: int, response_ns: int,
-                  missed: bool) -> None:
-        if missed:
-            self._miss(t_ns, module, "finished after its deadline")
-
-    def on_overrun(self, t_ns: int, module: str, job: int) -> None:
-        self._miss(t_ns, module, "release skipped (previous job unfinished)")
-
-    def _miss(self, t_ns: int, module: str, what: str) -> None:
-        self._misses[module] = self._misses.get(module, 0) + 1
-        self._log.append(LogEntry(t_ns, "miss", f"{module}: {what}"))
 
     def on_param(self, t_ns: int, module: str, name: str, value: Any) -> None:
         self._log.append(LogEntry(t_ns, "param", f"{module}.{name} := {value}"))

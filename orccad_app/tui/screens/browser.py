@@ -34,7 +34,7 @@ class BrowserScreen(Screen):
                                                  "tab step by step (r there runs it on the "
                                                  "plant)"),
         Binding("ctrl+e", "edit", "Edit", tooltip="edit it with live diagnostics"),
-        Binding("k", "campaign", "Campaign", tooltip="campaigns and falsification of it "
+        Binding("k", "campaign", "Campaign", show=False, tooltip="campaigns and falsification of it "
                                                      "(its .campaign.toml spec)"),
         Binding("slash", "search", "Search", tooltip="type to filter the mission list"),
         Binding("q", "app.quit", "Quit"),
