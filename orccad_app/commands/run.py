@@ -5,7 +5,8 @@
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
                     [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
-                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
+                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap|DIR]
+                    [--trace-format csv|mcap|rosbag2] [--json]
                     [--foxglove] [--foxglove-port PORT] [--foxglove-wait S]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -70,7 +71,12 @@ def register(sub) -> None:
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
-    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
+    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap; a "
+                                                       "directory with --trace-format rosbag2)")
+    parser.add_argument("--trace-format", choices=("csv", "mcap", "rosbag2"), default=None,
+                        help="the trace's format (default: by OUT's suffix); rosbag2: a new "
+                             "directory OUT, MCAP storage, CDR (needs pip install -e "
+                             "'.[ros2]')")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--foxglove", action="store_true",
                         help="stream the run live to Foxglove over its WebSocket protocol on "
@@ -172,14 +178,69 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     port = DEFAULT_PORT if args.foxglove_port is None else args.foxglove_port
     live = open_foxglove(port, {"mission": mission, "file": args.file, "seed": str(args.seed)},
                          sensor_ports(plan))
-    wait_s = 60.0 if args.foxglove_wait is None else args.foxglove_wait
+    wait_s = _foxglove_wait_s(args)
     print(f"orccad: streaming to Foxglove on {live.url} (in Foxglove: Open connection, "
           "Foxglove WebSocket)" + (f"; the run starts when Foxglove subscribes (at most "
                                    f"{wait_s:g} s from now)" if wait_s > 0 else ""),
           file=sys.stderr, flush=True)
-    if wait_s > 0 and not live.wait_for_client(wait_s):
-        print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
     return live
+
+
+def _check_trace_format(args: argparse.Namespace) -> None:
+    """``--trace-format`` needs ``--trace``; rosbag2 needs its extra (said before the run)."""
+    from orccad_app.diagnostics import OrccadError
+
+    if args.trace_format is not None and not args.trace:
+        raise OrccadError("--trace-format needs --trace")
+    if args.trace_format == "rosbag2":
+        from orccad_app.ros2 import require
+
+        require("--trace-format rosbag2")
+
+
+def _open_trace(args: argparse.Namespace, mission: str, plan) -> Any:
+    """The trace writer of ``--trace`` (and ``--trace-format``)."""
+    from orccad_app.trace import open_trace, sensor_ports
+
+    metadata = {"mission": mission, "file": args.file, "seed": str(args.seed)}
+    if args.trace_format == "rosbag2":
+        from orccad_app.ros2.bag import Rosbag2TraceWriter
+
+        return Rosbag2TraceWriter(args.trace, metadata, sensor_ports(plan))
+    return open_trace(args.trace, metadata, sensor_ports(plan), args.trace_format)
+
+
+def _foxglove_wait_s(args: argparse.Namespace) -> float:
+    return 60.0 if args.foxglove_wait is None else args.foxglove_wait
+
+
+def _wait_for_foxglove(args: argparse.Namespace, live: Any, mission_run: Any) -> None:
+    """Wait for a Foxglove subscriber (``--foxglove-wait``); Ctrl-C or SIGTERM meanwhile end
+    the run before it starts (``mission_run.abort``: its report and a valid trace are still
+    written)."""
+    import time
+
+    wait_s = _foxglove_wait_s(args)
+    if wait_s <= 0:
+        return
+    deadline = time.monotonic() + wait_s
+    while not mission_run.stopping:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
+            return
+        if live.wait_for_client(min(left, 0.1)):
+            return
+
+
+def _verdict_samples(monitor: Any) -> Any:
+    """Every property's verdict on the run so far, for the trace's ``/properties`` topics."""
+    from orccad_app.trace import VerdictSample
+
+    def samples() -> list:
+        return [VerdictSample(r.name, r.verdict.value, r.robustness, r.unit, r.samples)
+                for r in monitor.running()]
+    return samples
 
 
 def _processors(plan, args: argparse.Namespace) -> list:
@@ -242,11 +303,11 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
-    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict, sensor_ports)
+    from orccad_app.trace import InjectionRecord, format_report, report_dict, trace_recorder
 
     _file_after_injections(args)
     _terminate_like_ctrl_c()
+    _check_trace_format(args)
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
@@ -284,16 +345,21 @@ def run(args: argparse.Namespace) -> int:
 
         progress = ProgressLine(sys.stderr, mission_run.until_ns)
         mission_run.add_observer(progress)
+    verdicts = _verdict_samples(monitor)
     if args.trace:
-        writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)}, sensor_ports(plan))
-        mission_run.add_observer(TraceRecorder(writer))
-    live = _foxglove(args, mission.name, plan) if args.foxglove else None
-    if live is not None:
-        mission_run.add_observer(TraceRecorder(live))
+        writer = trace_recorder(_open_trace(args, mission.name, plan), mission_run,
+                                verdicts=verdicts)
+        mission_run.add_observer(writer)
+    live = server = None
+    if args.foxglove:
+        server = _foxglove(args, mission.name, plan)
+        live = trace_recorder(server, mission_run, verdicts=verdicts)
+        mission_run.add_observer(live)
     try:
         try:
             with _signals_end_the_run(mission_run):
+                if server is not None:
+                    _wait_for_foxglove(args, server, mission_run)
                 result = mission_run.run()
         finally:
             if progress is not None:
@@ -323,7 +389,10 @@ def run(args: argparse.Namespace) -> int:
     if result.interrupted:
         print("orccad: interrupted", file=sys.stderr)
         return 130
-    if result.status != "done" and not args.json:
+    if result.status == "recovering" and not args.json:
+        print(f"orccad: mission aborted by {result.reason}, its 'on fatal' recovery cut by the "
+              f"horizon (status recovering)", file=sys.stderr)
+    elif result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = [v.name for v in verdicts if v.verdict.value == "false"]
     if violated and not args.json:

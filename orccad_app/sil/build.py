@@ -33,17 +33,19 @@ class BuildError(OrccadError):
 
 def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
     """The runtime library's C files for the controller whose ``main`` is in ``main``."""
-    return [C_DIR / "orccad_mt.c", C_DIR / main]
+    return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", C_DIR / main]
 
 
 def compiler() -> str:
-    """The C compiler's path (``$CC`` or ``cc``); raises :class:`BuildError` when missing."""
-    name = os.environ.get("CC", "cc")
-    found = shutil.which(name)
-    if found is None:
-        raise BuildError(f"orccad sil needs a C compiler: '{name}' was not found (install "
-                         f"gcc, e.g. apt-get install -y gcc, or set CC)")
-    return found
+    """The C compiler's path (``$CC``, else ``cc``, else ``gcc``); raises :class:`BuildError`
+    when none is found."""
+    names = [os.environ["CC"]] if os.environ.get("CC") else ["cc", "gcc"]
+    for name in names:
+        found = shutil.which(name)
+        if found is not None:
+            return found
+    raise BuildError(f"orccad sil needs a C compiler: {' or '.join(names)} not found (install "
+                     f"gcc, e.g. apt-get install -y gcc, or set CC)")
 
 
 def _cache_dir() -> Path:
@@ -59,7 +61,7 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     digest = hashlib.sha256()
     for part in (cc, *CFLAGS, *libraries):
         digest.update(part.encode() + b"\0")
-    for path in [*sources, C_DIR / "orccad_mt.h", C_DIR / "orccad_io.h"]:
+    for path in [*sources, *sorted(C_DIR.glob("*.h"))]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     target_dir = _cache_dir() / "sil" / digest.hexdigest()[:24]
     target = target_dir / name

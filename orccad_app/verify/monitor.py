@@ -29,7 +29,7 @@ from orccad_app.verify.formula import F, atoms, neg
 from orccad_app.verify.lasso import holds_on_lasso
 from orccad_app.verify.tableau import Tableau
 
-__all__ = ["Verdict", "ltl_verdict", "MAX_MONITOR_ATOMS"]
+__all__ = ["Verdict", "ltl_verdict", "LtlMonitor", "MAX_MONITOR_ATOMS"]
 
 MAX_MONITOR_ATOMS = 12
 """Atoms allowed in a property monitored on a cut run (2^n letters are explored)."""
@@ -70,6 +70,61 @@ def ltl_verdict(formula: F, word: Sequence[frozenset], ended: bool) -> Verdict:
     if not _extensible(neg(formula), bits, word):
         return Verdict.TRUE
     return Verdict.UNDECIDED
+
+
+class _Prefix:
+    """The tableau states a prefix read so far reaches (``_extensible``, one letter at a
+    time)."""
+
+    def __init__(self, formula: F, bits: _Bits) -> None:
+        self.tableau = Tableau(formula, bits)  # type: ignore[arg-type]
+        self.bits = bits
+        self.states: set[tuple[int, int | None]] = {(0, None)}
+
+    def read(self, letters: Sequence[frozenset]) -> None:
+        tableau, bits = self.tableau, self.bits
+        for letter in letters:
+            if not self.states:
+                return
+            mask = bits.mask(letter)
+            self.states = {(yn, guess) for prev, required in self.states
+                           for guess, yn, _ in tableau.successors(mask, prev, required)}
+
+    def extensible(self) -> bool:
+        return bool(self.states) and bool(self.states & _live_states(self.tableau, self.bits,
+                                                                     self.states))
+
+
+class LtlMonitor:
+    """:func:`ltl_verdict` of one formula on a growing run, each letter read once: the
+    verdict of a run's prefix at any time costs the letters new since the last one (the
+    live-state search of LTL3 is bounded by the tableau, not by the run); a run that ended is
+    judged by :func:`ltl_verdict` (its lasso)."""
+
+    def __init__(self, formula: F) -> None:
+        self.formula = formula
+        self._bits = _Bits(atoms(formula))
+        self._too_large = len(self._bits.keys) > MAX_MONITOR_ATOMS
+        self._prefixes = (None if self._too_large else
+                          (_Prefix(formula, self._bits), _Prefix(neg(formula), self._bits)))
+        self._read = 0
+
+    def verdict(self, word: Sequence[frozenset], ended: bool) -> Verdict:
+        """The verdict of the formula on ``word``, which extends every word given before."""
+        if ended or not word:
+            return ltl_verdict(self.formula, word, ended)
+        if self._prefixes is None:
+            return Verdict.UNDECIDED
+        holds, fails = self._prefixes
+        new = word[self._read:]
+        self._read = len(word)
+        holds.read(new)
+        fails.read(new)
+        if not holds.extensible():
+            return Verdict.FALSE
+        if not fails.extensible():
+            return Verdict.TRUE
+        return Verdict.UNDECIDED
 
 
 def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
