@@ -76,24 +76,11 @@ class CompiledMission:
         self.digest = self.source.digest  # the file's and its imports' texts
         self.composition = compose_mission(self.source, self.mission, lazy=True)
 
-    def options(self, setting: RunSetting, observers: tuple = (),
-                trace: str | None = None) -> Any:
-        """``setting`` as the :class:`~orccad_app.session.RunOptions` of ``orccad run FILE
-        --mission M`` with its arguments (the default processors and bus, no pacing)."""
-        from orccad_app.mission.injection import parse_injection
-        from orccad_app.mission.overrides import PlanOverrides
-        from orccad_app.session import RunOptions
-
-        return RunOptions(
-            overrides=PlanOverrides.from_arguments(list(setting.sets), list(setting.timings)),
-            injections=tuple(parse_injection(text) for text in setting.injections),
-            seed=setting.seed, until_s=setting.until_s, trace=trace, observers=observers)
-
     def plan(self, setting: RunSetting) -> Any:
         """The mission's plan with ``setting``'s overrides."""
         from orccad_app.mission.overrides import plan_with_overrides
 
-        return plan_with_overrides(self.source, self.mission, self.options(setting).overrides,
+        return plan_with_overrides(self.source, self.mission, setting.options().overrides,
                                    self.composition)
 
     def default_until_s(self) -> float:
@@ -114,7 +101,8 @@ class CompiledMission:
         in it raises a located :class:`OrccadError` here)."""
         from orccad_app.session import RunSession
 
-        return RunSession(self.source, self.mission, self.options(setting, observers, trace),
+        return RunSession(self.source, self.mission,
+                          setting.options(observers=observers, trace=trace),
                           composition=self.composition)
 
 

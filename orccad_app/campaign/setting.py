@@ -54,6 +54,19 @@ class RunSetting:
             args += ["--timing", text]
         return args
 
+    def options(self, **more: Any) -> Any:
+        """This setting as the :class:`~orccad_app.session.RunOptions` of ``orccad run FILE
+        --mission M`` with :meth:`run_args` (the default processors and bus, no pacing);
+        ``more``: other options (observers, a trace...)."""
+        from orccad_app.mission.injection import parse_injection
+        from orccad_app.mission.overrides import PlanOverrides
+        from orccad_app.session import RunOptions
+
+        return RunOptions(
+            overrides=PlanOverrides.from_arguments(list(self.sets), list(self.timings)),
+            injections=tuple(parse_injection(text) for text in self.injections),
+            seed=self.seed, until_s=self.until_s, **more)
+
     def as_dict(self) -> dict[str, Any]:
         return {"index": self.index, "seed": self.seed, "until_s": self.until_s,
                 "injections": list(self.injections), "sets": list(self.sets),

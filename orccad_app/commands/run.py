@@ -5,7 +5,8 @@
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
                     [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
-                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
+                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap|DIR]
+                    [--trace-format csv|mcap|rosbag2] [--json]
                     [--foxglove] [--foxglove-port PORT] [--foxglove-wait S]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -68,7 +69,12 @@ def register(sub) -> None:
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
-    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
+    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap; a "
+                                                       "directory with --trace-format rosbag2)")
+    parser.add_argument("--trace-format", choices=("csv", "mcap", "rosbag2"), default=None,
+                        help="the trace's format (default: by OUT's suffix); rosbag2: a new "
+                             "directory OUT, MCAP storage, CDR (needs pip install -e "
+                             "'.[ros2]')")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--foxglove", action="store_true",
                         help="stream the run live to Foxglove over its WebSocket protocol on "
@@ -151,6 +157,18 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     return live
 
 
+def _check_trace_format(args: argparse.Namespace) -> None:
+    """``--trace-format`` needs ``--trace``; rosbag2 needs its extra (said before the run)."""
+    from orccad_app.diagnostics import OrccadError
+
+    if args.trace_format is not None and not args.trace:
+        raise OrccadError("--trace-format needs --trace")
+    if args.trace_format == "rosbag2":
+        from orccad_app.ros2 import require
+
+        require("--trace-format rosbag2")
+
+
 def _foxglove_wait_s(args: argparse.Namespace) -> float:
     return 60.0 if args.foxglove_wait is None else args.foxglove_wait
 
@@ -190,7 +208,8 @@ def _options(args: argparse.Namespace) -> Any:
                       seed=args.seed, until_s=args.until, scheduler=args.scheduler,
                       context_switch_ns=args.context_switch_us * 1000,
                       bus_transfer_ns=args.bus_us * 1000, realtime=realtime,
-                      trace=args.trace, trace_file=args.file, signals_end_run=True)
+                      trace=args.trace, trace_format=args.trace_format, trace_file=args.file,
+                      signals_end_run=True)
 
 
 def _check_foxglove(args: argparse.Namespace) -> None:
@@ -252,6 +271,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.session import RunSession
 
     _file_after_injections(args)
+    _check_trace_format(args)
     _check_foxglove(args)
     options = _options(args)
     refuse_overwriting(args.trace, args.file)

@@ -71,6 +71,8 @@ class RunOptions:
     :param overrides: ``--set`` and ``--timing`` (:class:`~orccad_app.mission.overrides.PlanOverrides`).
     :param injections: inputs and plant faults raised at given instants (``--inject``),
         parsed; the session types their values against the plan's inputs.
+    :param injected_by: who raised ``injections``, for the report (``--inject``, or the
+        campaign run a console replays).
     :param script: an input script whose inputs are raised too (``--inject-from``).
     :param seed: the seed of execution times and sensor noise.
     :param until_s: the simulated-time limit [s]; ``None``: :data:`DEFAULT_UNTIL_S`, or the
@@ -79,7 +81,10 @@ class RunOptions:
     :param context_switch_ns: the context-switch overhead [ns].
     :param bus_transfer_ns: the bus's transfer time per message [ns].
     :param realtime: ``None`` as fast as possible, else simulated s per wall s.
-    :param trace: a trace file to write (``.csv`` or ``.mcap``), ``None`` for none.
+    :param trace: a trace file to write (``.csv`` or ``.mcap``; a directory for
+        ``rosbag2``), ``None`` for none.
+    :param trace_format: ``csv``, ``mcap`` or ``rosbag2`` (the ``[ros2]`` extra); ``None``:
+        by the file's suffix.
     :param trace_file: the mission file as the trace's metadata names it (default the
         source's path).
     :param observers: observers of the run (executive callbacks and the mission hooks,
@@ -95,6 +100,7 @@ class RunOptions:
 
     overrides: PlanOverrides = field(default_factory=PlanOverrides)
     injections: tuple[Injection, ...] = ()
+    injected_by: str = "--inject"
     script: InputScript | None = None
     seed: int = 0
     until_s: float | None = None
@@ -103,6 +109,7 @@ class RunOptions:
     bus_transfer_ns: int = 0
     realtime: float | None = None
     trace: str | None = None
+    trace_format: str | None = None
     trace_file: str | None = None
     observers: tuple[Any, ...] = ()
     run_factory: Callable[..., MissionRun] | None = None

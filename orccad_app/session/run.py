@@ -94,7 +94,8 @@ class RunSession:
                 raise OrccadError(f"--inject {injection.name}: the value must be a finite "
                                   f"number, got {value}")
         typed = typed_injections(options.injections, inputs)
-        records = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in typed]
+        records = [InjectionRecord(i.time_ns, i.name, i.value, i.fault, options.injected_by)
+                   for i in typed]
         script = options.script
         if script is not None:
             scripted = script.injections(self.plan.tick_ns, inputs)
@@ -107,7 +108,13 @@ class RunSession:
         metadata = {"mission": self.mission.name,
                     "file": self.options.trace_file or self.source.path,
                     "seed": str(self.options.seed)}
-        self.record(open_trace(path, metadata, sensor_ports(self.plan)))
+        sensors = sensor_ports(self.plan)
+        if self.options.trace_format == "rosbag2":
+            from orccad_app.ros2.bag import Rosbag2TraceWriter
+
+            self.record(Rosbag2TraceWriter(path, metadata, sensors))
+        else:
+            self.record(open_trace(path, metadata, sensors, self.options.trace_format))
 
     def record(self, writer: Any) -> None:
         """Write the run's trace to ``writer`` (a CSV, MCAP or live Foxglove writer) as

@@ -289,11 +289,13 @@ class LiveSession:
     :param speed: initial factor (``None`` as fast as possible, ``0`` paused).
     :param script: a :class:`ScriptedInputs` (a counterexample run against the plant): its
         inputs are injected at its instants' times, as ``orccad run --inject-from`` does.
+    :param setting: a campaign's run (a :class:`~orccad_app.campaign.setting.RunSetting`)
+        replayed live: its overrides, injections (raised ``by``), seed and horizon.
     """
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
                  speed: float | None = 1.0, seed: int = 0, until_s: float | None = None,
-                 script: Any = None) -> None:
+                 script: Any = None, setting: Any = None, by: str = "") -> None:
         from orccad_app.pipeline import load, select_mission
 
         source = load(path)
@@ -303,9 +305,14 @@ class LiveSession:
         selected = select_mission(source, mission)
         self.mission = selected.name
         self._trace = _Spool()
-        self.session = RunSession(source, selected, RunOptions(
-            script=script, seed=seed, until_s=until_s,
-            trace=str(self._trace.path)))
+        if setting is not None:  # a campaign's run: its overrides, injections, seed, horizon
+            options = setting.options(injected_by=by, script=script,
+                                      trace=str(self._trace.path))
+            self.seed = setting.seed
+        else:
+            options = RunOptions(script=script, seed=seed, until_s=until_s,
+                                 trace=str(self._trace.path))
+        self.session = RunSession(source, selected, options)
         """The run, planned (:class:`~orccad_app.session.RunSession`)."""
         self.run = self.session.run
         plan = self.session.plan
@@ -316,13 +323,16 @@ class LiveSession:
         self.script = script
         """The counterexample run against the plant, or ``None``."""
         self.scripted = list(self.session.injected)
-        """The script's injections, for the report."""
+        """The script's (or the campaign run's) injections, for the report."""
+        self.setting = setting
+        """The campaign run replayed (a :class:`~orccad_app.campaign.setting.RunSetting`),
+        or ``None``."""
         self.faults = _faults(self.run)
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
             (record.time_ns, record.name) for record in self.scripted},
-            scripted_by=script.by if script is not None else "")
+            scripted_by=script.by if script is not None else by)
         self.session.add_observer(self.observer)
         self.result: Any = None
         self.run_report: Any = None

@@ -161,3 +161,15 @@ def test_campaign_timing_draws_are_whole_nanoseconds():
     for index in range(20):
         for text in draw_setting(spec, index, 30.0).timings:
             parse_timing(text)  # refused if it were not whole nanoseconds
+
+
+def test_sub_missions_expanding_exponentially_are_refused_before_they_are_built(tmp_path):
+    lines = ["input A;", "output O;", "mission L0 { await A; emit O; }"]
+    for level in range(1, 6):
+        lines.append(f"mission L{level} {{ " + f"run mission L{level - 1}; " * 10 + "}")
+    lines.append("mission Top { " + "run mission L5; " * 4 + "}")
+    path = tmp_path / "exp.orc"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    outcome = run_orccad(["compile", str(path), "-m", "Top"], budget_s=20)
+    _refused(outcome, f"{path}:9:1", "more than 200000 syntax nodes")
+    assert outcome.seconds < 10
