@@ -25,7 +25,9 @@ robustness is finite exactly when some comparison decides it.
 Finite runs: rtamt evaluates windows over the samples that exist. ``always`` (bounded or
 not) is the minimum over the recorded part of its window (``+inf`` when none: vacuously
 true), ``eventually`` the maximum (``-inf`` when none: not seen); ``next`` at the last sample
-is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``).
+is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``). A run of one
+sample follows the same rules on that one sample (``next``: ``+inf``; a window starting after
+it: none).
 """
 
 from __future__ import annotations
@@ -235,10 +237,7 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
         raise ValueError(f"samples of unequal or zero length: {sorted(lengths)}")
-    count = lengths.pop()
     data = {name: [float(v) for v in values] for name, values in samples.items()}
-    if count == 1:  # rtamt needs two samples; the run's only state holds one period more
-        data = {name: values * 2 for name, values in data.items()}
     spec = rtamt.StlDiscreteTimeSpecification()
     for name in data:
         spec.declare_var(name, "float")
@@ -251,7 +250,7 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     length = len(next(iter(data.values())))
     data["time"] = [k * stl.period_ns / 1e9 for k in range(length)]
     try:
-        value = float(spec.evaluate(data)[0][1])
+        value = _evaluate(spec, data)
     except ZeroDivisionError:
         raise UndefinedRobustness("a division by zero") from None
     except ValueError as error:  # math domain error: sqrt of a negative value
@@ -264,6 +263,22 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     if math.isinf(value) and _overflows(stl, data):
         raise UndefinedRobustness("an overflow of its arithmetic to ±inf")
     return value
+
+
+def _evaluate(spec: object, data: dict[str, list[float]]) -> float:
+    """The robustness at time 0. A one-sample run is evaluated on its one sample (``next`` and
+    windows after it see none: ``+inf`` / ``-inf`` by the rules above): rtamt 0.4's
+    ``evaluate`` computes that value, then fails checking the sampling period of a trace with
+    no interval between samples, so its offline interpreter is asked for the value directly
+    (reading the only sample twice, as before, invented a sample the run does not have)."""
+    try:
+        return float(spec.evaluate(data)[0][1])  # type: ignore[attr-defined]
+    except UnboundLocalError:
+        if len(data["time"]) != 1:
+            raise
+    interpreter = spec.offline_interpreter  # type: ignore[attr-defined]
+    result = interpreter.visitAst(interpreter.ast, 1)
+    return float(result[len(result) - 1][0])
 
 
 def _overflows(stl: StlFormula, data: Mapping[str, Sequence[float]]) -> bool:
