@@ -317,7 +317,7 @@ class LiveSession:
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
                  speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0,
-                 script: Any = None) -> None:
+                 script: Any = None, setting: Any = None, by: str = "") -> None:
         from orccad_app.mission.plan import plan_mission
         from orccad_app.mission.run import MissionRun
         from orccad_app.pipeline import load, select_mission
@@ -330,18 +330,37 @@ class LiveSession:
         self.text = source.text
         """The mission file's text (the run screen shows where the mission waits in it)."""
         self.mission = select_mission(source, mission).name
-        plan = plan_mission(source, source.program.mission(self.mission))
+        if setting is not None:  # a campaign's run: its overrides, seed, horizon
+            from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
+
+            overrides = PlanOverrides.from_arguments(list(setting.sets), list(setting.timings))
+            plan = plan_with_overrides(source, source.program.mission(self.mission), overrides)
+            seed, until_s = setting.seed, setting.until_s
+            self.seed = seed
+        else:
+            plan = plan_mission(source, source.program.mission(self.mission))
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
         """The mission's declared inputs (``SignalDecl``)."""
         self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
         horizon = getattr(mission_run, "run_horizon_s", None)  # robots with long missions
-        until_s = horizon(plan, until_s) if horizon is not None else until_s
+        if setting is None:
+            until_s = horizon(plan, until_s) if horizon is not None else until_s
         self.script = script
         """The counterexample run against the plant, or ``None``."""
         injections = [] if script is None else script.injections(plan.tick_ns)
         self.scripted = [InjectionRecord(i.time_ns, i.name, i.value, False, script.by)
                          for i in injections]
+        if setting is not None:
+            from orccad_app.mission.injection import parse_injection
+
+            given = [parse_injection(text) for text in setting.injections]
+            injections += given
+            self.scripted += [InjectionRecord(i.time_ns, i.name, i.value, i.fault, by)
+                              for i in given]
+        self.setting = setting
+        """The campaign run replayed (a :class:`~orccad_app.campaign.setting.RunSetting`),
+        or ``None``."""
         """The script's injections, for the report."""
         self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)),
                               injections=injections)
@@ -350,7 +369,7 @@ class LiveSession:
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
             (record.time_ns, record.name) for record in self.scripted},
-            scripted_by=script.by if script is not None else "")
+            scripted_by=script.by if script is not None else by)
         self._trace = _Spool()
         self.run.add_observer(self.observer)
         self.run.add_observer(TraceRecorder(self._trace.writer))
