@@ -25,12 +25,15 @@ robustness is finite exactly when some comparison decides it.
 Finite runs: rtamt evaluates windows over the samples that exist. ``always`` (bounded or
 not) is the minimum over the recorded part of its window (``+inf`` when none: vacuously
 true), ``eventually`` the maximum (``-inf`` when none: not seen); ``next`` at the last sample
-is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``).
+is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``). A run of one
+sample follows the same rules on that one sample (``next``: ``+inf``; a window starting after
+it: none).
 """
 
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from dataclasses import dataclass
 from typing import Mapping, Sequence
@@ -235,14 +238,11 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
         raise ValueError(f"samples of unequal or zero length: {sorted(lengths)}")
-    count = lengths.pop()
     data = {name: [float(v) for v in values] for name, values in samples.items()}
-    if count == 1:  # rtamt needs two samples; the run's only state holds one period more
-        data = {name: values * 2 for name, values in data.items()}
     spec = rtamt.StlDiscreteTimeSpecification()
     for name in data:
         spec.declare_var(name, "float")
-    spec.spec = stl.text
+    spec.spec = _clamped(stl.text, len(next(iter(data.values()))) * stl.period_ns)
     spec.set_sampling_period(stl.period_ns, "ns", 0.1)
     try:
         spec.parse()
@@ -251,7 +251,7 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     length = len(next(iter(data.values())))
     data["time"] = [k * stl.period_ns / 1e9 for k in range(length)]
     try:
-        value = float(spec.evaluate(data)[0][1])
+        value = _evaluate(spec, data)
     except ZeroDivisionError:
         raise UndefinedRobustness("a division by zero") from None
     except ValueError as error:  # math domain error: sqrt of a negative value
@@ -264,6 +264,36 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     if math.isinf(value) and _overflows(stl, data):
         raise UndefinedRobustness("an overflow of its arithmetic to ±inf")
     return value
+
+
+_BOUNDS = re.compile(r"\[(\d+)ns:(\d+)ns\]")
+
+
+def _clamped(text: str, horizon_ns: int) -> str:
+    """``text`` with every time bound at most ``horizon_ns`` (one period past the last
+    sample). The samples past it do not exist, so the value is the same — a window reaching
+    past the run reads its recorded part, one starting past it reads none — but rtamt's
+    buffers follow the bounds: a window as long as the one-year bound exhausted memory."""
+    def clamp(match: re.Match) -> str:
+        low, high = (min(int(v), horizon_ns) for v in match.groups())
+        return f"[{low}ns:{high}ns]"
+    return _BOUNDS.sub(clamp, text)
+
+
+def _evaluate(spec: object, data: dict[str, list[float]]) -> float:
+    """The robustness at time 0. A one-sample run is evaluated on its one sample (``next`` and
+    windows after it see none: ``+inf`` / ``-inf`` by the rules above): rtamt 0.4's
+    ``evaluate`` computes that value, then fails checking the sampling period of a trace with
+    no interval between samples, so its offline interpreter is asked for the value directly
+    (reading the only sample twice, as before, invented a sample the run does not have)."""
+    try:
+        return float(spec.evaluate(data)[0][1])  # type: ignore[attr-defined]
+    except UnboundLocalError:
+        if len(data["time"]) != 1:
+            raise
+    interpreter = spec.offline_interpreter  # type: ignore[attr-defined]
+    result = interpreter.visitAst(interpreter.ast, 1)
+    return float(result[len(result) - 1][0])
 
 
 def _overflows(stl: StlFormula, data: Mapping[str, Sequence[float]]) -> bool:

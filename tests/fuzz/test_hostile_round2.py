@@ -173,3 +173,15 @@ def test_sub_missions_expanding_exponentially_are_refused_before_they_are_built(
     outcome = run_orccad(["compile", str(path), "-m", "Top"], budget_s=20)
     _refused(outcome, f"{path}:9:1", "more than 200000 syntax nodes")
     assert outcome.seconds < 10
+
+
+def test_a_run_whose_reactions_and_jobs_exceed_the_budget_is_refused_before_it_starts(tmp_path):
+    # a 1 us period costs ~50 s and 1.4 GB per simulated second: the gcd check alone let it run
+    text = (ROOT / "missions" / "arm_pid.orc").read_text(encoding="utf-8")
+    path = tmp_path / "arm_pid.orc"
+    path.write_text(text.replace("period 1 ms", "period 0.001 ms"), encoding="utf-8")
+    outcome = run_orccad(["run", str(path), "--until", "60"], budget_s=30)
+    _refused(outcome, "reactions and Module-Task jobs", "more than the 5e+07 a run may cost")
+    assert outcome.seconds < 20
+    check_outcome(run_orccad(["run", str(path), "--until", "0.002", "--json"], budget_s=60),
+                  json_doc=True, budget_s=60)
