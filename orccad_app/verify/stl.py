@@ -33,6 +33,7 @@ it: none).
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from dataclasses import dataclass
 from typing import Mapping, Sequence
@@ -241,7 +242,7 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     spec = rtamt.StlDiscreteTimeSpecification()
     for name in data:
         spec.declare_var(name, "float")
-    spec.spec = stl.text
+    spec.spec = _clamped(stl.text, len(next(iter(data.values()))) * stl.period_ns)
     spec.set_sampling_period(stl.period_ns, "ns", 0.1)
     try:
         spec.parse()
@@ -263,6 +264,20 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     if math.isinf(value) and _overflows(stl, data):
         raise UndefinedRobustness("an overflow of its arithmetic to ±inf")
     return value
+
+
+_BOUNDS = re.compile(r"\[(\d+)ns:(\d+)ns\]")
+
+
+def _clamped(text: str, horizon_ns: int) -> str:
+    """``text`` with every time bound at most ``horizon_ns`` (one period past the last
+    sample). The samples past it do not exist, so the value is the same — a window reaching
+    past the run reads its recorded part, one starting past it reads none — but rtamt's
+    buffers follow the bounds: a window as long as the one-year bound exhausted memory."""
+    def clamp(match: re.Match) -> str:
+        low, high = (min(int(v), horizon_ns) for v in match.groups())
+        return f"[{low}ns:{high}ns]"
+    return _BOUNDS.sub(clamp, text)
 
 
 def _evaluate(spec: object, data: dict[str, list[float]]) -> float:

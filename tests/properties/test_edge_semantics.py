@@ -71,3 +71,14 @@ def test_a_one_sample_run_reads_its_only_sample_once(text, expected):
     # it was read twice: next and windows one period later saw a sample the run did not have
     stl = StlFormula(text, {"s0": Component("arm", "q", 0)}, {}, 1_000_000, ("s0",))
     assert robustness(stl, {"s0": [1.0]}) == expected
+
+
+def test_a_window_as_long_as_the_one_year_bound_is_judged_on_the_recorded_part():
+    # rtamt's buffers followed the bound: MemoryError, an internal error that lost the report
+    year_ns = 365 * 24 * 3600 * 10**9
+    stl = StlFormula(f"(always[0ns:{year_ns}ns](s0 < 10.0))", {"s0": Component("arm", "q", 0)},
+                     {}, 1_000_000, ("s0", "10.0"))
+    assert robustness(stl, {"s0": [1.0, 2.0, 3.0]}) == 7.0
+    later = StlFormula(f"(eventually[{year_ns // 2}ns:{year_ns}ns](s0 < 10.0))",
+                       {"s0": Component("arm", "q", 0)}, {}, 1_000_000, ("s0", "10.0"))
+    assert robustness(later, {"s0": [1.0, 2.0, 3.0]}) == -math.inf
