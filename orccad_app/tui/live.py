@@ -39,6 +39,10 @@ __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_p
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
 
+BUSY_FRAME_S = 0.25
+"""Wall time between two frames [s] while the run goes as fast as it can (else ``flush_s``):
+the screen's drawing shares the interpreter with the run."""
+
 PHASES = {1: "waiting", 2: "measuring", 3: "running"}
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
@@ -189,6 +193,10 @@ class LiveObserver(Observer):
         self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}
         self._flushed_at = 0.0
+        self.reactions = 0
+        """Reactions seen so far."""
+        self.aborted_at: int | None = None
+        """The reaction (its count) at which the user's abort ended the run."""
 
     # -- from the UI's thread --------------------------------------------------------------
 
@@ -233,7 +241,10 @@ class LiveObserver(Observer):
 
     def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
                     status: str) -> None:
+        self.reactions += 1
         if self._abort is not None:
+            if self.aborted_at is None:
+                self.aborted_at = self.reactions
             self.run.abort(self._abort)
             return
         if inputs and self._scripted:
@@ -248,7 +259,8 @@ class LiveObserver(Observer):
             self._present = present
         self.inputs.on_reaction(t_ns)
         pace = self.pace
-        if pace.factor == 0 or time.perf_counter() - self._flushed_at >= self.flush_s:
+        frame_s = self.flush_s if pace.factor is not None else BUSY_FRAME_S
+        if pace.factor == 0 or time.perf_counter() - self._flushed_at >= frame_s:
             self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
         if pace.factor is not None:  # as fast as possible: nothing to wait for
             pace.wait(t_ns)

@@ -5,15 +5,13 @@
   mission;
 - :func:`check_file`: ``orccad check``'s :func:`~orccad_app.verify.checker.check_mission`;
 - :class:`LiveSession`: ``orccad run``'s plan and :class:`MissionRun`, observed by a
-  :class:`~orccad_app.tui.live.LiveObserver`, with the trace spooled to a temporary CSV file
-  for export.
+  :class:`~orccad_app.tui.live.LiveObserver`; its trace is exported by running it again
+  (deterministic: the same run) with a trace recorder.
 """
 
 from __future__ import annotations
 
-import csv
 import os
-import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -245,43 +243,6 @@ def _faults(run: Any) -> dict[str, str]:
     return found
 
 
-class _Spool:
-    """The run's trace, written as CSV to a temporary file as the run goes (a long run does
-    not fill the memory); :meth:`export` copies it, or converts it to MCAP."""
-
-    def __init__(self) -> None:
-        self._folder = tempfile.TemporaryDirectory(prefix="orccad-tui-")
-        self.path = Path(self._folder.name) / "trace.csv"
-        """Where the run writes it (the session's ``trace``, closed when the run ends)."""
-
-    def export(self, path: str, metadata: dict[str, str],
-               sensors: dict[tuple[str, str], str] | None = None,
-               progress: Callable[[float], None] | None = None) -> None:
-        """Write the trace to ``path`` (``progress`` gets the fraction done)."""
-        from orccad_app.trace import TraceRow, open_trace
-
-        if Path(path).suffix.lower() == ".csv":
-            shutil.copyfile(self.path, path)
-            if progress is not None:
-                progress(1.0)
-            return
-        with self.path.open(encoding="utf-8") as rows:
-            total = max(1, sum(1 for _ in rows) - 1)
-        writer = open_trace(path, metadata, sensors)
-        try:
-            with self.path.open(newline="", encoding="utf-8") as rows:
-                reader = csv.reader(rows)
-                next(reader)  # the header
-                for n, (time_ns, event, module, port, job, value) in enumerate(reader, 1):
-                    writer.write(TraceRow(int(time_ns), event, module, port, int(job), value))
-                    if progress is not None and n % 20_000 == 0:
-                        progress(n / total)
-        finally:
-            writer.close()
-        if progress is not None:
-            progress(1.0)
-
-
 class LiveSession:
     """One live run of ``mission`` of ``path`` (see the module docstring).
 
@@ -304,14 +265,11 @@ class LiveSession:
         """The mission file's text (the run screen shows where the mission waits in it)."""
         selected = select_mission(source, mission)
         self.mission = selected.name
-        self._trace = _Spool()
         if setting is not None:  # a campaign's run: its overrides, injections, seed, horizon
-            options = setting.options(injected_by=by, script=script,
-                                      trace=str(self._trace.path))
+            options = setting.options(injected_by=by, script=script)
             self.seed = setting.seed
         else:
-            options = RunOptions(script=script, seed=seed, until_s=until_s,
-                                 trace=str(self._trace.path))
+            options = RunOptions(script=script, seed=seed, until_s=until_s)
         self.session = RunSession(source, selected, options)
         """The run, planned (:class:`~orccad_app.session.RunSession`)."""
         self.run = self.session.run
@@ -369,7 +327,7 @@ class LiveSession:
         """Write the trace (``.csv`` or ``.mcap``) to ``path`` and return it: atomically (a
         temporary file renamed once complete), never over an existing file unless
         ``overwrite`` (``FileExistsError``)."""
-        from orccad_app.trace import TRACE_FORMATS, sensor_ports
+        from orccad_app.trace import TRACE_FORMATS
 
         suffix = Path(path).suffix.lower()
         if suffix not in TRACE_FORMATS:
@@ -377,16 +335,58 @@ class LiveSession:
                               f"{' or '.join(TRACE_FORMATS)})")
         if Path(path).exists() and not overwrite:
             raise FileExistsError(path)
-        metadata = {"mission": self.mission, "file": self.path, "seed": str(self.seed)}
-        sensors = sensor_ports(self.run.plan)
 
         def write(tmp: Path) -> None:
             named = tmp.with_suffix(suffix)  # the writer picks the format by the suffix
             try:
-                self._trace.export(str(named), metadata, sensors, progress)
+                self._replay_trace(str(named), progress)
                 os.replace(named, tmp)
             finally:
                 named.unlink(missing_ok=True)
 
         write_atomically(path, write)
         return path
+
+    def _replay_trace(self, path: str, progress: Callable[[float], None] | None) -> None:
+        """Run the finished run again with a trace recorder: the same options (plan, seed,
+        horizon, injections), the user's inputs as ``--inject`` at the instants they took
+        effect (the same run, :mod:`orccad_app.tui.user_inputs`), ended at the same reaction
+        when the user aborted it. The live run records no trace: a trace costs more than the
+        run."""
+        import dataclasses
+
+        from orccad_app.mission.injection import Injection
+
+        tick = self.run.tick_ns
+        user = []
+        for record in self.observer.injected:
+            last = record.time_ns if record.until_ns is None else record.until_ns
+            user += [Injection(record.name, time_ns, record.value, record.fault)
+                     for time_ns in range(record.time_ns, last + 1, tick)]
+        options = self.session.options
+        replay = RunSession(self.session.source, self.session.mission, dataclasses.replace(
+            options, injections=(*options.injections, *user), trace=path, trace_format=None,
+            trace_file=self.path, observers=()))
+        end_ns = self.result.sim_time_ns if self.result is not None else self.run.until_ns
+        replay.add_observer(_Replaying(replay.run, self.observer.aborted_at, end_ns, progress))
+        replay.execute()
+        if progress is not None:
+            progress(1.0)
+
+
+class _Replaying:
+    """Ends a replayed run at the reaction where the live run was aborted (``abort_at``, the
+    count of reactions then; ``None``: not aborted) and reports its progress."""
+
+    def __init__(self, run: Any, abort_at: int | None, end_ns: int,
+                 progress: Callable[[float], None] | None) -> None:
+        self.run, self.abort_at, self.end_ns, self.progress = run, abort_at, end_ns, progress
+        self.reactions = 0
+
+    def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
+                    status: str) -> None:
+        self.reactions += 1
+        if self.abort_at is not None and self.reactions >= self.abort_at:
+            self.run.abort("stopped by the user")
+        elif self.progress is not None and self.reactions % 2000 == 0 and self.end_ns:
+            self.progress(min(1.0, t_ns / self.end_ns))

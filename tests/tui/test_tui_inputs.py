@@ -8,6 +8,7 @@ from __future__ import annotations
 import pytest
 
 from orccad_app.cli import main
+from orccad_app.trace import CsvTraceWriter, TraceRecorder
 from orccad_app.tui.session import LiveSession
 from orccad_app.tui.user_inputs import due_ns
 
@@ -60,16 +61,20 @@ def console_run(tmp_path_factory):
         (2_500_000_000, lambda: observer.raise_input("Gripper", 0.3)),
         (3_200_000_000, lambda: observer.raise_input("Stop")),
     ]))
-    session.execute()
     folder = tmp_path_factory.mktemp("console")
-    trace = folder / "console.csv"
-    session.export(str(trace))
-    return session, trace, session.report()
+    live = folder / "live.csv"  # the live run itself, recorded by the test
+    writer = CsvTraceWriter(live)
+    session.run.add_observer(TraceRecorder(writer))
+    session.execute()
+    writer.close()
+    exported = folder / "console.csv"  # the console's export: the run replayed with a trace
+    session.export(str(exported))
+    return session, (live, exported), session.report()
 
 
 def test_console_inputs_give_the_run_of_inject_at_the_reported_instants(console_run, tmp_path,
                                                                         capsys):
-    session, console_trace, console_report = console_run
+    session, (live_trace, exported_trace), console_report = console_run
     records = session.observer.injected
     tick = session.run.tick_ns
     pressed = [1_606_000_000, 1_871_000_000, 2_500_000_000, 3_200_000_000]
@@ -85,7 +90,8 @@ def test_console_inputs_give_the_run_of_inject_at_the_reported_instants(console_
                    *_inject_args(records, tick)])
     cli_report = capsys.readouterr().out
     assert status == 0
-    assert console_trace.read_text() == cli_trace.read_text()  # row for row, bit for bit
+    assert live_trace.read_text() == cli_trace.read_text()  # row for row, bit for bit
+    assert exported_trace.read_text() == cli_trace.read_text()  # the export is that run
     assert _section(console_report, "Outputs:") == _section(cli_report, "Outputs:")
     assert "Stopping" in "\n".join(_section(cli_report, "Outputs:"))
 
