@@ -19,6 +19,7 @@ A run is a finite word of instants (letters: the atoms true in each reaction, as
 
 from __future__ import annotations
 
+import functools
 from enum import Enum
 from itertools import product
 from typing import Sequence
@@ -72,9 +73,17 @@ def ltl_verdict(formula: F, word: Sequence[frozenset], ended: bool) -> Verdict:
     return Verdict.UNDECIDED
 
 
+@functools.lru_cache(maxsize=64)
+def _monitor(formula: F, keys: tuple) -> tuple[Tableau, dict[frozenset, set]]:
+    """The tableau of ``formula`` over the atoms ``keys`` and its live states per set of
+    reached states, built once per process: a campaign's worker judges the same properties
+    on every run, and building a tableau generates and compiles its evaluation code."""
+    return Tableau(formula, _Bits(keys)), {}  # type: ignore[arg-type]
+
+
 def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
     """Some infinite continuation of ``word`` satisfies ``formula``."""
-    tableau = Tableau(formula, bits)  # type: ignore[arg-type]
+    tableau, live = _monitor(formula, tuple(bits.keys))
     states: set[tuple[int, int | None]] = {(0, None)}
     for letter in word:
         mask = bits.mask(letter)
@@ -82,7 +91,13 @@ def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
                   for guess, yn, _ in tableau.successors(mask, prev, required)}
         if not states:
             return False
-    return bool(states & _live_states(tableau, bits, states))
+    reached = frozenset(states)
+    alive = live.get(reached)
+    if alive is None:
+        if len(live) >= 256:  # bounded memory: forget and start again
+            live.clear()
+        alive = live[reached] = _live_states(tableau, bits, states)
+    return bool(states & alive)
 
 
 def _live_states(tableau: Tableau, bits: _Bits, start: set) -> set:

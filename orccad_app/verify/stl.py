@@ -30,10 +30,11 @@ is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``).
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
@@ -192,13 +193,33 @@ def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
     return StlFormula(text, writer.port_vars, writer.event_vars, period_ns)
 
 
-def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
-    """The robustness at time 0 of ``stl`` on ``samples`` (rtamt variable -> one value per
-    sample, every list of one length ≥ 1; events as ``±inf``)."""
+@functools.lru_cache(maxsize=64)
+def _parsed(text: str, period_ns: int, names: tuple[str, ...]) -> Any:
+    """rtamt's parsed specification of ``text`` over the variables ``names``, parsed once per
+    process and reused (a campaign's worker judges the same properties on every run):
+    parsing costs some 20 ms of ANTLR per formula, more than judging a short run. rtamt's
+    offline evaluation sets every variable from its dataset and recomputes every node, so a
+    reused specification gives what a fresh one gives
+    (``tests/verify/test_stl.py::test_a_reused_specification_equals_a_fresh_one``)."""
     with warnings.catch_warnings():  # antlr4 4.7 imports typing.io (deprecated)
         warnings.simplefilter("ignore", DeprecationWarning)
         import rtamt
 
+    spec = rtamt.StlDiscreteTimeSpecification()
+    for name in names:
+        spec.declare_var(name, "float")
+    spec.spec = text
+    spec.set_sampling_period(period_ns, "ns", 0.1)
+    try:
+        spec.parse()
+    except rtamt.RTAMTException as error:  # pragma: no cover - a translation defect
+        raise OrccadError(f"internal error: rtamt rejects {text!r}: {error}") from None
+    return spec
+
+
+def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
+    """The robustness at time 0 of ``stl`` on ``samples`` (rtamt variable -> one value per
+    sample, every list of one length ≥ 1; events as ``±inf``)."""
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
         raise ValueError(f"samples of unequal or zero length: {sorted(lengths)}")
@@ -206,15 +227,7 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     data = {name: [float(v) for v in values] for name, values in samples.items()}
     if count == 1:  # rtamt needs two samples; the run's only state holds one period more
         data = {name: values * 2 for name, values in data.items()}
-    spec = rtamt.StlDiscreteTimeSpecification()
-    for name in data:
-        spec.declare_var(name, "float")
-    spec.spec = stl.text
-    spec.set_sampling_period(stl.period_ns, "ns", 0.1)
-    try:
-        spec.parse()
-    except rtamt.RTAMTException as error:  # pragma: no cover - a translation defect
-        raise OrccadError(f"internal error: rtamt rejects {stl.text!r}: {error}") from None
+    spec = _parsed(stl.text, stl.period_ns, tuple(data))
     length = len(next(iter(data.values())))
     data["time"] = [k * stl.period_ns / 1e9 for k in range(length)]
     return float(spec.evaluate(data)[0][1])
