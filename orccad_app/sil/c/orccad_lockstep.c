@@ -1,0 +1,173 @@
+/* orccad_lockstep.c: the controller process of `orccad sil --lockstep`.
+ *
+ * The Module-Tasks of the generated table run here, in their own process; the plant server
+ * (orccad_app/sil/lockstep.py) keeps the timing model — releases, declared execution times,
+ * the port protocols, the automaton — and the MuJoCo plant, and sends one request per job
+ * over a Unix socket (a socketpair inherited as file descriptor argv[2]). Each request is
+ * answered before the plant goes on: the two wait for each other, so a run does not depend on
+ * the machine's speed.
+ *
+ * Frames (native byte order): request = u32 op, u32 module, f64 t_s, u32 n, u32 offset, then
+ * n doubles; reply = u32 status (0 ok), u32 n, then n doubles. A value slot is
+ * [present, v_0 .. v_(dim-1)]. C99, no allocation, no recursion. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "orccad_mt.h"
+
+enum { OP_HELLO = 1, OP_START = 2, OP_PARAM = 3, OP_INIT = 4, OP_COMPUTE = 5, OP_PING = 6,
+       OP_QUIT = 7 };
+
+#define MAX_DOUBLES (ORC_MAX_PORTS * (ORC_MAX_DIM + 1) + ORC_MAX_PARAMS)
+
+typedef struct {
+    uint32_t op, module;
+    double t_s;
+    uint32_t n, offset;
+} request_t;
+
+typedef struct {
+    uint32_t status, n;
+} reply_t;
+
+static double data_in[MAX_DOUBLES], data_out[MAX_DOUBLES];
+
+static int read_full(int fd, void *buf, size_t size)
+{
+    char *p = buf;
+    while (size > 0) {
+        ssize_t got = read(fd, p, size);
+        if (got == 0) {
+            return -1; /* the plant server closed the socket */
+        }
+        if (got < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            return -1;
+        }
+        p += got;
+        size -= (size_t)got;
+    }
+    return 0;
+}
+
+static int write_full(int fd, const void *buf, size_t size)
+{
+    const char *p = buf;
+    while (size > 0) {
+        ssize_t put = write(fd, p, size);
+        if (put < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            return -1;
+        }
+        p += put;
+        size -= (size_t)put;
+    }
+    return 0;
+}
+
+static int reply(int fd, uint32_t status, uint32_t n)
+{
+    reply_t head;
+    head.status = status;
+    head.n = n;
+    if (write_full(fd, &head, sizeof head) != 0) {
+        return -1;
+    }
+    return n ? write_full(fd, data_out, n * sizeof(double)) : 0;
+}
+
+static uint32_t compute(orc_mt *m, double t_s)
+{
+    int slot, i, k = 0, n = 0;
+    for (slot = 0; slot < m->n_in; slot++) {
+        m->in[slot].present = data_in[k++] != 0.0;
+        for (i = 0; i < m->in[slot].dim; i++) {
+            m->in[slot].v[i] = data_in[k++];
+        }
+    }
+    if (orc_mt_compute(m, t_s) != 0) {
+        return (uint32_t)-1;
+    }
+    for (slot = 0; slot < m->n_out; slot++) {
+        data_out[n++] = m->out[slot].present ? 1.0 : 0.0;
+        for (i = 0; i < m->out[slot].dim; i++) {
+            data_out[n++] = m->out[slot].present ? m->out[slot].v[i] : 0.0;
+        }
+    }
+    return (uint32_t)n;
+}
+
+int main(int argc, char **argv)
+{
+    int fd;
+    request_t req;
+    if (argc != 3 || strcmp(argv[1], "--fd") != 0) {
+        fprintf(stderr, "usage: %s --fd N (started by orccad sil)\n", argv[0]);
+        return 2;
+    }
+    fd = atoi(argv[2]);
+    for (;;) {
+        orc_mt *m = NULL;
+        uint32_t n;
+        if (read_full(fd, &req, sizeof req) != 0) {
+            return 0; /* the plant server is gone: end quietly */
+        }
+        if (req.n > MAX_DOUBLES || read_full(fd, data_in, req.n * sizeof(double)) != 0) {
+            return 3;
+        }
+        if (req.op != OP_HELLO && req.op != OP_PING && req.op != OP_QUIT) {
+            if (req.module >= (uint32_t)ORC_N_MODULES) {
+                reply(fd, 1, 0);
+                continue;
+            }
+            m = &ORC_INSTANCES[req.module];
+        }
+        switch (req.op) {
+        case OP_HELLO:
+            data_out[0] = (double)ORC_N_MODULES;
+            n = (uint32_t)strlen(ORC_TABLE_DIGEST);
+            memcpy(&data_out[1], ORC_TABLE_DIGEST, n < 64 ? n : 64);
+            if (reply(fd, 0, 9) != 0) {
+                return 3;
+            }
+            break;
+        case OP_START:
+            orc_mt_load(m, &ORC_MODULES[req.module]);
+            orc_mt_init(m);
+            reply(fd, 0, 0);
+            break;
+        case OP_PARAM:
+            reply(fd, orc_mt_set_param(m, (int)req.offset, data_in, (int)req.n) ? 2 : 0, 0);
+            break;
+        case OP_INIT:
+            orc_mt_init(m);
+            reply(fd, 0, 0);
+            break;
+        case OP_COMPUTE:
+            n = compute(m, req.t_s);
+            if (n == (uint32_t)-1) {
+                reply(fd, 3, 0);
+            } else if (reply(fd, 0, n) != 0) {
+                return 3;
+            }
+            break;
+        case OP_PING:
+            reply(fd, 0, 0);
+            break;
+        case OP_QUIT:
+            reply(fd, 0, 0);
+            return 0;
+        default:
+            reply(fd, 4, 0);
+        }
+    }
+}

@@ -1,0 +1,260 @@
+"""The C layout of a Module-Task: which C kind runs it, its slots and its parameter vector.
+
+A Python module instance (what the executive would run) is described to the C runtime
+(``orccad_app/sil/c/orccad_mt.c``) by a :class:`CLayout`: the C kind, the input and output
+ports in the Python kind's port order with their dimensions and types, and the parameters as
+one vector of doubles whose offsets the C kind reads (the layouts are listed at the top of
+``orccad_mt.c``). The robot file's data a kind needs — joint limits, the actuator constraint —
+goes into the vector too: the C code never reads the robot file.
+
+:func:`c_layout` refuses, with the module kind's name and the reason, a kind that has no C
+implementation (:class:`NoCImplementation`): a plugin's kind unknown to the runtime, a law
+other than PID (computed torque needs the Pinocchio model in C++, not generated yet), a task
+function other than joint tracking, a vector longer than the runtime's slots.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import Any
+
+import numpy as np
+
+from orccad_app.diagnostics import OrccadError
+
+__all__ = ["CKind", "CLayout", "CPort", "NoCImplementation", "c_layout", "MAX_DIM",
+           "MAX_PARAMS", "THRUSTER_ARM_M", "AUV_THRUST_LIMITS_N"]
+
+MAX_DIM = 8
+"""Components of a vector port in the C runtime (``ORC_MAX_DIM``)."""
+MAX_PORTS = 8
+MAX_PARAMS = 96
+"""Doubles of parameters of one C Module-Task (``ORC_MAX_PARAMS``)."""
+THRUSTER_ARM_M = 0.6
+"""The AUV's thruster lever arm [m] (``plugins/orccad_auv/vehicle.py``; a test checks it)."""
+_GUIDE_HEADER = 10
+_AUTOPILOT_GAINS = ("kp_depth", "kd_depth", "ki_depth", "max_integral", "max_heave",
+                    "kp_pitch", "kd_pitch", "kp_heading", "kd_heading", "k_speed", "drag_coeff")
+
+
+class CKind(IntEnum):
+    """The C kinds of ``orccad_mt.h`` (``enum orc_kind``)."""
+
+    TRAJ_COSINE = 1
+    TRAJ_MIN_JERK = 2
+    TRAJ_CONSTANT = 3
+    LAW_PID = 10
+    OBS_JOINT_LIMITS = 20
+    OBS_TORQUE_SAT = 21
+    OBS_TRACKING = 22
+    OBS_AT_REST = 23
+    AUV_AUTOPILOT = 30
+    AUV_GUIDANCE = 31
+    AUV_OBSERVER = 32
+
+
+class NoCImplementation(OrccadError):
+    """A Module-Task kind the C runtime cannot run (its name and the reason in the message)."""
+
+
+@dataclass(frozen=True)
+class CPort:
+    """One slot: the Python port's name, its type and its number of components."""
+
+    name: str
+    type: str
+    dim: int
+
+
+@dataclass(frozen=True)
+class CLayout:
+    """How the C runtime runs one Module-Task instance (see the module docstring)."""
+
+    kind: CKind
+    inputs: tuple[CPort, ...]
+    outputs: tuple[CPort, ...]
+    params: tuple[float, ...]
+
+    @property
+    def input_doubles(self) -> int:
+        """Doubles of a compute request: ``[present, v...]`` per input slot."""
+        return sum(1 + port.dim for port in self.inputs)
+
+    @property
+    def output_doubles(self) -> int:
+        """Doubles of a compute reply."""
+        return sum(1 + port.dim for port in self.outputs)
+
+
+def _ports(instance: Any, direction: str) -> tuple[CPort, ...]:
+    ports = tuple(CPort(p.name, p.type, p.dim or 1) for p in instance.ports
+                  if p.direction == direction)
+    if len(ports) > MAX_PORTS:
+        raise NoCImplementation(f"module kind {instance.kind.name!r}: {len(ports)} "
+                                f"{direction}put ports, the C runtime has {MAX_PORTS} slots")
+    for port in ports:
+        if port.dim > MAX_DIM:
+            raise NoCImplementation(f"module kind {instance.kind.name!r}: port {port.name!r} "
+                                    f"has {port.dim} components, the C runtime {MAX_DIM}")
+    return ports
+
+
+def _floats(values: Any) -> list[float]:
+    return [float(v) for v in np.asarray(values, dtype=float).reshape(-1)]
+
+
+def _trajectory(instance: Any) -> tuple[CKind, list[float]]:
+    from orccad_app.control.task_functions.joint import JointTracking
+    from orccad_app.control.trajectories.constant import Constant
+    from orccad_app.control.trajectories.cosine import Cosine
+    from orccad_app.control.trajectories.minimum_jerk import MinimumJerk
+
+    task_function = instance.task_function
+    if type(task_function) is not JointTracking:
+        raise NoCImplementation(f"module kind 'trajectory': task function "
+                                f"{task_function.name!r} has no C implementation (joint "
+                                f"tracking only)")
+    trajectory = task_function.trajectory
+    dim = task_function.dim
+    if type(trajectory) is Cosine:
+        return CKind.TRAJ_COSINE, [dim, trajectory.omega, *_floats(trajectory.q0)]
+    if type(trajectory) is MinimumJerk:
+        start = trajectory.start
+        return CKind.TRAJ_MIN_JERK, [dim, trajectory.duration, 0.0 if start is None else 1.0,
+                                     *_floats(trajectory.goal),
+                                     *(_floats(start) if start is not None else [0.0] * dim)]
+    if type(trajectory) is Constant:
+        value = trajectory.value
+        return CKind.TRAJ_CONSTANT, [dim, 0.0 if value is None else 1.0,
+                                     *(_floats(value) if value is not None else [0.0] * dim)]
+    raise NoCImplementation(f"module kind 'trajectory': trajectory {trajectory.name!r} has no "
+                            f"C implementation (cosine, min_jerk and constant have)")
+
+
+def _constraint(constraint: Any) -> list[float]:
+    return [*_floats(constraint.tau_min), *_floats(constraint.tau_max),
+            *_floats(constraint.alpha), *_floats(constraint.beta)]
+
+
+def _control_law(instance: Any) -> tuple[CKind, list[float]]:
+    from orccad_app.control.laws.pid import PID
+    from orccad_app.control.task_functions.joint import JointTracking
+
+    law = instance.law
+    if type(law) is not PID:
+        why = ("computed torque needs the robot's Pinocchio model in C++, which is not "
+               "generated yet" if law.name == "computed_torque" else "only pid has one")
+        raise NoCImplementation(f"module kind 'control_law': law {law.name!r} has no C "
+                                f"implementation: {why}")
+    if type(law.task_function) is not JointTracking:
+        raise NoCImplementation(f"module kind 'control_law': task function "
+                                f"{law.task_function.name!r} has no C implementation "
+                                f"(joint tracking only)")
+    gains = []
+    for matrix in (law.gains.kp, law.gains.kv, law.gains.ki):
+        diagonal = np.diag(matrix)
+        if np.count_nonzero(matrix - np.diag(diagonal)):
+            raise NoCImplementation("module kind 'control_law': pid with full gain matrices "
+                                    "has no C implementation (diagonal gains only)")
+        gains += _floats(diagonal)
+    return CKind.LAW_PID, [law.robot.dof, 1.0 if law.params.get("anti_windup", True) else 0.0,
+                           *gains, *_constraint(law.constraint)]
+
+
+def _robot(instance: Any) -> Any:
+    return instance.monitor.context.robot
+
+
+def _joint_limits(instance: Any) -> tuple[CKind, list[float]]:
+    robot = _robot(instance)
+    lower, upper = robot.joint_limits
+    return CKind.OBS_JOINT_LIMITS, [instance.params["margin"], robot.dof, *_floats(lower),
+                                    *_floats(upper)]
+
+
+def _torque_saturation(instance: Any) -> tuple[CKind, list[float]]:
+    constraint = _robot(instance).actuator_constraint
+    return CKind.OBS_TORQUE_SAT, [instance.params["ratio"], constraint.dim,
+                                  *_constraint(constraint)]
+
+
+def _tracking(instance: Any) -> tuple[CKind, list[float]]:
+    dims = [p.dim or 1 for p in instance.ports if p.direction == "in"]
+    return CKind.OBS_TRACKING, [instance.params["max"], max(dims)]
+
+
+def _at_rest(instance: Any) -> tuple[CKind, list[float]]:
+    dims = [p.dim or 1 for p in instance.ports if p.direction == "in"]
+    return CKind.OBS_AT_REST, [instance.params["tol"], dims[0]]
+
+
+def _threshold(mode: int, limit: str) -> Callable[[Any], tuple[CKind, list[float]]]:
+    def layout(instance: Any) -> tuple[CKind, list[float]]:
+        return CKind.AUV_OBSERVER, [instance.params[limit], float(mode)]
+    return layout
+
+
+AUV_THRUST_LIMITS_N = (60.0, 40.0, 40.0, 30.0, 30.0)
+"""The AUV's thruster limits [N] (``plugins/orccad_auv/vehicle.py``; a test checks them)."""
+
+
+def _autopilot(instance: Any) -> tuple[CKind, list[float]]:
+    return CKind.AUV_AUTOPILOT, [*(instance.params[name] for name in _AUTOPILOT_GAINS),
+                                 THRUSTER_ARM_M, *AUV_THRUST_LIMITS_N]
+
+
+def _guidance(instance: Any) -> tuple[CKind, list[float]]:
+    prm = instance.params
+    name = instance.kind.name
+    station = name in ("station_guidance", "hold_guidance")
+    mode = 0 if name == "depth_guidance" else 1 if station else 2
+    points: list[tuple[float, float]] = [] if mode != 2 else instance.kind.waypoints(prm)
+    if _GUIDE_HEADER + 2 * len(points) > MAX_PARAMS:
+        raise NoCImplementation(f"module kind {name!r}: {len(points)} waypoints, the C "
+                                f"runtime holds {(MAX_PARAMS - _GUIDE_HEADER) // 2}")
+    header = [float(mode), prm["depth"], prm.get("speed", 0.0), prm.get("x", 0.0),
+              prm.get("y", 0.0), prm.get("gain", 0.0), prm.get("max_speed", 0.0),
+              prm.get("radius", 0.0), prm.get("lookahead", 1.0), float(len(points))]
+    return CKind.AUV_GUIDANCE, header + [float(c) for point in points for c in point]
+
+
+_OBSERVERS: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
+    "joint_limits": _joint_limits,
+    "torque_saturation": _torque_saturation,
+    "tracking_error": _tracking,
+    "at_rest": _at_rest,
+    "battery_low": _threshold(0, "min"),
+    "altitude_low": _threshold(0, "min"),
+    "at_waypoint": _threshold(0, "tol"),
+    "leak": _threshold(1, "max"),
+    "depth_limit": _threshold(1, "max"),
+    "gps_fix": _threshold(2, "acquire"),
+}
+_MODULES: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
+    "trajectory": _trajectory,
+    "control_law": _control_law,
+    "auv_autopilot": _autopilot,
+    **{name: _guidance for name in ("depth_guidance", "los_guidance", "lawnmower_guidance",
+                                    "station_guidance", "waypoint_guidance", "hold_guidance")},
+}
+
+
+def c_layout(instance: Any) -> CLayout:
+    """The C layout of the module instance ``instance``; raises :class:`NoCImplementation`."""
+    name = instance.kind.name
+    if name in _OBSERVERS:
+        kind, params = _OBSERVERS[name](instance)
+        params = [1.0 if instance.params.get("edge") else 0.0, *params]
+    elif name in _MODULES:
+        kind, params = _MODULES[name](instance)
+    else:
+        raise NoCImplementation(f"module kind {name!r} has no C implementation: it exists only "
+                                f"in Python (its plugin provides no C), so it cannot run in "
+                                f"the controller process")
+    if len(params) > MAX_PARAMS:
+        raise NoCImplementation(f"module kind {name!r}: {len(params)} parameters, the C "
+                                f"runtime holds {MAX_PARAMS}")
+    return CLayout(kind, _ports(instance, "in"), _ports(instance, "out"),
+                   tuple(float(v) for v in params))

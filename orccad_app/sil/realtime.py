@@ -1,0 +1,296 @@
+"""Real-time software-in-the-loop: the Module-Tasks on real periodic threads.
+
+``orccad sil FILE --realtime``: the controller process (``orccad_app/sil/c/orccad_rt.c``) runs
+one thread per processor, releasing the active Module-Tasks with
+``clock_nanosleep(TIMER_ABSTIME)`` at their periods on the wall clock, under ``SCHED_FIFO``
+where permitted. This process is the **plant server and the mission's supervisor**: the
+executive's kernel paced to the wall clock (``MissionRun`` with ``realtime=1``) runs the
+mission's automaton and the MuJoCo plant, but no Module-Task job: every
+``exchange_ns`` it brings the plant to now, writes the robot's sensors into the shared memory
+(:mod:`orccad_app.sil.shared`), applies the torques the controller wrote, and turns the
+observers' events the controller counted into the automaton's inputs; what the automaton
+decides (start, kill, type-1 updates, fresh ports) goes to the controller over the socket.
+Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
+times. The heartbeat is a ``PING`` every 100 ms of the run.
+
+Only periodic Module-Tasks and ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
+releases) do not: a mission with another protocol or a ramp is refused with what and why (the
+lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
+(the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
+at most that long — a delay the simulated run does not have, so the tracking errors differ a
+little (docs/deploy.md).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tempfile
+import time
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.kernel import EventClass
+from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.run import MissionRun
+from orccad_app.sil.build import C_DIR, build_executable
+from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
+from orccad_app.sil.emit import ModuleTable, module_table, write_generated
+from orccad_app.sil.lockstep import RemoteSite
+from orccad_app.sil.shared import SharedMemory
+from orccad_app.tcs.module_task import Activation
+
+__all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
+
+_HEARTBEAT_NS = 100_000_000
+_EXCHANGE = EventClass.DELIVERY
+"""The exchange with the controller is a delivery: first in its instant."""
+_PLANT_FIFO_PRIORITY = 60
+"""The plant server's SCHED_FIFO priority, below the controller's threads' (80 minus the
+best Module-Task priority)."""
+
+
+@contextmanager
+def _fifo(priority: int) -> Iterator[bool]:
+    """This thread under SCHED_FIFO at ``priority`` while in the block, when permitted (else
+    unchanged: yields False)."""
+    import os
+
+    if not hasattr(os, "sched_setscheduler") or os.environ.get("ORCCAD_NO_FIFO"):
+        yield False
+        return
+    try:
+        policy, param = os.sched_getscheduler(0), os.sched_getparam(0)
+        os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(priority))
+    except OSError:
+        yield False
+        return
+    try:
+        yield True
+    finally:
+        os.sched_setscheduler(0, policy, param)
+
+
+@dataclass(frozen=True)
+class ModuleTiming:
+    """What the real-time run measured for one Module-Task, beside what ``orccad tcs``
+    predicted.
+
+    :param name: the TCS name.
+    :param released: jobs released.
+    :param lateness_s: release lateness ``(median, p99, max)`` [s] (``None`` without job).
+    :param overruns: releases skipped because the thread was still behind.
+    :param deadline_misses: jobs that ended after their period.
+    :param response_max_s: the longest measured response time [s].
+    :param predicted_s: ``orccad tcs``'s bound on the response time [s] (``None``: no bound).
+    """
+
+    name: str
+    released: int
+    lateness_s: tuple[float, float, float] | None
+    overruns: int
+    deadline_misses: int
+    response_max_s: float
+    predicted_s: float | None
+
+
+def _refuse_unsupported(plan: MissionPlan) -> None:
+    """Refuse what the real-time mode does not run, naming it and why."""
+    for site in plan.sites:
+        for exception, update in site.adjustments.items():
+            if update.form is not None and update.form.ramp is not None:
+                raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
+                                  f"is stepped at the executive's releases, which the real-time "
+                                  f"mode does not have (use --lockstep)", update.loc)
+    for task in plan.tcs.module_tasks:
+        if task.activation is not Activation.PERIODIC:
+            raise OrccadError(f"orccad sil --realtime runs periodic Module-Tasks only: "
+                              f"'{task.name}' is sporadic (released by interrupts; use "
+                              f"--lockstep)", task.location)
+    for connection in plan.tcs.connections:
+        if connection.protocol.value != "asyn/asyn":
+            raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
+                              f"{connection.producer} -> {connection.consumer} is "
+                              f"{connection.protocol.value} (use --lockstep, which runs every "
+                              f"protocol)", connection.location)
+
+
+class _ControllerSim:
+    """The executive's simulation as the mission layer sees it, with the Module-Tasks'
+    activations, kills and fresh ports sent to the controller instead of run here."""
+
+    def __init__(self, sim: Any, controller: ControllerProcess, table: ModuleTable) -> None:
+        self._sim = sim
+        self._controller = controller
+        self._table = table
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._sim, name)
+
+    @staticmethod
+    def _names(modules: Iterable[str] | str) -> list[str]:
+        return [modules] if isinstance(modules, str) else list(modules)
+
+    def activate(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
+        at = self._sim.kernel.now if at_ns is None else at_ns
+        for name in self._names(modules):
+            self._controller.request(Op.ACTIVATE, self._table.index(name), at / 1e9)
+
+    def kill(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
+        for name in self._names(modules):
+            self._controller.request(Op.KILL, self._table.index(name))
+
+    def reset_ports(self, modules: Iterable[str], at_ns: int | None = None) -> None:
+        for name in self._names(modules):
+            self._controller.request(Op.RESET, self._table.index(name))
+
+
+class RealtimeRun(MissionRun):
+    """A :class:`~orccad_app.mission.run.MissionRun` whose Module-Tasks run on the real-time
+    controller's threads (see the module docstring)."""
+
+    def __init__(self, plan: MissionPlan, table: ModuleTable, controller: ControllerProcess,
+                 shared: SharedMemory, **options: Any) -> None:
+        super().__init__(plan, realtime=1.0, **options)
+        self._table, self._controller, self._shared = table, controller, shared
+        self.sim = _ControllerSim(self.sim, controller, table)  # type: ignore[assignment]
+        self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
+        self._ports = [(k, port, *port.name.rsplit(".", 1))
+                       for k, port in enumerate(table.robot_ports)]
+        self._seen_actuators = [0] * len(table.robot_ports)
+        self._events = [0] * len(table.entries)
+        self._seqs = [0] * len(table.entries)
+        self._observers = [(m, entry.name) for m, entry in enumerate(table.entries)
+                           if entry.layout.outputs and entry.layout.outputs[0].type == "event"]
+        self._errors = [(m, entry.name, [p.name for p in entry.layout.outputs].index("e"),
+                         entry.layout.outputs[[p.name for p in entry.layout.outputs].index("e")].dim)
+                        for m, entry in enumerate(table.entries)
+                        if "e" in [p.name for p in entry.layout.outputs]]
+        self._next_ping = 0
+        # before the instant's reactions: at t = 0 the epoch and the first sensors are there
+        # before the automaton activates anything (a trajectory's clock then starts with the
+        # plant's), and at every exchange the events are read before the instant's tick
+        self.kernel.schedule(0, _EXCHANGE, self._exchange)
+
+    def _exchange(self, _: object) -> None:
+        now = self.kernel.now
+        if now == 0:
+            self._shared.set_epoch(time.monotonic_ns())
+            self._controller.request(Op.EPOCH)
+        self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
+        plants = self.sim.plants
+        shared = self._shared
+        for k, port, robot, name in self._ports:
+            plant = plants.get(robot)
+            if plant is None:
+                continue
+            if port.actuator:
+                seq, value = shared.read_port(k, port.dim)
+                if value is not None and seq != self._seen_actuators[k]:
+                    self._seen_actuators[k] = seq
+                    plant.actuate(name, value)
+            else:
+                shared.write_port(k, plant.sample(name))
+        for m, name in self._observers:
+            count = shared.events(m)
+            if count > self._events[m]:
+                self._events[m] = count
+                self.signal(f"{name}.{self._table.entries[m].layout.outputs[0].name}", True)
+        for m, name, slot, dim in self._errors:
+            if shared.seq(m) == self._seqs[m]:
+                continue
+            mirror = shared.mirror(m)
+            self._seqs[m] = mirror.seq
+            if mirror.outputs[slot][0]:
+                self.task_error(name, mirror.outputs[slot][1:1 + dim].copy())
+        if now >= self._next_ping:
+            self._next_ping = now + _HEARTBEAT_NS
+            self._controller.request(Op.PING)
+
+    def run(self) -> Any:
+        """The run, with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
+        below the controller's threads, and Python's cyclic garbage collector paused, so that
+        the plant keeps to the wall clock on a busy machine; both restored after."""
+        import gc
+
+        gc.collect()  # the cyclic collector paused during the run: a pause of the plant
+        gc.disable()  # server is a plant falling behind the wall clock
+        try:
+            with _fifo(_PLANT_FIFO_PRIORITY):
+                return super().run()
+        finally:
+            gc.enable()
+
+    def timings(self) -> list[ModuleTiming]:
+        """What was measured per Module-Task (read once the run has ended), the runtime
+        statistics of the report filled with it."""
+        predicted = _predicted_response_s(self.plan)
+        timings = []
+        for m, entry in enumerate(self._table.entries):
+            mirror = self._shared.mirror(m)
+            late = self._shared.latenesses_ns(m) / 1e9
+            lateness = None if not late.size else (float(np.median(late)),
+                                                   float(np.percentile(late, 99)),
+                                                   float(late.max()))
+            timings.append(ModuleTiming(entry.name, mirror.released, lateness, mirror.overruns,
+                                        mirror.misses, mirror.response_max_ns / 1e9,
+                                        predicted.get(entry.name)))
+            stats = self.sim.tasks[entry.name].stats
+            stats.released = stats.completed = mirror.released
+            stats.overruns, stats.late = mirror.overruns, mirror.misses
+            stats.response_max_ns = int(mirror.response_max_ns)
+        return timings
+
+
+def _predicted_response_s(plan: MissionPlan) -> dict[str, float]:
+    """``orccad tcs``'s response-time bound of every Module-Task, per Robot-Task [s]."""
+    from orccad_app.mission.tcs_bridge import task_tcs
+    from orccad_app.tcs.schedulability import analyse_timing
+
+    bounds: dict[str, float] = {}
+    for site in plan.sites:
+        analysis = analyse_timing(task_tcs(site.instance))
+        for local, name in zip(site.instance.modules, site.modules):
+            timing = analysis.tasks.get(local)
+            if timing is not None and timing.response_ns is not None:
+                bounds[name] = timing.response_ns / 1e9
+    return bounds
+
+
+def module_timings(run: RealtimeRun) -> list[ModuleTiming]:
+    """:meth:`RealtimeRun.timings`."""
+    return run.timings()
+
+
+@contextmanager
+def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S
+             ) -> Iterator[tuple[ModuleTable, ControllerProcess, SharedMemory]]:
+    """While in the block, the real-time controller of ``plan`` runs (its threads idle until
+    activated); ended, reaped and its shared memory removed when the block ends."""
+    _refuse_unsupported(plan)
+    table = module_table(plan)
+    shared = SharedMemory(len(table.robot_ports), len(table.entries))
+    try:
+        with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+            sources = write_generated(table, build_dir or Path(scratch), source, "orccad_rt.c")
+            sources.append(C_DIR / "orccad_io_shm.c")
+            executable = build_executable(sources, "orccad_controller_rt", ("-lm", "-pthread"))
+        controller = ControllerProcess(executable, len(table.entries), table.digest,
+                                       heartbeat_s, ("--io", shared.path))
+        try:
+            sites = []
+            for site in plan.sites:
+                fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
+                sites.append(RemoteSite(**fields, controller=controller, table=table))
+            plan.sites = sites
+            yield table, controller, shared
+        finally:
+            controller.close()
+    finally:
+        shared.close()

@@ -1,0 +1,115 @@
+"""A Module-Task whose compute runs in the controller process: :class:`RemoteModule`.
+
+The executive drives a :class:`RemoteModule` as it drives a Python module instance (``init``,
+``compute``, ``set_param``, ``get_param``, ``param_spec``), but each call becomes a request
+to the controller process (:class:`~orccad_app.sil.controller.ControllerProcess`), where the
+C Module-Task keeps all the state that ``compute`` uses. The Python instance made for the same
+start (its *shadow*) never computes: it validates type-1 updates and gives the parameter
+vector of the C layout (:func:`~orccad_app.sil.layout.c_layout`), so a run-time argument or an
+update reaches the C Module-Task exactly as the Python one would have taken it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from orccad_app.sil.controller import ControllerFailure, ControllerProcess, Op
+from orccad_app.sil.layout import CLayout, c_layout
+
+__all__ = ["RemoteModule"]
+
+
+class RemoteModule:
+    """The proxy of table entry ``index`` (see the module docstring).
+
+    :param controller: the controller process.
+    :param index: the Module-Task's index in the generated table.
+    :param nominal: its layout in the table (the parameters compiled in).
+    :param shadow: the Python instance of this start (never computes).
+    """
+
+    def __init__(self, controller: ControllerProcess, index: int, nominal: CLayout,
+                 shadow: Any) -> None:
+        self._controller = controller
+        self._index = index
+        self._shadow = shadow
+        self.kind = shadow.kind
+        self.ports = shadow.ports
+        layout = c_layout(shadow)
+        if layout.kind != nominal.kind or layout.inputs != nominal.inputs \
+                or layout.outputs != nominal.outputs:
+            raise ControllerFailure(f"module-task {index}: this start's layout differs from "
+                                    f"the generated table's")
+        self._layout = layout
+        self._inputs = [(p.name, p.dim) for p in layout.inputs]
+        self._outputs = [(p.name, p.type, p.dim) for p in layout.outputs]
+        controller.request(Op.START, index)
+        if layout.params != nominal.params:  # run-time arguments bound at this start
+            self._send_params(layout.params)
+
+    @property
+    def params(self) -> dict[str, Any]:
+        """The current parameters (the shadow's: updated with every type-1 update)."""
+        return self._shadow.params
+
+    def _send_params(self, params: tuple[float, ...]) -> None:
+        self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
+
+    def init(self) -> None:
+        """Activation: the C Module-Task resets its state."""
+        self._controller.request(Op.INIT, self._index)
+
+    def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        """One job, computed by the controller process."""
+        values: list[float] = []
+        for name, dim in self._inputs:
+            value = inputs.get(name)
+            if value is None:
+                values.extend([0.0] * (dim + 1))
+                continue
+            array = np.asarray(value, dtype=float).reshape(-1)
+            if array.size != dim:
+                raise ControllerFailure(f"input {name!r} has {array.size} components, the C "
+                                        f"Module-Task expects {dim}")
+            values.append(1.0)
+            values.extend(array.tolist())
+        reply = self._controller.request(Op.COMPUTE, self._index, t_s, values)
+        outputs: dict[str, Any] = {}
+        at = 0
+        for name, kind, dim in self._outputs:
+            present = reply[at] != 0.0
+            data = reply[at + 1:at + 1 + dim]
+            at += 1 + dim
+            if not present:
+                continue
+            if kind == "vector":
+                outputs[name] = np.array(data)
+            elif kind == "bool":
+                outputs[name] = data[0] != 0.0
+            elif kind == "event":
+                outputs[name] = True
+            else:
+                outputs[name] = data[0]
+        return outputs
+
+    def param_spec(self, name: str) -> Any:
+        """The declaration of parameter ``name`` (the shadow's)."""
+        return self._shadow.param_spec(name)
+
+    def get_param(self, name: str) -> Any:
+        """The current value of parameter ``name``."""
+        return self._shadow.get_param(name)
+
+    def set_param(self, name: str, value: Any) -> None:
+        """A type-1 update: validated by the shadow, then the new parameter vector sent."""
+        self._shadow.set_param(name, value)
+        layout = c_layout(self._shadow)
+        if layout.params != self._layout.params:
+            self._send_params(layout.params)
+            self._layout = layout
+
+    def __repr__(self) -> str:
+        return f"<{self.kind.name} module in the controller process, entry {self._index}>"

@@ -1,0 +1,130 @@
+"""The shared memory of the real-time controller: robot ports and Module-Task mirrors.
+
+One file under ``/dev/shm`` (a temporary directory where there is none), mapped by the plant
+server and by the controller (``orccad_app/sil/c/orccad_rt.c`` holds the same layout), as
+8-byte words:
+
+- a header of 8 words (word 1: the instant of the run's t = 0 on ``CLOCK_MONOTONIC`` [ns]);
+- per robot port of the table, ``[seq, v0 … v7]``: a sensor written by the plant server, an
+  actuator by the controller, each under a sequence lock (odd ``seq``: being written; 0:
+  never written);
+- per Module-Task, its mirror ``[seq, released, overruns, misses, events, lateness count,
+  response max [ns] (double), unused]`` then its output slots ``[present, v0 … v7]``;
+- per Module-Task, a ring of its last release latenesses [ns] (doubles).
+"""
+
+from __future__ import annotations
+
+import mmap
+import os
+import tempfile
+from dataclasses import dataclass
+
+import numpy as np
+
+from orccad_app.sil.layout import MAX_DIM, MAX_PORTS
+
+__all__ = ["SharedMemory", "Mirror", "LATENESS_RING"]
+
+HEADER_WORDS = 8
+ROBOT_WORDS = 1 + MAX_DIM
+MODULE_HEAD = 8
+MODULE_WORDS = MODULE_HEAD + MAX_PORTS * (1 + MAX_DIM)
+LATENESS_RING = 16384
+
+
+@dataclass(frozen=True)
+class Mirror:
+    """One read of a Module-Task's mirror."""
+
+    seq: int
+    released: int
+    overruns: int
+    misses: int
+    events: int
+    lateness_count: int
+    response_max_ns: float
+    outputs: np.ndarray
+    """Rows ``[present, v0 … v7]``, one per output slot."""
+
+
+class SharedMemory:
+    """The mapped file (see the module docstring) for ``robot_ports`` ports and ``modules``
+    Module-Tasks; removed by :meth:`close`."""
+
+    def __init__(self, robot_ports: int, modules: int) -> None:
+        self.robot_ports, self.modules = robot_ports, modules
+        words = (HEADER_WORDS + robot_ports * ROBOT_WORDS + modules * MODULE_WORDS
+                 + modules * LATENESS_RING)
+        where = "/dev/shm" if os.path.isdir("/dev/shm") else None
+        fd, self.path = tempfile.mkstemp(prefix="orccad-sil-", dir=where)
+        try:
+            os.ftruncate(fd, words * 8)
+            self._map = mmap.mmap(fd, words * 8)
+        finally:
+            os.close(fd)
+        self.ints = np.frombuffer(self._map, dtype=np.int64)
+        self.floats = np.frombuffer(self._map, dtype=np.float64)
+        self._robot = HEADER_WORDS
+        self._modules = self._robot + robot_ports * ROBOT_WORDS
+        self._rings = self._modules + modules * MODULE_WORDS
+
+    def set_epoch(self, monotonic_ns: int) -> None:
+        """The instant of t = 0 [ns, CLOCK_MONOTONIC]."""
+        self.ints[1] = monotonic_ns
+
+    def write_port(self, k: int, values: np.ndarray) -> None:
+        """Write robot port ``k`` (a sensor) under its sequence lock."""
+        at = self._robot + k * ROBOT_WORDS
+        data = np.asarray(values, dtype=float).reshape(-1)
+        self.ints[at] += 1
+        self.floats[at + 1:at + 1 + data.size] = data
+        self.ints[at] += 1
+
+    def read_port(self, k: int, dim: int) -> tuple[int, np.ndarray | None]:
+        """(its sequence, the values) of robot port ``k`` (an actuator); ``None`` before
+        the first write."""
+        at = self._robot + k * ROBOT_WORDS
+        while True:
+            before = int(self.ints[at])
+            values = self.floats[at + 1:at + 1 + dim].copy()
+            if before == int(self.ints[at]) and not before & 1:
+                return before, (values if before else None)
+
+    def mirror(self, m: int) -> Mirror:
+        """A consistent read of Module-Task ``m``'s mirror."""
+        at = self._modules + m * MODULE_WORDS
+        while True:
+            before = int(self.ints[at])
+            head = self.ints[at:at + MODULE_HEAD].copy()
+            response = float(self.floats[at + 6])
+            outputs = self.floats[at + MODULE_HEAD:at + MODULE_WORDS].copy()
+            if before == int(self.ints[at]) and not before & 1:
+                return Mirror(before, int(head[1]), int(head[2]), int(head[3]), int(head[4]),
+                              int(head[5]), response, outputs.reshape(MAX_PORTS, 1 + MAX_DIM))
+
+    def seq(self, m: int) -> int:
+        """The sequence of Module-Task ``m``'s mirror (it changes with every job)."""
+        return int(self.ints[self._modules + m * MODULE_WORDS])
+
+    def events(self, m: int) -> int:
+        """The events Module-Task ``m`` has fired (one aligned word: read whole)."""
+        return int(self.ints[self._modules + m * MODULE_WORDS + 4])
+
+    def latenesses_ns(self, m: int) -> np.ndarray:
+        """The release latenesses of Module-Task ``m`` still in its ring [ns]."""
+        count = int(self.ints[self._modules + m * MODULE_WORDS + 5])
+        at = self._rings + m * LATENESS_RING
+        return self.floats[at:at + min(count, LATENESS_RING)].copy()
+
+    def close(self) -> None:
+        """Unmap and remove the file."""
+        self.ints = self.floats = np.empty(0)
+        try:
+            self._map.close()
+        except BufferError:  # a view still alive: the file goes anyway
+            pass
+        try:
+            os.unlink(self.path)
+        except FileNotFoundError:
+            pass

@@ -1,0 +1,72 @@
+"""Each C Module-Task kind computes what its Python kind computes, on the same inputs: bit for
+bit for the arm's kinds (the same IEEE operations in the same order), within 1e-12 relative
+for the AUV's (distances through hypot, whose last bit may differ from Python's math.dist)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from orccad_app.mission.plan import SiteModules
+from orccad_app.sil.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
+from orccad_app.sil.lockstep import lockstep
+from orccad_app.sil.remote import RemoteModule
+
+from tests.sil.helpers import plan_of
+
+
+def _inputs(instance, rng: np.random.Generator, scale: float) -> dict:
+    values = {}
+    for port in instance.ports:
+        if port.direction != "in" or rng.random() < 0.1:  # sometimes "none yet"
+            continue
+        dim = port.dim or 1
+        data = rng.normal(0.0, scale, dim)
+        if port.type == "float":
+            values[port.name] = float(abs(data[0]) * 10)
+        else:
+            values[port.name] = data
+    return values
+
+
+def _same(expected: dict, got: dict, exact: bool) -> None:
+    assert expected.keys() == got.keys()
+    for name, value in expected.items():
+        want = np.asarray(value, dtype=float)
+        have = np.asarray(got[name], dtype=float)
+        if exact:
+            assert want.tobytes() == have.tobytes(), name
+        else:
+            np.testing.assert_allclose(have, want, rtol=1e-12, atol=1e-300, err_msg=name)
+
+
+CASES = [("arm_pid.orc", None, True, 0.6), ("arm_retune.orc", None, True, 0.6),
+         ("arm_recovery.orc", None, True, 0.6), ("auv_survey.orc", None, False, 20.0),
+         ("auv_waypoints.orc", None, False, 20.0)]
+
+
+@pytest.mark.parametrize("file,mission,exact,scale", CASES)
+def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact, scale):
+    plan = plan_of(file, mission)
+    rng = np.random.default_rng(7)
+    with lockstep(plan, file) as controller:
+        for site in plan.sites:
+            remotes = site.fresh_computes()
+            pythons = SiteModules.fresh_computes(site)  # new Python instances, same args
+            for name, remote in remotes.items():
+                assert isinstance(remote, RemoteModule)
+                python = pythons[name]
+                python.init()
+                remote.init()
+                for job in range(60):
+                    t_s = 0.001 * job
+                    inputs = _inputs(python, rng, scale)
+                    _same(python.compute(t_s, inputs), remote.compute(t_s, inputs), exact)
+        assert controller.alive
+
+
+def test_the_auv_constants_are_the_plugins():
+    from orccad_auv import vehicle
+
+    assert THRUSTER_ARM_M == vehicle.THRUSTER_ARM_M
+    assert AUV_THRUST_LIMITS_N == tuple(vehicle.THRUST_LIMITS_N.tolist())

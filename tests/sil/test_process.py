@@ -1,0 +1,120 @@
+"""A controller process that crashes, hangs or whose plant server dies: the run ends
+``failed`` with the reason, the trace is complete, and no process is left behind (tested by
+killing and stopping the real process)."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from mcap.reader import make_reader
+
+from orccad_app.sil.lockstep import lockstep
+from orccad_app.trace import TraceRecorder, open_trace, sensor_ports
+
+from tests.sil.helpers import MISSIONS, mission_run, plan_of
+
+
+def _controllers_of(parent: int) -> list[int]:
+    """The pids of the live controller processes whose parent is ``parent``."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        name = stat[stat.index("(") + 1:stat.rindex(")")]
+        fields = stat[stat.rindex(")") + 2:].split()
+        if int(fields[1]) == parent and name.startswith("orccad_control") and fields[0] != "Z":
+            found.append(int(entry.name))
+    return found
+
+
+def _gone(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    return False
+
+
+class _SignalAt:
+    """Sends ``signum`` to the controller at the first release at or after ``at_ns``."""
+
+    def __init__(self, controller, signum: int, at_ns: int) -> None:
+        self.controller, self.signum, self.at_ns, self.sent = controller, signum, at_ns, False
+
+    def on_release(self, now: int, name: str, index: int) -> None:
+        if now >= self.at_ns and not self.sent:
+            self.sent = True
+            os.kill(self.controller.pid, self.signum)
+
+
+@pytest.mark.parametrize("signum,words", [(signal.SIGKILL, "crashed: killed by SIGKILL"),
+                                          (signal.SIGSTOP, "hung: no answer")])
+def test_a_crashed_or_hung_controller_fails_the_run_with_its_reason(tmp_path, signum, words):
+    plan = plan_of("arm_pid.orc")
+    trace = tmp_path / "run.mcap"
+    with lockstep(plan, "arm_pid.orc", heartbeat_s=0.5) as controller:
+        pid = controller.pid
+        writer = open_trace(str(trace), {"mission": "ArmPID"}, sensor_ports(plan))
+        run = mission_run(plan, observers=[_SignalAt(controller, signum, 10**9)])
+        run.add_observer(TraceRecorder(writer))
+        try:
+            result = run.run()
+        finally:
+            writer.close()
+        assert _gone(pid)  # killed and reaped at once, not at the end of the block
+    assert result.status == "failed"
+    assert words in result.reason
+    assert 1.0 <= result.sim_time_ns / 1e9 < 1.01
+    with open(trace, "rb") as stream:  # complete: the summary is there, every message reads
+        messages = list(make_reader(stream).iter_messages())
+    assert max(message.log_time for _, _, message in messages) >= 999_000_000  # up to 1 s
+    assert _controllers_of(os.getpid()) == []
+
+
+def _orccad(*args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "orccad_app", "sil", *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _wait_for_controller(parent: int, timeout_s: float = 60.0) -> int:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        found = _controllers_of(parent)
+        if found:
+            return found[0]
+        time.sleep(0.02)
+    raise AssertionError("the controller process did not start")
+
+
+def test_killing_the_controller_under_the_command_ends_it_failed_with_the_reason():
+    command = _orccad(str(MISSIONS / "auv_survey.orc"), "--lockstep", "--json")
+    controller = _wait_for_controller(command.pid)
+    os.kill(controller, signal.SIGKILL)
+    out, err = command.communicate(timeout=120)
+    assert command.returncode == 1, err
+    report = json.loads(out)
+    assert report["status"] == "failed"
+    assert "killed by SIGKILL" in report["reason"]
+    assert _gone(controller)
+
+
+def test_killing_the_plant_server_ends_the_controller_too():
+    command = _orccad(str(MISSIONS / "auv_survey.orc"), "--lockstep")
+    controller = _wait_for_controller(command.pid)
+    command.kill()  # SIGKILL: no clean-up code of the plant server runs
+    command.communicate(timeout=60)
+    deadline = time.monotonic() + 10.0
+    while time.monotonic() < deadline and not _gone(controller):
+        time.sleep(0.02)  # the controller reads end-of-file on its socket and exits
+    assert _gone(controller) or Path(f"/proc/{controller}/stat").read_text().split()[2] == "Z"

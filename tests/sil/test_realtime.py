@@ -1,0 +1,87 @@
+"""Real-time SIL: functional checks only (never timings). The controller's threads run the
+Module-Tasks on the wall clock; the mission recovers as in simulation; the measured timing is
+reported beside orccad tcs's bounds; a controller killed mid-run fails the run with the reason
+and leaves no process; without SCHED_FIFO a warning says why."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from orccad_app.diagnostics import OrccadError
+from orccad_app.mission.injection import parse_injection
+from orccad_app.sil.realtime import RealtimeRun, realtime
+
+from tests.sil.helpers import MISSIONS, plan_of
+from tests.sil.test_process import _controllers_of, _gone
+
+
+def _run(plan, table, controller, shared, **options) -> RealtimeRun:
+    from orccad_app.executive.bus import Bus
+    from orccad_app.executive.processor import Processor
+
+    until_ns = int(plan.run_horizon_s(60.0) * 1e9)
+    return RealtimeRun(plan, table, controller, shared, until_ns=until_ns, bus=Bus(),
+                       processors=[Processor(name) for name in plan.processor_names], **options)
+
+
+def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
+    plan = plan_of("arm_recovery.orc")
+    inject = [parse_injection("TrackPID.TrackingLost@2.5")]
+    with realtime(plan, "arm_recovery.orc") as (table, controller, shared):
+        run = _run(plan, table, controller, shared, injections=inject)
+        result = run.run()
+        timings = {t.name: t for t in run.timings()}
+    assert result.status == "done", result.reason
+    assert [(r.name, r.outcome) for r in result.robot_tasks] == [
+        ("Home", "good_end"), ("TrackPID", "TrackingLost"), ("Home", "good_end"),
+        ("TrackPID", "good_end")]
+    assert abs(result.robot_tasks[1].end_ns - 2_500_000_000) <= 2_000_000
+    for record in result.robot_tasks:
+        assert record.errors.max_abs < 0.1  # the arm tracks on the real threads
+    ctrl = timings["TrackPID.ctrl"]
+    assert ctrl.released > 4000 and ctrl.lateness_s is not None
+    assert ctrl.predicted_s == pytest.approx(0.0003)
+    assert timings["Park.ctrl"].released == 0  # never started
+    assert _controllers_of(os.getpid()) == []
+
+
+def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
+    plan = plan_of("arm_pid.orc")
+
+    class Kill:
+        sent = False
+
+        def on_reaction(self, now, inputs, outputs, status):
+            if now >= 500_000_000 and not self.sent:
+                self.sent = True
+                os.kill(controller.pid, signal.SIGKILL)
+
+    with realtime(plan, "arm_pid.orc") as (table, controller, shared):
+        result = _run(plan, table, controller, shared, observers=[Kill()]).run()
+        assert _gone(controller.pid)
+    assert result.status == "failed"
+    assert "killed by SIGKILL" in result.reason
+    assert _controllers_of(os.getpid()) == []
+
+
+@pytest.mark.parametrize("file,mission,words", [
+    ("arm_retune.orc", None, "ramp"), ("arm_interrupts.orc", "ArmInterrupts", "sporadic")])
+def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason(file, mission, words):
+    with pytest.raises(OrccadError, match=words):
+        with realtime(plan_of(file, mission), file):
+            pass
+
+
+def test_without_sched_fifo_a_warning_says_why():
+    env = {**os.environ, "ORCCAD_NO_FIFO": "1"}
+    done = subprocess.run([sys.executable, "-m", "orccad_app", "sil",
+                           str(MISSIONS / "arm_pid.orc"), "--realtime", "--until", "0.3"],
+                          capture_output=True, text=True, timeout=120, env=env)
+    assert "SCHED_FIFO is not permitted here (ORCCAD_NO_FIFO is set)" in done.stderr
+    assert done.returncode == 1  # timeout at 0.3 s: the run itself went on
+    assert "Measured on the controller's threads" in done.stdout
