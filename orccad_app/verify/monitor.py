@@ -74,29 +74,55 @@ def ltl_verdict(formula: F, word: Sequence[frozenset], ended: bool) -> Verdict:
 
 
 @functools.lru_cache(maxsize=64)
-def _monitor(formula: F, keys: tuple) -> tuple[Tableau, dict[frozenset, set]]:
-    """The tableau of ``formula`` over the atoms ``keys`` and its live states per set of
-    reached states, built once per process: a campaign's worker judges the same properties
-    on every run, and building a tableau generates and compiles its evaluation code."""
-    return Tableau(formula, _Bits(keys)), {}  # type: ignore[arg-type]
+def _monitor(formula: F, keys: tuple) -> _Monitor:
+    """The tableau of ``formula`` over the atoms ``keys`` with its caches, built once per
+    process: a campaign's worker judges the same properties on every run, and building a
+    tableau generates and compiles its evaluation code."""
+    return _Monitor(Tableau(formula, _Bits(keys)))  # type: ignore[arg-type]
+
+
+class _Monitor:
+    """A tableau and what reading words through it has computed: the states reached from a
+    set of states by a letter, and the live states of a set (both bounded in size)."""
+
+    LIMIT = 4096
+
+    def __init__(self, tableau: Tableau) -> None:
+        self.tableau = tableau
+        self.steps: dict[tuple[frozenset, int], frozenset] = {}
+        self.live: dict[frozenset, set] = {}
+
+    def step(self, states: frozenset, mask: int) -> frozenset:
+        key = (states, mask)
+        found = self.steps.get(key)
+        if found is None:
+            if len(self.steps) >= self.LIMIT:
+                self.steps.clear()
+            successors = self.tableau.successors
+            found = self.steps[key] = frozenset(
+                (yn, guess) for prev, required in states
+                for guess, yn, _ in successors(mask, prev, required))
+        return found
 
 
 def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
     """Some infinite continuation of ``word`` satisfies ``formula``."""
-    tableau, live = _monitor(formula, tuple(bits.keys))
-    states: set[tuple[int, int | None]] = {(0, None)}
+    monitor = _monitor(formula, tuple(bits.keys))
+    masks: dict[frozenset, int] = {}
+    states: frozenset = frozenset({(0, None)})
+    step = monitor.step
     for letter in word:
-        mask = bits.mask(letter)
-        states = {(yn, guess) for prev, required in states
-                  for guess, yn, _ in tableau.successors(mask, prev, required)}
+        mask = masks.get(letter)
+        if mask is None:
+            mask = masks[letter] = bits.mask(letter)
+        states = step(states, mask)
         if not states:
             return False
-    reached = frozenset(states)
-    alive = live.get(reached)
+    alive = monitor.live.get(states)
     if alive is None:
-        if len(live) >= 256:  # bounded memory: forget and start again
-            live.clear()
-        alive = live[reached] = _live_states(tableau, bits, states)
+        if len(monitor.live) >= monitor.LIMIT:  # bounded memory: forget and start again
+            monitor.live.clear()
+        alive = monitor.live[states] = _live_states(monitor.tableau, bits, set(states))
     return bool(states & alive)
 
 
