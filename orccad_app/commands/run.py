@@ -182,6 +182,16 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     return live
 
 
+def _verdict_samples(monitor: Any) -> Any:
+    """Every property's verdict on the run so far, for the trace's ``/properties`` topics."""
+    from orccad_app.trace import VerdictSample
+
+    def samples() -> list:
+        return [VerdictSample(r.name, r.verdict.value, r.robustness, r.unit, r.samples)
+                for r in monitor.running()]
+    return samples
+
+
 def _processors(plan, args: argparse.Namespace) -> list:
     from orccad_app.executive.processor import Processor
 
@@ -242,8 +252,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
-    from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
-                                  report_dict, sensor_ports)
+    from orccad_app.trace import (InjectionRecord, format_report, open_trace, report_dict,
+                                  sensor_ports, trace_recorder)
 
     _file_after_injections(args)
     _terminate_like_ctrl_c()
@@ -284,13 +294,18 @@ def run(args: argparse.Namespace) -> int:
 
         progress = ProgressLine(sys.stderr, mission_run.until_ns)
         mission_run.add_observer(progress)
+    verdicts = _verdict_samples(monitor)
     if args.trace:
-        writer = open_trace(args.trace, {"mission": mission.name, "file": args.file,
-                                         "seed": str(args.seed)}, sensor_ports(plan))
-        mission_run.add_observer(TraceRecorder(writer))
-    live = _foxglove(args, mission.name, plan) if args.foxglove else None
-    if live is not None:
-        mission_run.add_observer(TraceRecorder(live))
+        writer = trace_recorder(open_trace(args.trace, {"mission": mission.name,
+                                                        "file": args.file,
+                                                        "seed": str(args.seed)},
+                                           sensor_ports(plan)), mission_run, verdicts=verdicts)
+        mission_run.add_observer(writer)
+    live = None
+    if args.foxglove:
+        live = trace_recorder(_foxglove(args, mission.name, plan), mission_run,
+                              verdicts=verdicts)
+        mission_run.add_observer(live)
     try:
         try:
             with _signals_end_the_run(mission_run):

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from orccad_app.executive.observer import Observer
 from orccad_app.mission.result import ExceptionRecord
+from orccad_app.robottask.labels import Phase
 
 __all__ = ["MISSION_HOOKS", "MissionObserver"]
 
-MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception")
+MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception", "on_state")
 """Mission-level callbacks an observer may define besides the executive's."""
 
 
@@ -35,3 +36,7 @@ class MissionObserver(Observer):
 
     def on_exception(self, record: ExceptionRecord) -> None:
         """An exception was raised (or a type-1 adjustment applied)."""
+
+    def on_state(self, t_ns: int, state: int, phases: dict[int, Phase]) -> None:
+        """The automaton entered ``state`` at ``t_ns`` (after the reaction's task starts and
+        ends); ``phases`` maps the run site of every running Robot-Task to its phase."""

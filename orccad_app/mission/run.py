@@ -318,12 +318,16 @@ class MissionRun:
             if name in self._outputs:
                 self.outputs.append((now, name, values.get(name)))
         raised = self._exceptions(now, step.outputs)
-        if self.reactor.state != self._state:
+        changed = self.reactor.state != self._state
+        if changed:
             self._state = self.reactor.state
             phases = self._phases()
         else:
             phases = self._phase
         self._update_sites(now, emitted, raised, phases, values)
+        if changed:
+            for hook in self._hooks["on_state"]:
+                hook(now, self.reactor.state, phases)
         if self.reactor.finished:
             self.kernel.stop()
 

@@ -37,7 +37,7 @@ from orccad_app.mission.run import MissionRun
 from orccad_app.properties.recorder import PropertyRecorder
 from orccad_app.verify.checker import applicable
 from orccad_app.verify.formula import atoms, from_ast
-from orccad_app.verify.monitor import Verdict, ltl_verdict
+from orccad_app.verify.monitor import LtlMonitor, Verdict, ltl_verdict
 from orccad_app.lang.signal_types import formula_unit, port_signals
 from orccad_app.verify.stl import StlFormula, robustness, translate
 
@@ -143,6 +143,7 @@ class PropertyMonitor:
             ports |= {(c.robot, c.port) for c in signal.stl.ports.values()}
             task_errors.update(signal.task_errors)
         self.recorder = PropertyRecorder(mission_run, keys, ports, self.period_ns, task_errors)
+        self._running: list[LtlMonitor] | None = None
         if props:
             mission_run.add_observer(self.recorder)
 
@@ -171,6 +172,23 @@ class PropertyMonitor:
         found: list[tuple[ast.Property, PropertyResult]] = []
         for prop, formula in self._ltl:
             verdict = ltl_verdict(formula, recorder.letters, recorder.ended)
+            found.append((prop, PropertyResult(prop.name, PropertyKind.LTL, verdict,
+                                               samples=len(recorder.letters))))
+        for signal in self._signal:
+            found.append((signal.prop, self._signal_result(signal)))
+        found.sort(key=lambda item: (item[0].loc.line, item[0].loc.col))
+        return [result for _, result in found]
+
+    def running(self) -> list[PropertyResult]:
+        """:meth:`results` during the run, cheaply: an LTL property's verdict reads only the
+        instants new since the last call (:class:`~orccad_app.verify.monitor.LtlMonitor`); a
+        signal property is evaluated on the whole run so far."""
+        recorder = self.recorder
+        if self._running is None:
+            self._running = [LtlMonitor(formula) for _, formula in self._ltl]
+        found: list[tuple[ast.Property, PropertyResult]] = []
+        for (prop, _), monitor in zip(self._ltl, self._running):
+            verdict = monitor.verdict(recorder.letters, recorder.ended)
             found.append((prop, PropertyResult(prop.name, PropertyKind.LTL, verdict,
                                                samples=len(recorder.letters))))
         for signal in self._signal:

@@ -33,7 +33,7 @@ class BuildError(OrccadError):
 
 def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
     """The runtime library's C files for the controller whose ``main`` is in ``main``."""
-    return [C_DIR / "orccad_mt.c", C_DIR / main]
+    return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", C_DIR / main]
 
 
 def compiler() -> str:
@@ -59,7 +59,7 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     digest = hashlib.sha256()
     for part in (cc, *CFLAGS, *libraries):
         digest.update(part.encode() + b"\0")
-    for path in [*sources, C_DIR / "orccad_mt.h", C_DIR / "orccad_io.h"]:
+    for path in [*sources, *sorted(C_DIR.glob("*.h"))]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     target_dir = _cache_dir() / "sil" / digest.hexdigest()[:24]
     target = target_dir / name

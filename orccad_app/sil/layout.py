@@ -9,7 +9,7 @@ goes into the vector too: the C code never reads the robot file.
 
 :func:`c_layout` refuses, with the module kind's name and the reason, a kind that has no C
 implementation (:class:`NoCImplementation`): a plugin's kind unknown to the runtime, a law
-other than PID (computed torque needs the Pinocchio model in C++, not generated yet), a task
+other than PID or computed torque, a model other than Pinocchio's (exact or perturbed), a task
 function other than joint tracking, a vector longer than the runtime's slots.
 """
 
@@ -27,10 +27,10 @@ from orccad_app.diagnostics import OrccadError
 __all__ = ["CKind", "CLayout", "CPort", "NoCImplementation", "c_layout", "MAX_DIM",
            "MAX_PARAMS", "THRUSTER_ARM_M", "AUV_THRUST_LIMITS_N"]
 
-MAX_DIM = 8
+MAX_DIM = 16
 """Components of a vector port in the C runtime (``ORC_MAX_DIM``)."""
 MAX_PORTS = 8
-MAX_PARAMS = 96
+MAX_PARAMS = 192
 """Doubles of parameters of one C Module-Task (``ORC_MAX_PARAMS``)."""
 THRUSTER_ARM_M = 0.6
 """The AUV's thruster lever arm [m] (``plugins/orccad_auv/vehicle.py``; a test checks it)."""
@@ -46,6 +46,9 @@ class CKind(IntEnum):
     TRAJ_MIN_JERK = 2
     TRAJ_CONSTANT = 3
     LAW_PID = 10
+    LAW_CT = 11
+    MODEL_DYN = 12
+    CT_FEEDBACK = 13
     OBS_JOINT_LIMITS = 20
     OBS_TORQUE_SAT = 21
     OBS_TRACKING = 22
@@ -140,14 +143,20 @@ def _constraint(constraint: Any) -> list[float]:
 
 def _control_law(instance: Any) -> tuple[CKind, list[float]]:
     from orccad_app.control.laws.pid import PID
+    from orccad_app.control.laws.scheme import ComputedTorque
     from orccad_app.control.task_functions.joint import JointTracking
 
     law = instance.law
+    if type(law) is ComputedTorque and type(law.task_function) is JointTracking:
+        return CKind.LAW_CT, [law.robot.dof, 1.0 if law.feedforward else 0.0,
+                              *_diagonal("control_law", law.gains.kp),
+                              *_diagonal("control_law", law.gains.kv),
+                              *_constraint(law.constraint),
+                              *_model_damping("control_law", law.model),
+                              *_model_block("control_law", law.model)]
     if type(law) is not PID:
-        why = ("computed torque needs the robot's Pinocchio model in C++, which is not "
-               "generated yet" if law.name == "computed_torque" else "only pid has one")
         raise NoCImplementation(f"module kind 'control_law': law {law.name!r} has no C "
-                                f"implementation: {why}")
+                                f"implementation (pid and computed_torque have)")
     if type(law.task_function) is not JointTracking:
         raise NoCImplementation(f"module kind 'control_law': task function "
                                 f"{law.task_function.name!r} has no C implementation "
@@ -161,6 +170,75 @@ def _control_law(instance: Any) -> tuple[CKind, list[float]]:
         gains += _floats(diagonal)
     return CKind.LAW_PID, [law.robot.dof, 1.0 if law.params.get("anti_windup", True) else 0.0,
                            *gains, *_constraint(law.constraint)]
+
+
+def _diagonal(kind: str, matrix: Any) -> list[float]:
+    diagonal = np.diag(matrix)
+    if np.count_nonzero(matrix - np.diag(diagonal)):
+        raise NoCImplementation(f"module kind {kind!r}: full gain matrices have no C "
+                                f"implementation (diagonal gains only)")
+    return _floats(diagonal)
+
+
+_AXES = {"JointModelRX": (1.0, 0.0, 0.0), "JointModelRY": (0.0, 1.0, 0.0),
+         "JointModelRZ": (0.0, 0.0, 1.0)}
+_JOINT_WORDS = 27
+MAX_JOINTS = 8
+"""Joints of a model in the C runtime (``ORC_MAX_JOINTS``)."""
+
+
+def _pinocchio(kind: str, model: Any) -> Any:
+    from orccad_app.control.models import PinocchioModel
+
+    if type(model) is not PinocchioModel:
+        raise NoCImplementation(f"module kind {kind!r}: the {type(model).__name__} has no C "
+                                f"implementation (the Pinocchio model, exact or perturbed, has)")
+    return model
+
+
+def _model_damping(kind: str, model: Any) -> list[float]:
+    return _floats(_pinocchio(kind, model).damping)
+
+
+def _model_block(kind: str, model: Any) -> list[float]:
+    """The rigid-body model for ``orccad_dynamics.c``, from Pinocchio's model of the robot
+    file: gravity, then per joint its parent, axis, placement, body inertia and armature."""
+    pin = _pinocchio(kind, model).model
+    joints = pin.njoints - 1
+    if joints > MAX_JOINTS or pin.nq != joints or pin.nv != joints:
+        raise NoCImplementation(f"module kind {kind!r}: the model has {joints} joints of "
+                                f"{pin.nq} coordinates; the C runtime's has at most "
+                                f"{MAX_JOINTS} revolute joints")
+    block = _floats(pin.gravity.linear)
+    for index in range(1, pin.njoints):
+        joint = pin.joints[index]
+        name = joint.shortname()
+        if name in _AXES:
+            axis = _AXES[name]
+        elif name == "JointModelRevoluteUnaligned":
+            axis = tuple(_floats(joint.extract().axis))
+        else:
+            raise NoCImplementation(f"module kind {kind!r}: joint {pin.names[index]!r} is a "
+                                    f"{name}; the C runtime's model has revolute joints only")
+        placement, inertia = pin.jointPlacements[index], pin.inertias[index]
+        matrix = np.asarray(inertia.inertia, dtype=float)
+        block += [float(pin.parents[index] - 1), *axis, *_floats(placement.rotation),
+                  *_floats(placement.translation), float(inertia.mass), *_floats(inertia.lever),
+                  matrix[0, 0], matrix[0, 1], matrix[0, 2], matrix[1, 1], matrix[1, 2],
+                  matrix[2, 2], float(pin.armature[joint.idx_v])]
+    return block
+
+
+def _dynamic_model(instance: Any) -> tuple[CKind, list[float]]:
+    model = instance.model
+    return CKind.MODEL_DYN, [model.dof, *_model_damping("dynamic_model", model),
+                             *_model_block("dynamic_model", model)]
+
+
+def _ct_feedback(instance: Any) -> tuple[CKind, list[float]]:
+    return CKind.CT_FEEDBACK, [instance.dof, *_diagonal("ct_feedback", instance.kp),
+                               *_diagonal("ct_feedback", instance.kv),
+                               *_constraint(instance.constraint)]
 
 
 def _robot(instance: Any) -> Any:
@@ -236,6 +314,8 @@ _MODULES: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
     "trajectory": _trajectory,
     "control_law": _control_law,
     "auv_autopilot": _autopilot,
+    "dynamic_model": _dynamic_model,
+    "ct_feedback": _ct_feedback,
     **{name: _guidance for name in ("depth_guidance", "los_guidance", "lawnmower_guidance",
                                     "station_guidance", "waypoint_guidance", "hold_guidance")},
 }
@@ -251,8 +331,7 @@ def c_layout(instance: Any) -> CLayout:
         kind, params = _MODULES[name](instance)
     else:
         raise NoCImplementation(f"module kind {name!r} has no C implementation: it exists only "
-                                f"in Python (its plugin provides no C), so it cannot run in "
-                                f"the controller process")
+                                f"in Python, so it cannot run in the controller process")
     if len(params) > MAX_PARAMS:
         raise NoCImplementation(f"module kind {name!r}: {len(params)} parameters, the C "
                                 f"runtime holds {MAX_PARAMS}")

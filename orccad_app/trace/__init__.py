@@ -7,6 +7,8 @@ report or the text of ``orccad run``.
 """
 
 from orccad_app.trace.recorder import EVENTS, TraceRecorder, TraceRow, to_json
+from orccad_app.trace.run_topics import RunTopicsRecorder, trace_recorder
+from orccad_app.trace.state_topics import VerdictSample
 from orccad_app.trace.report import (
     InjectionRecord,
     format_report,
@@ -23,6 +25,9 @@ from orccad_app.trace.writers import (
 
 __all__ = [
     "TraceRecorder",
+    "RunTopicsRecorder",
+    "trace_recorder",
+    "VerdictSample",
     "TraceRow",
     "EVENTS",
     "to_json",

@@ -54,6 +54,15 @@ def _sdk() -> Any:
     return foxglove
 
 
+class _LiveChannel:
+    """A channel of the server; ``latched``: its id when it is a state topic."""
+
+    __slots__ = ("channel", "latched")
+
+    def __init__(self, channel: Any, latched: int | None) -> None:
+        self.channel, self.latched = channel, latched
+
+
 class FoxgloveLiveWriter(TopicWriter):
     """The trace's topics published on a Foxglove WebSocket server at ``host:port`` (``0``: a
     free port, see :attr:`port`); :meth:`close` stops the server."""
@@ -65,10 +74,16 @@ class FoxgloveLiveWriter(TopicWriter):
         from foxglove.websocket import Capability, ServerListener
 
         subscribed = self._subscribed = threading.Event()
+        self._latest: dict[int, tuple[Any, bytes, int]] = {}
+        latest = self._latest
 
         class _Listener(ServerListener):
             def on_subscribe(self, client: Any, channel: Any) -> None:
                 subscribed.set()
+                last = latest.get(channel.id)  # a state topic's current value, at once
+                if last is not None:
+                    sent, body, time_ns = last
+                    sent.log(body, log_time=time_ns)
 
         self._foxglove = foxglove
         self._context = foxglove.Context()
@@ -106,17 +121,20 @@ class FoxgloveLiveWriter(TopicWriter):
             self._subscribed.wait(min(left, 0.1))
         return True
 
-    def _register(self, topic: str, name: str, schema: str) -> Any:
+    def _register(self, topic: str, name: str, schema: str, latched: bool) -> Any:
         foxglove = self._foxglove
-        return foxglove.Channel(topic, message_encoding="json", context=self._context,
-                                schema=foxglove.Schema(name=name, encoding="jsonschema",
-                                                       data=schema.encode()))
+        channel = foxglove.Channel(topic, message_encoding="json", context=self._context,
+                                   schema=foxglove.Schema(name=name, encoding="jsonschema",
+                                                          data=schema.encode()))
+        return _LiveChannel(channel, channel.id() if latched else None)
 
     def _publish(self, channel: Any, time_ns: int, body: bytes, sequence: int) -> None:
         if time_ns >= self._time_ns + _TIME_STEP_NS:
             self._time_ns = time_ns
             self._server.broadcast_time(time_ns)
-        channel.log(body, log_time=time_ns)
+        if channel.latched is not None:
+            self._latest[channel.latched] = (channel.channel, body, time_ns)
+        channel.channel.log(body, log_time=time_ns)
 
     def _finish(self) -> None:
         self._server.broadcast_time(max(self._time_ns, self._last_ns))

@@ -45,9 +45,15 @@ import json
 import math
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any
 
 from orccad_app.trace.recorder import TraceRow
+from orccad_app.trace.state_topics import (PHASE_SCHEMA, STATE_SCHEMA, VERDICT_SCHEMA,
+                                           VerdictSample, phase_message, state_message,
+                                           verdict_message)
+
+if TYPE_CHECKING:  # the scene needs MuJoCo: imported when a run's robot is traced
+    from orccad_app.trace.scene import RobotScene, Transform
 
 __all__ = ["TopicWriter", "McapTraceWriter", "LOG_SCHEMA", "EVENT_FIELDS", "port_schema"]
 
@@ -223,13 +229,15 @@ class TopicWriter:
         self._sequence = 0
         self._last_ns = 0
         self._closed = False
+        self._tf_dropped = False
         self._log_channel = self._channel("/log", "foxglove.Log", LOG_SCHEMA)
 
     # -- the sink ---------------------------------------------------------------------------
 
-    def _register(self, topic: str, name: str, schema: str) -> Any:
+    def _register(self, topic: str, name: str, schema: str, latched: bool) -> Any:
         """A channel for ``topic`` whose messages follow the JSON Schema ``schema`` (text)
-        called ``name``."""
+        called ``name``; ``latched``: a state topic, whose last message a live sink sends again
+        to a client that subscribes late."""
         raise NotImplementedError
 
     def _publish(self, channel: Any, time_ns: int, body: bytes, sequence: int) -> None:
@@ -241,10 +249,11 @@ class TopicWriter:
 
     # -- channels ---------------------------------------------------------------------------
 
-    def _channel(self, topic: str, name: str, schema: dict[str, Any]) -> Any:
+    def _channel(self, topic: str, name: str, schema: dict[str, Any],
+                 latched: bool = False) -> Any:
         channel = self._channels.get(topic)
         if channel is None:
-            channel = self._register(topic, name, json.dumps(schema, sort_keys=True))
+            channel = self._register(topic, name, json.dumps(schema, sort_keys=True), latched)
             self._channels[topic] = channel
         return channel
 
@@ -271,6 +280,8 @@ class TopicWriter:
             self._sample(time_ns, f"/ports/{module.replace('.', '/')}/{port}",
                          f"{module}.{port}", value)
             return
+        if event == "param":
+            self.param(time_ns, module, port, value)
         if event == "read":
             sensor = self._sensors.get((module, port))
             if sensor is not None:
@@ -284,7 +295,58 @@ class TopicWriter:
                                  _object_schema(f"orccad.{event}", fields)), time_ns, message)
         self._story(time_ns, event, message)
 
-    def _sample(self, time_ns: int, topic: str, what: str, value: Any) -> None:
+    # -- the run's state and the robot (:mod:`.run_topics` calls these) ---------------------
+
+    def scene(self, time_ns: int, scenes: list[RobotScene]) -> None:
+        """The robots' geometry on ``/scene`` (``foxglove.SceneUpdate``, a state topic)."""
+        from orccad_app.trace.scene import SCENE_UPDATE_SCHEMA, scene_message
+
+        self._emit(self._channel("/scene", "foxglove.SceneUpdate", SCENE_UPDATE_SCHEMA,
+                                 latched=True), time_ns, scene_message(time_ns, scenes))
+
+    def transforms(self, time_ns: int, transforms: list[Transform]) -> None:
+        """The bodies' frames at ``time_ns`` on ``/tf`` (``foxglove.FrameTransforms``, a state
+        topic); a transform that is not finite (a diverged plant) is left out, with a warning
+        once."""
+        from orccad_app.trace.scene import FRAME_TRANSFORMS_SCHEMA, transforms_message
+
+        finite = [t for t in transforms if all(math.isfinite(v) for v in
+                                               (*t.translation, *t.rotation))]
+        if len(finite) < len(transforms) and not self._tf_dropped:
+            self._tf_dropped = True
+            self.log(time_ns, WARNING, "trace", "a body's pose is not finite: left out of /tf")
+        if finite:
+            self._emit(self._channel("/tf", "foxglove.FrameTransforms", FRAME_TRANSFORMS_SCHEMA,
+                                     latched=True), time_ns,
+                       transforms_message(time_ns, finite))
+
+    def mission_state(self, time_ns: int, state: int, waiting_at: list[Any],
+                      status: str) -> None:
+        """The automaton's new state on ``/mission/state`` (:mod:`.state_topics`)."""
+        self._emit(self._channel("/mission/state", "orccad.AutomatonState", STATE_SCHEMA,
+                                 latched=True), time_ns,
+                   state_message(state, waiting_at, status))
+
+    def phase(self, time_ns: int, task: str, phase: int) -> None:
+        """Robot-Task ``task``'s new phase on ``/mission/phase/<task>``."""
+        self._emit(self._channel(f"/mission/phase/{task}", "orccad.Phase", PHASE_SCHEMA,
+                                 latched=True), time_ns, phase_message(phase))
+
+    def verdict(self, time_ns: int, sample: VerdictSample) -> None:
+        """A property's verdict so far on ``/properties/<name>``."""
+        self._emit(self._channel(f"/properties/{sample.name}", "orccad.Verdict",
+                                 VERDICT_SCHEMA, latched=True), time_ns,
+                   verdict_message(sample))
+
+    def param(self, time_ns: int, module: str, param: str, value: Any) -> None:
+        """The value of ``module``'s parameter ``param`` from ``time_ns`` on (its nominal
+        value when its Robot-Task starts, each type-1 update) on ``/params/<module>/<param>``,
+        typed like a port (``/params/TrackPID/ctrl/kp.value``); a state topic."""
+        self._sample(time_ns, f"/params/{module.replace('.', '/')}/{param}",
+                     f"{module}.{param}", value, latched=True)
+
+    def _sample(self, time_ns: int, topic: str, what: str, value: Any,
+                latched: bool = False) -> None:
         state = self._topics.get(topic)
         if state is None:
             typed = port_schema(value)
@@ -294,7 +356,8 @@ class TopicWriter:
                 return
             schema, key = typed
             channel = self._channel(topic, "orccad.PortValue",
-                                    _object_schema("orccad.PortValue", (("value", schema),)))
+                                    _object_schema("orccad.PortValue", (("value", schema),)),
+                                    latched)
             state = self._topics[topic] = _Topic(channel, key)
         plain = _plain(value, state.key)
         if plain is None:
@@ -312,7 +375,7 @@ class TopicWriter:
             self.log(time_ns, INFO, "mission", f"{m['task']} starts (site {m['site']})")
             for param, value in json.loads(m["args_json"]).items():
                 self._sample(time_ns, f"/mission/args/{m['task']}/{param}",
-                             f"{m['task']}.{param}", value)
+                             f"{m['task']}.{param}", value, latched=True)
         elif event == "task_end":
             self._active(time_ns, m["task"], 0, m["site"], "end", m["outcome"])
             level = INFO if m["outcome"] == "good_end" else WARNING
@@ -348,7 +411,8 @@ class TopicWriter:
                 outcome: str) -> None:
         topic = f"/mission/active/{task}"
         schema = _object_schema("orccad.Active", (("value", _INTEGER),))
-        self._emit(self._channel(topic, "orccad.Active", schema), time_ns, {"value": value})
+        self._emit(self._channel(topic, "orccad.Active", schema, latched=True), time_ns,
+                   {"value": value})
         fields = (("task", _STRING), ("site", _INTEGER), ("event", _STRING), ("outcome", _STRING))
         self._emit(self._channel("/mission/task", "orccad.TaskEvent",
                                  _object_schema("orccad.TaskEvent", fields)), time_ns,
@@ -405,7 +469,7 @@ class McapTraceWriter(TopicWriter):
             self._writer.add_metadata("orccad", {k: str(v) for k, v in metadata.items()})
         super().__init__(metadata, sensors)
 
-    def _register(self, topic: str, name: str, schema: str) -> int:
+    def _register(self, topic: str, name: str, schema: str, latched: bool) -> int:
         schema_id = self._schemas.get(schema)
         if schema_id is None:
             schema_id = self._writer.register_schema(name, "jsonschema", schema.encode())

@@ -114,6 +114,10 @@ class TraceRecorder(Observer):
         self.rows = 0
         """Rows written so far."""
 
+    def close(self) -> None:
+        """Close the writer (the run ended, or failed)."""
+        self.writer.close()
+
     def _row(self, time_ns: int, event: str, module: str = "", port: str = "",
              job: int = -1, value: Any = None) -> None:
         self.rows += 1

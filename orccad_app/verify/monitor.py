@@ -30,7 +30,7 @@ from orccad_app.verify.formula import F, atoms, neg
 from orccad_app.verify.lasso import holds_on_lasso
 from orccad_app.verify.tableau import Tableau
 
-__all__ = ["Verdict", "ltl_verdict", "MAX_MONITOR_ATOMS"]
+__all__ = ["Verdict", "ltl_verdict", "LtlMonitor", "MAX_MONITOR_ATOMS"]
 
 MAX_MONITOR_ATOMS = 12
 """Atoms allowed in a property monitored on a cut run (2^n letters are explored)."""
@@ -104,6 +104,67 @@ class _Monitor:
                 for guess, yn, _ in successors(mask, prev, required))
         return found
 
+    def extensible(self, states: frozenset, bits: _Bits) -> bool:
+        """Some state of ``states`` (reached by a prefix) starts an accepting run."""
+        alive = self.live.get(states)
+        if alive is None:
+            if len(self.live) >= self.LIMIT:  # bounded memory: forget and start again
+                self.live.clear()
+            alive = self.live[states] = _live_states(self.tableau, bits, set(states))
+        return bool(states & alive)
+
+
+class _Prefix:
+    """The tableau states a prefix read so far reaches (``_extensible``, one letter at a
+    time), on the formula's shared :class:`_Monitor`."""
+
+    def __init__(self, formula: F, bits: _Bits) -> None:
+        self.monitor = _monitor(formula, tuple(bits.keys))
+        self.bits = bits
+        self.states: frozenset = frozenset({(0, None)})
+
+    def read(self, letters: Sequence[frozenset]) -> None:
+        step, bits = self.monitor.step, self.bits
+        for letter in letters:
+            if not self.states:
+                return
+            self.states = step(self.states, bits.mask(letter))
+
+    def extensible(self) -> bool:
+        return bool(self.states) and self.monitor.extensible(self.states, self.bits)
+
+
+class LtlMonitor:
+    """:func:`ltl_verdict` of one formula on a growing run, each letter read once: the
+    verdict of a run's prefix at any time costs the letters new since the last one (the
+    live-state search of LTL3 is bounded by the tableau, not by the run); a run that ended is
+    judged by :func:`ltl_verdict` (its lasso)."""
+
+    def __init__(self, formula: F) -> None:
+        self.formula = formula
+        self._bits = _Bits(atoms(formula))
+        self._too_large = len(self._bits.keys) > MAX_MONITOR_ATOMS
+        self._prefixes = (None if self._too_large else
+                          (_Prefix(formula, self._bits), _Prefix(neg(formula), self._bits)))
+        self._read = 0
+
+    def verdict(self, word: Sequence[frozenset], ended: bool) -> Verdict:
+        """The verdict of the formula on ``word``, which extends every word given before."""
+        if ended or not word:
+            return ltl_verdict(self.formula, word, ended)
+        if self._prefixes is None:
+            return Verdict.UNDECIDED
+        holds, fails = self._prefixes
+        new = word[self._read:]
+        self._read = len(word)
+        holds.read(new)
+        fails.read(new)
+        if not holds.extensible():
+            return Verdict.FALSE
+        if not fails.extensible():
+            return Verdict.TRUE
+        return Verdict.UNDECIDED
+
 
 def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
     """Some infinite continuation of ``word`` satisfies ``formula``."""
@@ -118,12 +179,7 @@ def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
         states = step(states, mask)
         if not states:
             return False
-    alive = monitor.live.get(states)
-    if alive is None:
-        if len(monitor.live) >= monitor.LIMIT:  # bounded memory: forget and start again
-            monitor.live.clear()
-        alive = monitor.live[states] = _live_states(monitor.tableau, bits, set(states))
-    return bool(states & alive)
+    return monitor.extensible(states, bits)
 
 
 def _live_states(tableau: Tableau, bits: _Bits, start: set) -> set:

@@ -1,6 +1,7 @@
 """Each C Module-Task kind computes what its Python kind computes, on the same inputs: bit for
-bit for the arm's kinds (the same IEEE operations in the same order), within 1e-12 relative
-for the AUV's (distances through hypot, whose last bit may differ from Python's math.dist)."""
+bit for the arm's PID kinds (the same IEEE operations in the same order), within 1e-12
+relative for the AUV's (distances through hypot, whose last bit may differ from Python's
+math.dist) and for computed torque (the C rigid-body dynamics against Pinocchio's)."""
 
 from __future__ import annotations
 
@@ -42,7 +43,9 @@ def _same(expected: dict, got: dict, exact: bool) -> None:
 
 CASES = [("arm_pid.orc", None, True, 0.6), ("arm_retune.orc", None, True, 0.6),
          ("arm_recovery.orc", None, True, 0.6), ("auv_survey.orc", None, False, 20.0),
-         ("auv_waypoints.orc", None, False, 20.0)]
+         ("auv_waypoints.orc", None, False, 20.0),
+         ("arm_computed_torque.orc", None, False, 0.6),
+         ("arm_computed_torque_multirate.orc", None, False, 0.6)]
 
 
 @pytest.mark.parametrize("file,mission,exact,scale", CASES)

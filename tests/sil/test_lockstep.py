@@ -1,10 +1,13 @@
 """Lockstep SIL ends as ``orccad run`` does on every shipped mission with a robot: same status,
 Robot-Task runs (outcomes and times), exceptions, tracking errors, module statistics — bit for
 bit, since the C Module-Tasks compute what the Python ones do and the timing model is the
-same. A mission whose Module-Tasks have no C is refused with the kind and the reason."""
+same; with computed torque (the C rigid-body dynamics, not Pinocchio's floating-point order)
+the tracking errors within 1e-12 relative and everything else exactly. A mission whose
+Module-Tasks have no C is refused with the kind and the reason."""
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 
@@ -19,13 +22,28 @@ from tests.sil.helpers import MISSIONS, mission_run, plan_of, report
 RUNNABLE = [("arm_pid.orc", None), ("arm_recovery.orc", None), ("arm_retune.orc", None),
             ("arm_interrupts.orc", "ArmInterrupts"), ("arm_interrupts.orc", "ArmInterruptsTight"),
             ("auv_survey.orc", None), ("auv_waypoints.orc", None), ("false_property.orc", None)]
-#: the shipped missions refused, with the reason's words
-REFUSED = [("arm_computed_torque.orc", "computed_torque"),
-           ("arm_computed_torque_multirate.orc", "ct_feedback")]
+#: the shipped missions with computed torque: tracking errors equal within 1e-12 relative
+CLOSE = [("arm_computed_torque.orc", None), ("arm_computed_torque_multirate.orc", None)]
+
+
+def _close(got, expected, path: str = "") -> None:
+    """``got`` equals ``expected``, floats under ``tracking_error`` within 1e-12 relative."""
+    if isinstance(expected, dict):
+        assert got.keys() == expected.keys(), path
+        for key in expected:
+            _close(got[key], expected[key], f"{path}.{key}")
+    elif isinstance(expected, list):
+        assert len(got) == len(expected), path
+        for index, (a, b) in enumerate(zip(got, expected)):
+            _close(a, b, f"{path}[{index}]")
+    elif isinstance(expected, float) and ".tracking_error." in path:
+        assert math.isclose(got, expected, rel_tol=1e-12), (path, got, expected)
+    else:
+        assert got == expected, (path, got, expected)
 
 
 def test_every_shipped_mission_with_a_robot_is_listed():
-    listed = {file for file, _ in RUNNABLE} | {file for file, _ in REFUSED}
+    listed = {file for file, _ in RUNNABLE + CLOSE}
     with_robot = {path.name for path in MISSIONS.glob("*.orc")
                   if "robot " in path.read_text() and "mission " in path.read_text()}
     assert with_robot == listed
@@ -42,21 +60,59 @@ def test_lockstep_ends_as_the_executive(file, mission):
     assert got == expected
 
 
-@pytest.mark.parametrize("file,kind", REFUSED)
-def test_a_kind_without_c_is_refused_with_its_name_and_reason(file, kind):
-    with pytest.raises(NoCImplementation, match=kind) as refused:
-        with lockstep(plan_of(file), file):
+@pytest.mark.parametrize("file,mission", CLOSE)
+def test_lockstep_with_computed_torque_ends_as_the_executive(file, mission):
+    expected = report(mission_run(plan_of(file, mission)).run())
+    plan = plan_of(file, mission)
+    with lockstep(plan, file):
+        got = report(mission_run(plan).run())
+    _close(got, expected)
+
+
+#: a mission with a kind that exists only in Python (the at_goal observer)
+WITHOUT_C = """robot arm : arm3dof;
+robottask Reach() on arm {
+    duration 1 s;
+    task_function joint_tracking(trajectory = constant(value = [1.0, 1.0, 1.0]));
+    law pid(kp = 400.0, kv = 40.0);
+    module traj : trajectory period 1 ms wcet 0.1 ms on cpu0 priority 2;
+    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    connect traj.qd -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect arm.q -> ctrl.q;
+    connect arm.qdot -> ctrl.qdot;
+    connect ctrl.tau -> arm.tau;
+    postcondition measure at_goal(tol = 0.01);
+}
+mission M { run Reach(); }
+"""
+
+
+@pytest.fixture
+def without_c(tmp_path):
+    path = tmp_path / "reach.orc"
+    path.write_text(WITHOUT_C)
+    return path
+
+
+def test_a_kind_without_c_is_refused_with_its_name_and_reason(without_c):
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.pipeline import load, select_mission
+
+    source = load(str(without_c))
+    plan = plan_mission(source, select_mission(source, None))
+    with pytest.raises(NoCImplementation, match="at_goal") as refused:
+        with lockstep(plan, str(without_c)):
             pass
     assert "no C implementation" in refused.value.message
     assert refused.value.location is not None
 
 
-def test_the_command_exits_2_on_a_kind_without_c():
-    done = subprocess.run([sys.executable, "-m", "orccad_app", "sil",
-                           str(MISSIONS / "arm_computed_torque.orc"), "--lockstep"],
-                          capture_output=True, text=True, timeout=120)
+def test_the_command_exits_2_on_a_kind_without_c(without_c):
+    done = subprocess.run([sys.executable, "-m", "orccad_app", "sil", str(without_c),
+                           "--lockstep"], capture_output=True, text=True, timeout=120)
     assert done.returncode == 2
-    assert "computed_torque" in done.stderr and "Traceback" not in done.stderr
+    assert "at_goal" in done.stderr and "Traceback" not in done.stderr
 
 
 def test_an_injected_exception_reaches_the_controllers_run():

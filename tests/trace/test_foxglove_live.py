@@ -112,3 +112,66 @@ def test_a_live_run_streams_the_trace_topics_to_a_websocket_client(tmp_path):
         assert schema == json.loads(traced[topic].data)
         for _, message in received.get(topic, [])[:50]:
             jsonschema.validate(message, schema)
+
+
+def test_a_client_that_subscribes_late_gets_the_current_state(tmp_path):
+    """State topics are latched: a client that subscribes in the middle of a run (the run
+    did not wait for it) gets at once the last message of each — the geometry sent before
+    the run, Home's span and phase, the gain set when TrackPID started — so every span and
+    value shows, not only the changes after it subscribed."""
+    pytest.importorskip("foxglove", reason="the foxglove extra is not installed")
+    pytest.importorskip("websockets")
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "orccad_app.cli", "run",
+                                "missions/arm_recovery.orc", "--inject", "Stop@3", "--until",
+                                "6", "--foxglove", "--foxglove-port", str(port),
+                                "--foxglove-wait", "0"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        with _connect(port, process) as ws:
+            channels, subscribed_at, received = _subscribe_after(ws, 2_000_000_000)
+        process.communicate(timeout=120)
+    finally:
+        process.kill()
+    assert subscribed_at >= 2_000_000_000
+    first = {topic: items[0] for topic, items in received.items()}
+    assert first["/scene"][0] == 0 and first["/scene"][1]["entities"]
+    assert first["/mission/active/Home"] == (1_500_100_000, {"value": 0})
+    assert first["/mission/phase/Home"] == (1_500_100_000, {"value": 0, "phase": "idle"})
+    assert first["/params/TrackPID/ctrl/kp"] == (1_500_100_000, {"value": 600.0})
+    assert first["/mission/state"][0] < subscribed_at
+    assert first["/tf"][0] <= subscribed_at  # the arm where it is now, at once
+    for topic in ("/scene", "/mission/state", "/tf"):
+        jsonschema.validate(first[topic][1], json.loads(channels[topic]["schema"]))
+
+
+def _subscribe_after(ws, time_ns: int) -> tuple[dict, int, dict]:
+    """Wait for the server's clock to pass ``time_ns``, then subscribe to every channel;
+    the channels, the clock at subscription and the messages received, until the end."""
+    from websockets.exceptions import ConnectionClosed
+
+    channels, by_subscription, received = {}, {}, {}
+    clock, subscribed_at = 0, None
+    while True:
+        try:
+            frame = ws.recv(timeout=60)
+        except ConnectionClosed:
+            return channels, subscribed_at, received
+        if isinstance(frame, str):
+            message = json.loads(frame)
+            if message["op"] == "advertise":
+                for channel in message["channels"]:
+                    channels[channel["topic"]] = channel
+        elif frame[0] == 2:  # the server's time
+            clock = struct.unpack_from("<Q", frame, 1)[0]
+        elif frame[0] == 1:
+            number, log_time = struct.unpack_from("<IQ", frame, 1)
+            received.setdefault(by_subscription[number], []).append(
+                (log_time, json.loads(frame[13:])))
+        if subscribed_at is None and clock >= time_ns:
+            subscribed_at = clock
+            subscriptions = []
+            for topic, channel in channels.items():
+                by_subscription[len(by_subscription) + 1] = topic
+                subscriptions.append({"id": len(by_subscription), "channelId": channel["id"]})
+            ws.send(json.dumps({"op": "subscribe", "subscriptions": subscriptions}))

@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 from collections import defaultdict
 
 import jsonschema
@@ -24,13 +22,8 @@ def _strict(text: bytes):
 
 
 @pytest.fixture(scope="module")
-def trace(tmp_path_factory):
-    path = tmp_path_factory.mktemp("mcap") / "recovery.mcap"
-    result = subprocess.run([sys.executable, "-m", "orccad_app.cli", "run",
-                             "missions/arm_recovery.orc", "--inject", "Stop@3", "--until", "4",
-                             "--trace", str(path)], capture_output=True, text=True)
-    assert result.returncode == 1, result.stderr  # timeout at 4 s, during the park
-    with open(path, "rb") as stream:
+def trace(recovery_run):
+    with open(recovery_run.path, "rb") as stream:
         reader = make_reader(stream)
         summary = reader.get_summary()
         messages = defaultdict(list)

@@ -126,6 +126,27 @@ def test_ltl_verdicts(text, word, ended, expected):
     assert _verdict(text, word, ended) is expected
 
 
+@pytest.mark.parametrize("text", ["always P", "eventually P", "always (P -> once Q)",
+                                  "always (P -> eventually Q)", "never (P and Q)",
+                                  "always eventually P"])
+def test_the_running_monitor_gives_the_verdict_of_every_prefix(text):
+    """``LtlMonitor`` (the trace's running verdicts) reads each instant once and agrees with
+    ``ltl_verdict`` on every prefix of a run, then on the ended run."""
+    import random
+
+    from orccad_app.verify.monitor import LtlMonitor
+
+    formula = from_ast(parse(f"property p: {text};").properties[0].formula)
+    chooser = random.Random(text)
+    for _ in range(4):
+        word = [chooser.choice([P, Q, NONE, P | Q]) for _ in range(12)]
+        monitor = LtlMonitor(formula)
+        for end in range(1, len(word) + 1):
+            assert monitor.verdict(word[:end], False) is ltl_verdict(formula, word[:end],
+                                                                     False), (word[:end])
+        assert monitor.verdict(word, True) is ltl_verdict(formula, word, True)
+
+
 def test_the_model_checker_refuses_a_signal_formula_rather_than_dropping_its_bounds():
     for text in ("always[0, 1] done", "always (done -> r.x < 1.0)"):
         with pytest.raises(OrccadError, match="judged on runs, not by the model checker"):

@@ -14,10 +14,10 @@
 #ifndef ORCCAD_MT_H
 #define ORCCAD_MT_H
 
-#define ORC_MAX_DIM 8      /* components of a vector port */
+#define ORC_MAX_DIM 16     /* components of a vector port (M of 4 joints: 16) */
 #define ORC_MAX_PORTS 8    /* input (and output) slots of a Module-Task */
-#define ORC_MAX_PARAMS 96  /* doubles of parameters */
-#define ORC_MAX_STATE 96   /* doubles of state */
+#define ORC_MAX_PARAMS 192 /* doubles of parameters */
+#define ORC_MAX_STATE 160  /* doubles of state */
 
 /* Module-Task kinds with a C implementation (the Python kind in the comment). */
 enum orc_kind {
@@ -25,6 +25,9 @@ enum orc_kind {
     ORC_TRAJ_MIN_JERK = 2,     /* trajectory, min_jerk(goal, duration[, start]) */
     ORC_TRAJ_CONSTANT = 3,     /* trajectory, constant([value]) */
     ORC_LAW_PID = 10,          /* control_law, pid with joint_tracking */
+    ORC_LAW_CT = 11,           /* control_law, computed_torque (pinocchio or perturbed model) */
+    ORC_MODEL_DYN = 12,        /* dynamic_model */
+    ORC_CT_FEEDBACK = 13,      /* ct_feedback */
     ORC_OBS_JOINT_LIMITS = 20, /* joint_limits(margin) */
     ORC_OBS_TORQUE_SAT = 21,   /* torque_saturation(ratio) */
     ORC_OBS_TRACKING = 22,     /* tracking_error(max) */

@@ -1,0 +1,71 @@
+"""The C of a mission's composed automaton: what the lowering knows, passed to the generator.
+
+:func:`generate_mission` generates the C of a :class:`~orccad_app.robottask.composition.
+Composition` (the automaton ``orccad check`` proves and ``orccad react --composed`` runs):
+the signal roles and the run sites go into the header, and the vector size of every
+Robot-Task parameter carried by a run-time argument output (``GoTo.arg.target``) types that
+output (and the input it comes from).
+"""
+
+from __future__ import annotations
+
+import re
+
+from orccad_app.codegen.generate import CProgram, generate
+from orccad_app.codegen.static_types import CType, CodegenError, Kind
+from orccad_app.diagnostics import OrccadError
+from orccad_app.lang.run_args import param_type
+from orccad_app.reactive import ir
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.robottask.composition import Composition
+from orccad_app.robottask.signals import RoleKind
+
+__all__ = ["generate_mission", "default_prefix", "check_prefix"]
+
+_C_KEYWORDS = frozenset(
+    "auto break case char const continue default do double else enum extern float for goto "
+    "if inline int long register restrict return short signed sizeof static struct switch "
+    "typedef union unsigned void volatile while main".split())
+
+
+def default_prefix(mission: str) -> str:
+    """``ArmRecovery`` -> ``arm_recovery``."""
+    words = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", mission).lower()
+    prefix = re.sub(r"[^a-z0-9_]", "_", words)
+    return prefix if prefix and not prefix[0].isdigit() else "m_" + prefix
+
+
+def check_prefix(prefix: str) -> str:
+    """``prefix`` when it is a usable C identifier prefix, else an error."""
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]{0,62}", prefix) or prefix in _C_KEYWORDS:
+        raise OrccadError(f"--name '{prefix}' is not a C identifier (letters, digits and _, "
+                          "not starting with a digit, at most 63 characters, not a C keyword)")
+    if prefix.upper() == "ORCCAD" or prefix.startswith("orccad_"):
+        raise OrccadError(f"--name '{prefix}': the orccad_ prefix is the generated headers' "
+                          "own")
+    return prefix
+
+
+def generate_mission(composition: Composition, prefix: str, origin: str = "") -> CProgram:
+    """The C of ``composition``'s automaton (full, not lazy)."""
+    automaton = composition.automaton
+    if not isinstance(automaton, Automaton):
+        raise CodegenError("the generator needs the full automaton (compiled, not lazy)")
+    return generate(automaton, prefix, roles=composition.roles,
+                    sites=tuple(site.task for site in composition.sites),
+                    hints=_argument_types(composition), origin=origin)
+
+
+def _argument_types(composition: Composition) -> dict[ir.SignalDecl, CType]:
+    tasks = {task.name: task for task in composition.program.robottasks}
+    hints: dict[ir.SignalDecl, CType] = {}
+    for decl in composition.automaton.outputs:
+        role = composition.roles.get(decl.name)
+        if role is None or role.kind is not RoleKind.ARGUMENT or decl.type != "vector":
+            continue
+        task = tasks.get(role.task or "")
+        param = next((p for p in task.params if p.name == role.name), None) if task else None
+        static = param_type(param) if param is not None else None
+        if static is not None and static.dim:
+            hints[decl] = CType(Kind.VECTOR, Kind.FLOAT, static.dim)
+    return hints

@@ -1,0 +1,56 @@
+"""``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main]``: C99 of the
+composed mission automaton (see ``docs/deploy.md``).
+
+Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
+that runs the automaton on an input script and prints what ``orccad react --composed
+--jsonl`` prints) into the folder ``DIR`` (default: ``PREFIX``), all or nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from orccad_app.commands.arguments import add_file, add_max_states, add_mission
+
+__all__ = ["register"]
+
+
+def register(sub) -> None:
+    parser = sub.add_parser(
+        "codegen", help="generate C99 for a mission's composed automaton",
+        description="Generate C99 for the composed mission automaton (the one orccad check "
+                    "proves): PREFIX.h, PREFIX.c and, with --main, PREFIX_main.c.")
+    add_file(parser)
+    add_mission(parser)
+    parser.add_argument("-o", "--output", metavar="DIR",
+                        help="the output folder: new, empty, or holding only the files "
+                             "written (default: PREFIX)")
+    parser.add_argument("--name", metavar="PREFIX",
+                        help="prefix of the files and C identifiers (default: the mission's "
+                             "name in snake case, e.g. arm_recovery)")
+    parser.add_argument("--main", action="store_true",
+                        help="also write PREFIX_main.c: runs the automaton on an input script "
+                             "and prints what 'orccad react --composed --jsonl' prints")
+    add_max_states(parser)
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from orccad_app.codegen.driver import main_source
+    from orccad_app.codegen.mission import check_prefix, default_prefix, generate_mission
+    from orccad_app.codegen.output import write_files
+    from orccad_app.pipeline import compose_mission, load, select_mission
+
+    source = load(args.file)
+    source.print_warnings()
+    mission = select_mission(source, args.mission)
+    prefix = check_prefix(args.name if args.name is not None else default_prefix(mission.name))
+    composition = compose_mission(source, mission, max_states=args.max_states)
+    program = generate_mission(composition, prefix,
+                               origin=f" from {args.file}, mission {mission.name}")
+    files = dict(program.files)
+    if args.main:
+        files[f"{prefix}_main.c"] = main_source(program)
+    for path in write_files(args.output or prefix, files):
+        print(path)
+    return 0

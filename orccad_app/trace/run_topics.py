@@ -1,0 +1,151 @@
+"""The topics of a run beyond its events: the robot moving, parameters, phases, state, verdicts.
+
+:class:`RunTopicsRecorder` is the :class:`~orccad_app.trace.recorder.TraceRecorder` of a topic
+writer (an MCAP trace, the live Foxglove stream: :class:`~orccad_app.trace.mcap_writer.TopicWriter`)
+that also observes the mission run it is attached to — never reaching into it:
+
+- **the robot**: before the run, every robot's geometry on ``/scene`` (from its plant's MJCF
+  model, :mod:`orccad_app.trace.scene`); then every body's frame on ``/tf`` every
+  ``frame_period_ns`` of simulated time (default 20 ms: 50 frames per second), stamped with
+  the instant the plant's state is at (the plant is integrated up to each read and write of its
+  ports: the frames lag the run by less than a control period, and a run with a trace is the
+  same run as without), and once more at the end;
+- **parameters**: at each start of a Robot-Task, the nominal value of every parameter one of
+  its type-1 exceptions updates (``/params/<module>/<param>``, then each update);
+- **phases and state**: at each change of the automaton's state, ``/mission/state`` (the
+  statements it waits at) and ``/mission/phase/<Task>`` for every task whose phase changed;
+- **verdicts**: with ``verdicts`` (a function giving every property's verdict on the run so far:
+  the property monitor, wired by the caller), ``/properties/<name>`` every
+  ``verdict_period_ns`` (default 100 ms, at least 1/1000 of the run's horizon: the evaluation
+  reads the whole run so far) and at the end.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from orccad_app.trace.mcap_writer import TopicWriter
+from orccad_app.trace.recorder import TraceRecorder, plain_value
+from orccad_app.trace.state_topics import VerdictSample
+
+if TYPE_CHECKING:
+    from orccad_app.mission.run import MissionRun
+    from orccad_app.robottask.labels import Phase
+    from orccad_app.trace.scene import RobotScene
+
+__all__ = ["RunTopicsRecorder", "trace_recorder", "FRAME_PERIOD_NS", "VERDICT_PERIOD_NS", "MAX_VERDICT_SAMPLES"]
+
+FRAME_PERIOD_NS = 20_000_000
+"""The robot's frames are sampled every 20 ms of simulated time (50 Hz)."""
+VERDICT_PERIOD_NS = 100_000_000
+"""The properties' verdicts are evaluated every 100 ms of simulated time at most..."""
+MAX_VERDICT_SAMPLES = 1000
+"""... and at most this many times over the run's horizon (each evaluation reads the run so
+far: the cost grows with the square of the number of evaluations)."""
+
+
+class RunTopicsRecorder(TraceRecorder):
+    """Writes every event of ``mission_run`` and its state to ``writer`` (see the module
+    docstring); :meth:`close` writes the final frames and verdicts, then closes the writer.
+
+    :param writer: the topic writer (MCAP file or live stream).
+    :param mission_run: the run it observes (add this recorder as its observer).
+    :param verdicts: every property's verdict on the run so far, or ``None``.
+    """
+
+    def __init__(self, writer: TopicWriter, mission_run: MissionRun, *,
+                 verdicts: Callable[[], list[VerdictSample]] | None = None,
+                 frame_period_ns: int = FRAME_PERIOD_NS,
+                 verdict_period_ns: int = VERDICT_PERIOD_NS) -> None:
+        from orccad_app.trace.scene import robot_scene
+
+        super().__init__(writer)
+        self.topics = writer
+        self._run = mission_run
+        self._plants = [(plant, robot_scene(name, plant.model))
+                        for name, plant in mission_run.sim.plants.items()]
+        self._frame_period_ns = frame_period_ns
+        self._next_frame_ns = 0
+        self._verdicts = verdicts
+        self._verdict_period_ns = max(verdict_period_ns,
+                                      mission_run.until_ns // MAX_VERDICT_SAMPLES)
+        self._next_verdict_ns = 0
+        self._tasks = sorted({site.task for site in mission_run.plan.sites})
+        self._task_phase: dict[str, int] = {}
+        self._closed = False
+        now = mission_run.kernel.now
+        writer.scene(now, [scene for _, scene in self._plants])
+        self._frames()
+
+    @property
+    def scenes(self) -> list[RobotScene]:
+        """Every robot's frames and geometry."""
+        return [scene for _, scene in self._plants]
+
+    # -- sampling ----------------------------------------------------------------------------
+
+    def _frames(self) -> None:
+        for plant, scene in self._plants:
+            self.topics.transforms(plant.time_ns, scene.transforms(plant.qpos))
+
+    def _sample(self, t_ns: int, final: bool = False) -> None:
+        if final or t_ns >= self._next_frame_ns:
+            self._next_frame_ns = t_ns + self._frame_period_ns
+            self._frames()
+        if self._verdicts is not None and (final or t_ns >= self._next_verdict_ns):
+            self._next_verdict_ns = t_ns + self._verdict_period_ns
+            for sample in self._verdicts():
+                self.topics.verdict(t_ns, sample)
+
+    # -- mission hooks -----------------------------------------------------------------------
+
+    def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
+                    status: str) -> None:
+        super().on_reaction(t_ns, inputs, outputs, status)
+        self._sample(t_ns)
+
+    def on_task_start(self, t_ns: int, task: str, site: int, args: dict) -> None:
+        super().on_task_start(t_ns, task, site, args)
+        modules = self._run.plan.tcs.modules
+        for started in (s for s in self._run.plan.sites if s.number == site):
+            for update in started.adjustments.values():
+                compute = getattr(modules.get(update.module), "compute", None)
+                if compute is not None:
+                    self.topics.param(t_ns, update.module, update.param,
+                                      plain_value(compute.get_param(update.param)))
+
+    def on_state(self, t_ns: int, state: int, phases: dict[int, Phase]) -> None:
+        automaton = self._run.plan.automaton
+        waiting = automaton.waiting[state] if 0 <= state < len(automaton.waiting) else ()
+        self.topics.mission_state(t_ns, state, list(waiting), self._run.reactor.status)
+        by_task: dict[str, int] = {}
+        for site in self._run.plan.sites:
+            phase = int(phases.get(site.number, 0))
+            by_task[site.task] = max(by_task.get(site.task, 0), phase)
+        for task in self._tasks:
+            phase = by_task.get(task, 0)
+            if self._task_phase.get(task) != phase:
+                self._task_phase[task] = phase
+                self.topics.phase(t_ns, task, phase)
+
+    def close(self) -> None:
+        """The final frames (the plants are at the run's last instant) and verdicts, then
+        close the writer (idempotent)."""
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            self._sample(self._run.kernel.now, final=True)
+        finally:
+            self.topics.close()
+
+
+def trace_recorder(writer: Any, mission_run: MissionRun, *,
+                   verdicts: Callable[[], list[VerdictSample]] | None = None) -> TraceRecorder:
+    """The recorder of ``writer`` on ``mission_run``: a :class:`RunTopicsRecorder` for a topic
+    writer (MCAP, live), a plain :class:`~orccad_app.trace.recorder.TraceRecorder` (events
+    only) for CSV. Add it as an observer of the run; close it when the run ends."""
+    if isinstance(writer, TopicWriter):
+        return RunTopicsRecorder(writer, mission_run, verdicts=verdicts)
+    return TraceRecorder(writer)
