@@ -26,7 +26,7 @@ __all__ = ["main", "build_parser", "COMMANDS", "EXIT_INTERNAL", "EXIT_INTERRUPTE
 
 #: Sub-command modules under ``orccad_app.commands``, in the order ``--help`` lists them.
 COMMANDS: tuple[str, ...] = ("compile", "check", "react", "rta", "tcs", "run", "sil", "campaign",
-                             "falsify", "codegen", "tui", "plugins")
+                             "falsify", "codegen", "tui", "lsp", "plugins")
 
 #: Exit status of an internal error (a bug in orccad or in a plugin).
 EXIT_INTERNAL = 3

@@ -6,9 +6,10 @@ chains them and picks the mission a command is about.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
@@ -26,8 +27,9 @@ if TYPE_CHECKING:  # the model imports the control layer (numpy): only when a fi
     from orccad_app.plugin_host.host import PluginHost
     from orccad_app.robottask.model import RobotTaskInstance, TaskInstances
 
-__all__ = ["Source", "load", "read_source", "MAX_SOURCE_BYTES", "select_mission",
-           "require_missions", "compile_mission", "compose_mission",
+__all__ = ["require_regular_file", "Source", "load", "check_source", "read_source",
+           "MAX_SOURCE_BYTES", "select_mission", "require_missions", "compile_mission",
+           "compose_mission",
            "COMPOSED", "ABSTRACT"]
 
 
@@ -84,16 +86,27 @@ class Source:
             print(warning.format(self.text), file=stream or sys.stderr)
 
 
-def load(path: str | Path, host: PluginHost | None = None, text: str | None = None) -> Source:
+def load(path: str | Path, host: PluginHost | None = None, text: str | None = None,
+         read: Callable[[str], str] | None = None) -> Source:
     """Read, parse and check ``path`` (or ``text``, an edited version of it: its imports are
     still resolved from ``path``'s folder); errors are :class:`OrccadError` with locations.
+    ``read(path)`` gives the text of an imported file (default :func:`read_source`: the disk;
+    the language server passes one that prefers the editor's unsaved buffers).
 
     The Robot-Tasks are checked against ``host``'s registries; without one, and when the file
     declares Robot-Tasks, the installed plugins are loaded (:meth:`PluginHost.load`) and
     their failures printed once on stderr."""
     path = str(path)
     text = read_source(path) if text is None else text
-    program, imported = resolve_imports(parse(text, path), read_source)
+    return check_source(path, text, parse(text, path), host, read)
+
+
+def check_source(path: str, text: str, parsed: ast.Program, host: PluginHost | None = None,
+                 read: Callable[[str], str] | None = None) -> Source:
+    """The steps of :func:`load` after parsing: ``parsed`` (the AST of ``text``) with its
+    imports resolved, names checked and Robot-Tasks instantiated (for a caller that keeps
+    the parsed AST even when the checks fail, as the language server does)."""
+    program, imported = resolve_imports(parsed, read or read_source)
     result = check(program)
     instances = None
     if program.robottasks:
@@ -122,6 +135,26 @@ def _plugins(host: PluginHost | None) -> PluginHost:
 MAX_SOURCE_BYTES = 512_000
 
 
+def require_regular_file(path: str | Path) -> None:
+    """Refuse what is not a regular file before opening it: opening a FIFO blocks until a
+    writer comes, and a device (``/dev/zero``) or a socket never ends."""
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise OrccadError(f"{path}: no such file") from None
+    except OSError as error:
+        raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if stat.S_ISDIR(mode):
+        raise OrccadError(f"{path}: is a folder, not a file")
+    if not stat.S_ISREG(mode):
+        kind = "a FIFO" if stat.S_ISFIFO(mode) else "a device" if \
+            stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket" if stat.S_ISSOCK(mode) \
+            else "not a regular file"
+        raise OrccadError(f"{path}: {kind}, not a regular file (only regular files are read)")
+
+
 def read_source(path: str | bytes, name: str | None = None) -> str:
     """The text of the file ``path`` (or of the bytes ``path``, called ``name``): UTF-8, an
     optional byte-order mark dropped; errors are located :class:`OrccadError`."""
@@ -129,6 +162,7 @@ def read_source(path: str | bytes, name: str | None = None) -> str:
         data, name = path, name or "<input>"
     else:
         name = str(path)
+        require_regular_file(path)
         try:
             with open(path, "rb") as handle:
                 data = handle.read(MAX_SOURCE_BYTES + 1)

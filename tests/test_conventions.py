@@ -26,7 +26,7 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 #: Modules whose distribution installs them where importlib.metadata cannot map them back
 #: (cmeel wheels put ``pinocchio`` under ``cmeel.prefix``).
 DISTRIBUTION_OF = {"pinocchio": "pin"}
-FEATURE_EXTRAS = ("cluster", "report")
+FEATURE_EXTRAS = ("cluster", "report", "lsp")
 FIRST_PARTY = {"orccad_app", "orccad_control", "orccad_arm3dof", "orccad_observers", "orccad_auv"}
 
 
@@ -118,6 +118,10 @@ def test_the_import_contracts_name_every_part_of_the_core():
             for m in _contract("core-without-textual")["source_modules"]}
     missing = children - core - {"tui", "__main__"}
     assert not missing, f"missing from core-without-textual's source_modules: {sorted(missing)}"
+    without_pygls = {m.removeprefix("orccad_app.")
+                     for m in _contract("core-without-pygls")["source_modules"]}
+    missing = children - without_pygls - {"lsp", "__main__"}
+    assert not missing, f"missing from core-without-pygls's source_modules: {sorted(missing)}"
     forbidden = {m.removeprefix("orccad_app.")
                  for m in _contract("plugins-through-the-api")["forbidden_modules"]}
     missing = children - forbidden - {"plugin_api", "__main__"}

@@ -56,9 +56,10 @@ class RunRecord:
 
 
 def outcome_label(status: str, reason: str | None) -> str:
-    """``done``, ``timeout``, ``failed(E)`` / ``aborted(F)`` (the exception, when the reason
-    is one), else ``failed`` / ``aborted``; ``crashed`` for an internal error."""
-    if status in ("failed", "aborted") and reason and reason.isidentifier():
+    """``done``, ``timeout``, ``failed(E)`` / ``aborted(F)`` / ``recovering(F)`` (the
+    exception, when the reason is one), else ``failed`` / ``aborted`` / ``recovering``;
+    ``crashed`` for an internal error."""
+    if status in ("failed", "aborted", "recovering") and reason and reason.isidentifier():
         return f"{status}({reason})"
     return status
 

@@ -8,6 +8,11 @@ inherits the campaign's compiled mission) and then only plans and runs each sett
 and a run whose worker dies (the pool breaks, or Dask reports the worker lost) come back as a
 ``crashed`` record; the campaign retries it once, then records it ``crashed`` — the other runs
 are never lost. A broken pool is replaced.
+
+**No process left behind.** A pool worker dies with the campaign: on Linux it asks the kernel
+for ``SIGKILL`` when its parent dies (``prctl(PR_SET_PDEATHSIG)``, so even a ``SIGKILL`` of
+the campaign ends its workers); elsewhere a thread of the worker watches its parent and ends
+the worker when the parent is gone.
 """
 
 from __future__ import annotations
@@ -16,6 +21,10 @@ import concurrent.futures as cf
 import gc
 import multiprocessing
 import os
+import signal
+import sys
+import threading
+import time
 import traceback
 from dataclasses import dataclass
 from typing import Any, Iterable
@@ -62,6 +71,7 @@ def run_job(job: Job) -> RunRecord:
     return record
 
 
+<<<<<<< HEAD
 _FROZEN = False
 
 
@@ -78,6 +88,32 @@ def _collect() -> None:
     if not _FROZEN:
         gc.freeze()
         _FROZEN = True
+=======
+def _die_with(parent: int) -> None:
+    """Pool initializer: end this worker when the process ``parent`` is gone; ``SIGTERM`` (the
+    parent's ``terminate`` of an interrupted campaign) ends it at once, whatever handler the
+    parent had installed when it forked."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            pr_set_pdeathsig = 1
+            if libc.prctl(pr_set_pdeathsig, int(signal.SIGKILL), 0, 0, 0) == 0:
+                if os.getppid() != parent:  # the parent died before the request
+                    os._exit(1)
+                return
+        except (OSError, AttributeError):
+            pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="orccad-parent-watch", daemon=True).start()
+>>>>>>> main
 
 
 class PoolBackend:
@@ -93,7 +129,8 @@ class PoolBackend:
     def _new(self) -> cf.ProcessPoolExecutor:
         method = "fork" if "fork" in multiprocessing.get_all_start_methods() else None
         context = multiprocessing.get_context(method)
-        return cf.ProcessPoolExecutor(self.workers, mp_context=context)
+        return cf.ProcessPoolExecutor(self.workers, mp_context=context, initializer=_die_with,
+                                      initargs=(os.getpid(),))
 
     def submit(self, job: Job) -> Any:
         try:

@@ -21,7 +21,8 @@ from typing import Any, Callable
 
 from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
-from orccad_app.campaign.setting import RunSetting, build_setting, replay_command
+from orccad_app.campaign.setting import (RunSetting, build_setting, replay_command,
+                                         whole_ns_ms)
 from orccad_app.campaign.spec import CampaignSpec
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
@@ -30,7 +31,8 @@ __all__ = ["Falsifier", "FalsifyResult", "SAMPLERS", "UNDEFINED"]
 
 SAMPLERS = ("tpe", "cmaes", "random")
 UNDEFINED = 1e9
-"""Objective of a run on which the property is undefined."""
+"""Objective of a run on which the property is undefined (the search's placeholder, never
+reported as a robustness: :attr:`FalsifyResult.best_robustness` is then ``None``)."""
 
 
 @dataclass
@@ -78,6 +80,11 @@ class Falsifier:
         except optuna.exceptions.DuplicatedStudyError:
             raise OrccadError(f"{storage} already holds this study: --resume it, or choose "
                               f"another --study") from None
+        except Exception as error:  # noqa: BLE001 - re-raised unless the storage's
+            if not _storage_error(error, optuna):
+                raise
+            raise OrccadError(f"--study {storage}: not an optuna study database (corrupt, or "
+                              f"another program's: {type(error).__name__})") from None
 
     @staticmethod
     def _sampler(optuna: Any, name: str, seed: int) -> Any:
@@ -89,8 +96,10 @@ class Falsifier:
 
     def _suggest(self, trial: Any) -> dict[str, Any]:
         values: dict[str, Any] = {}
-        for entry in (*self.spec.params, *self.spec.timings):
+        for entry in self.spec.params:
             values[entry.target] = _suggest(trial, entry.target, entry.dist)
+        for entry in self.spec.timings:  # whole nanoseconds, as --timing takes them
+            values[entry.target] = whole_ns_ms(_suggest(trial, entry.target, entry.dist))
         for number, inject in enumerate(self.spec.injections):
             prefix = f"inject[{number}]"
             if inject.probability in (0.0, 1.0):
@@ -161,8 +170,11 @@ class Falsifier:
             replay = replay_command(self.file, self.compiled.name, setting)
             if best is None:  # found in an earlier (resumed) session
                 best = RunRecord(setting, "unknown", None, "unknown", 0.0, 0.0)
+        value = best_trial.value if best_trial is not None else None
+        if value is not None and value >= UNDEFINED:  # never defined: no robustness to report
+            value = None
         return FalsifyResult(self.prop, self.sampler_name, len(self.study.trials), best,
-                             best_trial.value if best_trial else None, first, replay, history)
+                             value, first, replay, history)
 
 
 def _suggest(trial: Any, name: str, dist: Any) -> Any:
@@ -174,6 +186,13 @@ def _suggest(trial: Any, name: str, dist: Any) -> Any:
     if dist.integral:
         return trial.suggest_int(name, int(low), int(high))
     return float(f"{trial.suggest_float(name, low, high):.6g}")
+
+
+def _storage_error(error: Exception, optuna: Any) -> bool:
+    """An error of optuna's storage: its own, or SQLAlchemy's (optuna's SQLite storage raises
+    them on a corrupt file; SQLAlchemy is optuna's dependency, not ours to import)."""
+    return isinstance(error, optuna.exceptions.OptunaError) or any(
+        cls.__module__.startswith("sqlalchemy.") for cls in type(error).__mro__)
 
 
 def _first_violation(study: Any) -> int | None:

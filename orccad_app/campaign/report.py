@@ -8,9 +8,10 @@ a browser runtime for five figures, and matplotlib already draws the docs' plots
 1. outcome and property probabilities as bars with their Clopper–Pearson intervals;
 2. each property's robustness histogram (0 marked: left of it, violated);
 3. the completion time of the runs that ended ``done``;
-4. the worst runs over the two drawn quantities that influence the score most (|Spearman ρ|
-   with the robustness of the property most at risk — most violations, then the smallest
-   robustness — or with ``done`` when no property has a robustness);
+4. the worst tenth of the runs (at least five) by the score it names — the robustness of the
+   property most at risk (most violations, then the smallest robustness), or ``done`` when no
+   property has a robustness — over the two drawn quantities every run has that influence the
+   score most (|Spearman ρ|);
 5. the replay commands of the worst runs and of the runs that did not end ``done``.
 """
 
@@ -26,7 +27,7 @@ from orccad_app.campaign.runner import CampaignResult
 from orccad_app.campaign.stats import influence
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["write_report", "figures"]
+__all__ = ["write_report", "figures", "worst_runs"]
 
 
 def _pyplot() -> Any:
@@ -99,22 +100,40 @@ def _score(result: CampaignResult) -> tuple[str, dict[int, float]]:
     return "done (1) or not (0)", {r.index: float(r.status == "done") for r in result.records}
 
 
+def worst_runs(records: list, score: dict[int, float]) -> list:
+    """The worst tenth of the scored runs (at least five, at most all) by ``score``, lowest
+    first; ties in run order."""
+    scored = sorted((r for r in records if r.index in score),
+                    key=lambda r: (score[r.index], r.index))
+    return scored[:max(5, len(scored) // 10)]
+
+
+def _axes(records: list, score: dict[int, float]) -> list[tuple[str, float]]:
+    """The two drawn quantities most correlated with ``score`` among those every scored run
+    has (an injection's time exists only for the runs it occurs in: plotting over it would
+    leave the other runs, the worst among them perhaps, out of the figure)."""
+    scored = [r for r in records if r.index in score]
+    if not scored:
+        return []
+    common = set.intersection(*(set(r.setting.values) for r in scored))
+    return [(name, rho) for name, rho in influence(scored, score) if name in common][:2]
+
+
 def _scatter(plt: Any, result: CampaignResult) -> Any | None:
     label, score = _score(result)
-    ranked = influence(result.records, score)
+    ranked = _axes(result.records, score)
     if len(ranked) < 2:
         return None
-    (x, rx), (y, ry) = ranked[:2]
-    runs = [r for r in result.records if r.index in score and x in r.setting.values
-            and y in r.setting.values]
-    worst = sorted(runs, key=lambda r: score[r.index])[:max(5, len(runs) // 10)]
+    (x, rx), (y, ry) = ranked
+    runs = [r for r in result.records if r.index in score]
+    worst = worst_runs(runs, score)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.scatter([r.setting.values[x] for r in runs], [r.setting.values[y] for r in runs],
-               s=10, color="#cccccc", label="all runs")
+               s=10, color="#cccccc", label=f"all {len(runs)} runs")
     points = ax.scatter([r.setting.values[x] for r in worst],
                         [r.setting.values[y] for r in worst],
                         c=[score[r.index] for r in worst], cmap="autumn", s=30,
-                        label="worst 10 %")
+                        label=f"the {len(worst)} worst by {label}")
     fig.colorbar(points, ax=ax, label=label)
     ax.set_xlabel(f"{x} (|ρ| = {rx:.2f})")
     ax.set_ylabel(f"{y} (|ρ| = {ry:.2f})")

@@ -7,11 +7,13 @@ submitting when
 
 - every run ``0 … runs−1`` is recorded (``--runs``), or
 - with ``--epsilon``, every estimate's Clopper–Pearson half-width is at most ``ε`` on the
-  runs ``0 … n−1`` recorded so far (the *prefix*, so the result does not depend on which
-  worker was faster), or the Chernoff–Hoeffding cap is reached, or
+  runs ``0 … n−1`` (the *prefix*), or the Chernoff–Hoeffding cap is reached, or
 - with ``--hypothesis``, the SPRT has decided on the prefix.
 
-Statistics are computed on that prefix; runs finished beyond it stay in the database.
+``n`` is the smallest prefix length where the rule holds (every length is tested in order,
+even when several runs finish at once), so the answer does not depend on which worker was
+faster. Statistics are computed on exactly those ``n`` runs; runs finished beyond them stay in
+the database.
 """
 
 from __future__ import annotations
@@ -24,11 +26,12 @@ from typing import Any, Callable
 from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
 from orccad_app.campaign.setting import RunSetting, draw_setting, replay_command
-from orccad_app.campaign.spec import CampaignSpec
+from orccad_app.campaign.spec import MAX_RUNS, CampaignSpec
 from orccad_app.campaign.stats import (Hypothesis, Sprt, chernoff_runs, estimates,
                                        precise_enough, summarize)
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.campaign.validate import check_spec
+from orccad_app.diagnostics import OrccadError
 
 __all__ = ["CampaignOptions", "CampaignResult", "Campaign"]
 
@@ -80,20 +83,53 @@ class Campaign:
         self.until_s = (options.until_s or spec.until_s or self.compiled.default_until_s())
         check_spec(self.compiled, spec, self.until_s)
         self.hypothesis = Hypothesis.parse(options.hypothesis) if options.hypothesis else None
+        if self.hypothesis is not None:
+            self._check_event(self.hypothesis.event)
         self.limit = self._limit()
         self.stop_n = 0
+        self._tested = 0  # prefix lengths already tested against the stopping rule
         self.store = CampaignStore(options.db)
         self.store.start({"file": file, "mission": self.compiled.name,
                           "digest": self.compiled.digest, "spec": spec.text,
                           "until_s": repr(self.until_s)}, options.resume)
 
+    def events(self) -> list[str]:
+        """What a ``--hypothesis`` may name: the outcomes (with the mission's exceptions), its
+        properties and the spec's checks."""
+        exceptions = sorted({s.name[:-len(".raised")] for s in
+                             self.compiled.composition.automaton.outputs
+                             if s.name.endswith(".raised")})
+        statuses = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
+        return [*statuses, *(f"{status}({name})" for status in ("failed", "aborted",
+                                                                 "recovering")
+                             for name in exceptions),
+                *self.compiled.property_names(), *(check.name for check in self.spec.checks)]
+
+    def _check_event(self, event: str) -> None:
+        """Refuse a misspelt ``--hypothesis`` event (it would never happen: a silent P = 0)."""
+        import difflib
+
+        known = self.events()
+        if event not in known:
+            close = difflib.get_close_matches(event, known, n=3)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise OrccadError(f"--hypothesis: '{event}' is no outcome, property or check of "
+                              f"mission {self.compiled.name}{hint} (events: {', '.join(known)})")
+
     def _limit(self) -> int:
+        """The most runs the campaign may make, within ``MAX_RUNS`` (checked before any)."""
         options = self.options
         if options.runs is not None:
-            return options.runs
-        if options.epsilon is not None:
-            return chernoff_runs(options.epsilon, options.confidence)
-        return self.spec.runs
+            limit, why = options.runs, f"--runs {options.runs}"
+        elif options.epsilon is not None:
+            limit = chernoff_runs(options.epsilon, options.confidence)
+            why = (f"--epsilon {options.epsilon:g} (its Chernoff-Hoeffding bound is {limit} "
+                   "runs: give a larger epsilon)")
+        else:
+            limit, why = self.spec.runs, f"runs = {self.spec.runs}"
+        if limit > MAX_RUNS:
+            raise OrccadError(f"{why}: more than the {MAX_RUNS} runs a campaign may make")
+        return limit
 
     def setting(self, index: int) -> RunSetting:
         return draw_setting(self.spec, index, self.until_s)
@@ -112,6 +148,10 @@ class Campaign:
         """Run (or resume) the campaign; ``progress(done, limit, prefix)`` after each run."""
         start = time.perf_counter()
         records = {r.index: r for r in self.store.records()}
+        for record in records.values():  # a resumed database holds this campaign's draws
+            if record.setting != self.setting(record.index):
+                raise OrccadError(f"--resume: {self.store.path}: run {record.index} holds a "
+                                  "setting this campaign does not draw (an edited row?)")
         backend = backend or make_backend(self.options.workers, self.options.cluster)
         self.backend = backend
         interrupted = False
@@ -129,7 +169,7 @@ class Campaign:
 
     def _loop(self, backend: Any, records: dict[int, RunRecord],
               progress: Callable | None) -> str:
-        queue = deque(i for i in range(self.limit) if i not in records)
+        queue = deque(i for i in range(self.limit) if i not in records)  # <= MAX_RUNS
         flying: dict[Any, Job] = {}
         prefix = _Prefix()
         cap = 2 * max(1, getattr(backend, "workers", 1))
@@ -161,16 +201,43 @@ class Campaign:
         return stopped or "runs"
 
     def _stop(self, records: dict[int, RunRecord]) -> str | None:
-        """Why to stop submitting, if the prefix already answers."""
+        """Why to stop submitting, if the prefix already answers.
+
+        The rule is tested at every prefix length ``n`` not tested before, in order, and the
+        campaign stops at the *smallest* ``n`` where it holds (``stop_n``): when runs finish out
+        of order the prefix can grow by several runs at once, and testing only its new length
+        would make the answer depend on which worker was faster.
+        """
         if self.hypothesis is None and self.options.epsilon is None:
             return None
         prefix = _prefix(records)
-        self.stop_n = len(prefix)
-        if self.hypothesis is not None and self._sprt(prefix).decision is not None:
+        decided = self._sprt_decided_at(prefix) if self.hypothesis is not None else None
+        precise = None
+        if self.options.epsilon is not None:
+            for n in range(self._tested + 1, len(prefix) + 1):
+                if decided is not None and n >= decided:
+                    break
+                if precise_enough(prefix[:n], self.options.epsilon, self.options.confidence):
+                    precise = n
+                    break
+        self._tested = len(prefix)
+        if decided is not None and (precise is None or decided <= precise):
+            self.stop_n = decided
             return "hypothesis"
-        if (self.options.epsilon is not None
-                and precise_enough(prefix, self.options.epsilon, self.options.confidence)):
+        if precise is not None:
+            self.stop_n = precise
             return "epsilon"
+        self.stop_n = len(prefix)
+        return None
+
+    def _sprt_decided_at(self, prefix: list[RunRecord]) -> int | None:
+        """The number of prefix runs after which the SPRT decides, or ``None``."""
+        alpha = 1.0 - self.options.confidence
+        assert self.hypothesis is not None
+        test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
+        for n, record in enumerate(prefix, start=1):
+            if test.add(record) is not None:
+                return n
         return None
 
     def _sprt(self, prefix: list[RunRecord]) -> Sprt:

@@ -23,7 +23,7 @@ from orccad_app.campaign.distributions import round_sig
 from orccad_app.campaign.spec import CampaignSpec, InjectEntry
 
 __all__ = ["RunSetting", "draw_setting", "draw_values", "build_setting", "replay_command",
-           "injection_text"]
+           "whole_ns_ms", "injection_text"]
 
 
 @dataclass(frozen=True)
@@ -66,6 +66,12 @@ class RunSetting:
                    dict(data.get("values", {})))
 
 
+def whole_ns_ms(value_ms: Any) -> float:
+    """``value_ms`` [ms] rounded to a whole number of nanoseconds (its shortest text reads back
+    as exactly that many nanoseconds)."""
+    return round(float(value_ms) * 1e6) / 1e6
+
+
 def replay_command(file: str, mission: str, setting: RunSetting) -> str:
     """The shell command that replays ``setting``."""
     return shlex.join(["orccad", "run", file, "--mission", mission, *setting.run_args()])
@@ -88,8 +94,10 @@ def injection_text(entry: InjectEntry, value: Any, time_s: float) -> str:
 def draw_values(spec: CampaignSpec, rng: np.random.Generator) -> dict[str, Any]:
     """Every quantity of one run drawn from the spec (see the module docstring)."""
     values: dict[str, Any] = {}
-    for entry in (*spec.params, *spec.timings):
+    for entry in spec.params:
         values[entry.target] = entry.dist.sample(rng)
+    for entry in spec.timings:  # whole nanoseconds: --timing refuses anything finer
+        values[entry.target] = whole_ns_ms(entry.dist.sample(rng))
     for number, inject in enumerate(spec.injections):
         values[f"inject[{number}].occurs"] = int(rng.random() < inject.probability)
         if inject.value is not None:

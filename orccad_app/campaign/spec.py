@@ -43,7 +43,7 @@ from orccad_app.campaign.distributions import (Distribution, DistributionError, 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 
 __all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "InjectEntry", "Check", "load_spec",
-           "parse_spec", "SpecLocator", "DEFAULT_SEEDS"]
+           "parse_spec", "SpecLocator", "DEFAULT_SEEDS", "MAX_RUNS", "MAX_UNTIL_S", "MAX_SEED"]
 
 DEFAULT_SEEDS = parse_distribution(f"UI(0, {2 ** 31 - 1})")
 _TOP = ("mission", "runs", "seed", "until_s", "seeds", "signals", "params", "timing",
@@ -52,6 +52,18 @@ _EVENT = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:=(.*?)|\((.*)\))?\s*@(.+)$", re
 _METRIC = re.compile(r"^(?:(max|min)\(([A-Za-z_][\w.]*(?:\[\d+\])?)\)|sim_time_s|"
                      r"completion_time_s|deadline_misses|"
                      r"([A-Za-z_]\w*)\.tracking_error\.(max|rms))$")
+
+
+MAX_RUNS = 1_000_000
+"""Most runs a campaign may ask for (``runs``, ``--runs``, the Chernoff–Hoeffding bound of
+``--epsilon``): checked before the first run, the list of runs is never built past it."""
+
+MAX_UNTIL_S = 365 * 24 * 3600.0
+"""Longest horizon of a run [s]: one year, as ``orccad run --until`` and durations."""
+
+MAX_SEED = 2**63 - 1
+"""Largest seed (``seed``, ``seeds``): every run's replay command is an ``orccad run --seed``,
+which takes 64-bit seeds."""
 
 
 @dataclass(frozen=True)
@@ -157,12 +169,12 @@ class SpecLocator:
 
 def load_spec(path: str | Path) -> CampaignSpec:
     """Read and check the spec file ``path``; raise a located :class:`OrccadError`."""
+    from orccad_app.pipeline import read_source
+
     path = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as error:
-        raise OrccadError(f"cannot read campaign spec {path}: {error.strerror}") from None
-    return parse_spec(text, path)
+    # a regular file of at most MAX_SOURCE_BYTES, UTF-8 (a located error at the first
+    # undecodable byte): never a FIFO that blocks or /dev/zero read until memory runs out
+    return parse_spec(read_source(path), path)
 
 
 def parse_spec(text: str, path: str = "<spec>") -> CampaignSpec:
@@ -198,19 +210,22 @@ class _Reader:
         if "mission" in data:
             values["mission"] = self.string(data["mission"], "mission")
         if "runs" in data:
-            values["runs"] = self.integer(data["runs"], 1, "runs")
+            values["runs"] = self.integer(data["runs"], 1, "runs", maximum=MAX_RUNS)
         if "seed" in data:
-            values["seed"] = self.integer(data["seed"], 0, "seed")
+            values["seed"] = self.integer(data["seed"], 0, "seed", maximum=MAX_SEED)
         if "until_s" in data:
             until = data["until_s"]
-            if isinstance(until, bool) or not isinstance(until, (int, float)) or not until > 0:
-                raise self.fail(f"until_s must be a number > 0, got {until!r}", "until_s")
+            # NaN and infinities fail the range test too
+            if isinstance(until, bool) or not isinstance(until, (int, float)) \
+                    or not 0 < until <= MAX_UNTIL_S:
+                raise self.fail(f"until_s must be a number of seconds in (0, {MAX_UNTIL_S:g}] "
+                                f"(one year), got {until!r}", "until_s")
             values["until_s"] = float(until)
         if "seeds" in data:
             seeds = self.dist(data["seeds"], "seeds")
-            if not seeds.integral or seeds.bounds[0] < 0:
-                raise self.fail("seeds must draw integers >= 0 (UI(a, b) or choice of "
-                                "integers)", "seeds")
+            if not seeds.integral or seeds.bounds[0] < 0 or seeds.bounds[1] > MAX_SEED:
+                raise self.fail(f"seeds must draw integers in [0, {MAX_SEED}] (UI(a, b) or "
+                                "choice of integers)", "seeds")
             values["seeds"] = seeds
         values["signals"] = self.signals(data.get("signals", []))
         values["params"] = tuple(ParamEntry(k, self.dist(v, "params", k), ("params", k))
@@ -232,9 +247,11 @@ class _Reader:
             raise self.fail(f"{key[-1]} must be a non-empty string, got {value!r}", *key)
         return value.strip()
 
-    def integer(self, value: Any, minimum: int, *key: Any) -> int:
-        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-            raise self.fail(f"{key[-1]} must be an integer >= {minimum}, got {value!r}", *key)
+    def integer(self, value: Any, minimum: int, *key: Any, maximum: int = 2**63 - 1) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or not \
+                minimum <= value <= maximum:
+            raise self.fail(f"{key[-1]} must be an integer in [{minimum}, {maximum}], got "
+                            f"{value!r}", *key)
         return value
 
     def dist(self, value: Any, *key: Any) -> Distribution:

@@ -33,7 +33,7 @@ __all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "event_coun
            "estimates", "precise_enough", "summarize", "influence"]
 
 _HYPOTHESIS = re.compile(r"^\s*P\(\s*(.+?)\s*\)\s*(>=|<=)\s*([0-9.eE+-]+)\s*$")
-_OUTCOMES = ("done", "failed", "aborted", "timeout", "crashed")
+_OUTCOMES = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
 
 
 def clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:

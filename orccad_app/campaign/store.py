@@ -35,7 +35,7 @@ from orccad_app.campaign.adapter import PropertyResult, RunRecord
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CampaignStore", "SCHEMA"]
+__all__ = ["CampaignStore", "SCHEMA", "COLUMNS"]
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS campaign (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -53,18 +53,45 @@ CREATE TABLE IF NOT EXISTS properties (run INTEGER NOT NULL, name TEXT NOT NULL,
 """
 
 
+COLUMNS = {
+    "campaign": ("key", "value"),
+    "runs": ("run", "seed", "status", "outcome", "reason", "sim_time_s", "completion_time_s",
+             "wall_time_s", "attempts", "error", "setting", "replay"),
+    "params": ("run", "name", "value"),
+    "metrics": ("run", "name", "value"),
+    "properties": ("run", "name", "holds", "robustness"),
+}
+"""The columns of each table, in order (checked when a database is opened)."""
+
+_STATUSES = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
+
+
 class CampaignStore:
     """The database of one campaign (see the module docstring)."""
 
     def __init__(self, path: str | Path) -> None:
         self.path = str(path)
+        if Path(self.path).exists():
+            from orccad_app.pipeline import require_regular_file
+
+            require_regular_file(self.path)  # never a FIFO or a device opened as SQLite
         try:
             self.db = sqlite3.connect(self.path)
             self.db.execute("PRAGMA journal_mode=WAL")
             self.db.execute("PRAGMA synchronous=NORMAL")
             self.db.executescript(SCHEMA)
+            self._check_schema()
         except sqlite3.DatabaseError as error:
             raise OrccadError(f"{self.path}: not a campaign database ({error})") from None
+
+    def _check_schema(self) -> None:
+        """A database of another program (same table names, other columns) is refused."""
+        for table, columns in COLUMNS.items():
+            found = tuple(row[1] for row in self.db.execute(f"PRAGMA table_info({table})"))
+            if found != columns:
+                raise OrccadError(f"{self.path}: not a campaign database (its table {table} "
+                                  f"has the columns {', '.join(found)}; a campaign's has "
+                                  f"{', '.join(columns)})")
 
     def close(self) -> None:
         self.db.close()
@@ -72,7 +99,7 @@ class CampaignStore:
     # -- identity ------------------------------------------------------------------------
 
     def meta(self) -> dict[str, str]:
-        return dict(self.db.execute("SELECT key, value FROM campaign"))
+        return {str(k): str(v) for k, v in self.db.execute("SELECT key, value FROM campaign")}
 
     def start(self, meta: dict[str, str], resume: bool) -> None:
         """Bind the database to a campaign: a new one is stamped with ``meta``; an existing
@@ -129,8 +156,12 @@ class CampaignStore:
                                 properties)
 
     def records(self, limit: int | None = None) -> list[RunRecord]:
-        """The recorded runs with index below ``limit`` (all by default), in index order."""
-        return list(self._iter(limit))
+        """The recorded runs with index below ``limit`` (all by default), in index order; a
+        row that is not what a campaign writes is refused (located by its run)."""
+        try:
+            return list(self._iter(limit))
+        except sqlite3.DatabaseError as error:
+            raise OrccadError(f"{self.path}: not a campaign database ({error})") from None
 
     def _iter(self, limit: int | None) -> Iterator[RunRecord]:
         bound = -1 if limit is None else limit
@@ -145,9 +176,18 @@ class CampaignStore:
             "SELECT run, status, outcome, reason, sim_time_s, wall_time_s, attempts, error, "
             "setting FROM runs WHERE ? < 0 OR run < ? ORDER BY run", (bound, bound))
         for run, status, outcome, reason, sim, wall, attempts, error, setting in rows:
-            yield RunRecord(RunSetting.from_dict(json.loads(setting)), status, reason, outcome,
-                            sim or 0.0, wall or 0.0, metrics.get(run, {}), props.get(run, {}),
-                            attempts, error)
+            try:
+                parsed = RunSetting.from_dict(json.loads(setting))
+                if parsed.index != run or status not in _STATUSES or \
+                        not isinstance(attempts, int):
+                    raise ValueError("its index, status or attempts are not a campaign's")
+                record = RunRecord(parsed, status, reason, outcome, float(sim or 0.0),
+                                   float(wall or 0.0), metrics.get(run, {}),
+                                   props.get(run, {}), attempts, error)
+            except (ValueError, TypeError, KeyError, AttributeError) as failure:
+                raise OrccadError(f"{self.path}: run {run}: not a row a campaign writes "
+                                  f"({failure})") from None
+            yield record
 
     def replay(self, index: int) -> str | None:
         row = self.db.execute("SELECT replay FROM runs WHERE run = ?", (index,)).fetchone()

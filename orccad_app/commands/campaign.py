@@ -9,8 +9,9 @@
 
 See docs/campaigns.md and :mod:`orccad_app.campaign`. Exit status: 0; 1 when the hypothesis
 is rejected; 2 on bad input (the spec's errors name its line); 3 when a run crashed twice (an
-internal error; the others are kept); 130 on Ctrl-C (every finished run is in the database:
-``--resume`` continues).
+internal error; the others are kept); 130 on Ctrl-C or SIGTERM (the workers are stopped, the
+report of the finished runs is printed and every finished run is in the database: ``--resume``
+continues).
 """
 
 from __future__ import annotations
@@ -18,10 +19,19 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from contextlib import contextmanager
+from typing import Iterator
 
-from orccad_app.commands.arguments import positive_int, seconds
+from orccad_app.commands.arguments import bounded_int, positive_int, seconds
 
-__all__ = ["register", "run", "add_common"]
+__all__ = ["register", "run", "add_common", "MAX_WORKERS", "MAX_RUNS"]
+
+MAX_WORKERS = 256
+"""Most local worker processes (each is a forked interpreter holding the compiled mission)."""
+
+MAX_RUNS = 1_000_000
+"""Mirrors ``campaign.spec.MAX_RUNS`` (a test keeps them equal; importing the campaign package
+here would slow every command's start-up)."""
 
 
 def _positive_int(text: str) -> int:
@@ -52,8 +62,9 @@ def add_common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--until", type=_seconds, metavar="S",
                         help="simulated-time limit of each run [s] (default: the spec's "
                              "until_s, else orccad run's)")
-    parser.add_argument("--workers", type=_positive_int, metavar="N",
-                        help=f"local worker processes (default: the cores, {os.cpu_count()})")
+    parser.add_argument("--workers", type=bounded_int(1, MAX_WORKERS), metavar="N",
+                        help=f"local worker processes, at most {MAX_WORKERS} (default: the "
+                             f"cores, {os.cpu_count()})")
     parser.add_argument("--cluster", metavar="tcp://HOST:8786",
                         help="run on this Dask scheduler instead (pip install "
                              "'orccad[cluster]')")
@@ -66,7 +77,7 @@ def register(sub) -> None:
                                         "(faults, parameters, timing, seeds) and estimate "
                                         "the probability of every outcome and property.")
     add_common(parser)
-    parser.add_argument("--runs", type=_positive_int, metavar="N",
+    parser.add_argument("--runs", type=bounded_int(1, MAX_RUNS), metavar="N",
                         help="number of runs (default: the spec's runs; with --epsilon, the "
                              "Chernoff-Hoeffding bound)")
     parser.add_argument("--epsilon", type=_probability, metavar="E",
@@ -86,6 +97,30 @@ def register(sub) -> None:
     parser.set_defaults(func=run)
 
 
+@contextmanager
+def _sigterm_interrupts() -> Iterator[list[int]]:
+    """While the campaign runs, SIGTERM interrupts it as Ctrl-C does (the workers stopped, the
+    finished runs reported and kept); the list it yields holds the signal once received."""
+    import signal
+    import threading
+
+    received: list[int] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield received
+        return
+
+    def on_sigterm(signum: int, frame: object) -> None:
+        if not received:
+            received.append(signum)
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, on_sigterm)
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def default_db(spec_path: str) -> str:
     name = os.path.basename(spec_path)
     return (name[:-5] if name.endswith(".toml") else name) + ".db"
@@ -102,11 +137,12 @@ def run(args: argparse.Namespace) -> int:
                               args.db or default_db(args.spec), args.resume, args.epsilon,
                               args.confidence, args.hypothesis, args.delta, args.until)
     campaign = Campaign(args.file, spec, options, args.mission)
-    if sys.stderr.isatty() and not args.json:
-        with Progress(args.confidence) as progress:
-            result = campaign.run(progress)
-    else:
-        result = campaign.run()
+    with _sigterm_interrupts() as terminated:
+        if sys.stderr.isatty() and not args.json:
+            with Progress(args.confidence) as progress:
+                result = campaign.run(progress)
+        else:
+            result = campaign.run()
     if args.report:
         from orccad_app.campaign.report import write_report
         write_report(result, args.report)
@@ -117,7 +153,8 @@ def run(args: argparse.Namespace) -> int:
         if args.report:
             print(f"Report: {args.report}")
     if result.interrupted:
-        print("orccad: interrupted; continue with --resume", file=sys.stderr)
+        why = "terminated (SIGTERM)" if terminated else "interrupted"
+        print(f"orccad: {why}; continue with --resume", file=sys.stderr)
         return 130
     if any(r.status == "crashed" for r in result.records):
         print("orccad: some runs crashed twice (status 'crashed' in the database)",

@@ -1,9 +1,11 @@
-"""``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main]``: C99 of the
-composed mission automaton (see ``docs/deploy.md``).
+"""``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main] [--module-tasks]``:
+C99 of the composed mission automaton (see ``docs/deploy.md``).
 
 Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
 that runs the automaton on an input script and prints what ``orccad react --composed
---jsonl`` prints) into the folder ``DIR`` (default: ``PREFIX``), all or nothing.
+--jsonl`` prints; with ``--module-tasks``, the Module-Tasks' table ``orccad_modules.c`` and
+the C runtime, :mod:`orccad_app.sil.emit`) into the folder ``DIR`` (default: ``PREFIX``),
+all or nothing.
 """
 
 from __future__ import annotations
@@ -31,6 +33,10 @@ def register(sub) -> None:
     parser.add_argument("--main", action="store_true",
                         help="also write PREFIX_main.c: runs the automaton on an input script "
                              "and prints what 'orccad react --composed --jsonl' prints")
+    parser.add_argument("--module-tasks", action="store_true",
+                        help="also write the Module-Tasks of every Robot-Task the mission runs "
+                             "(orccad_modules.c) and the C runtime that runs them on threads "
+                             "(see docs/deploy.md, part 2)")
     add_max_states(parser)
     parser.set_defaults(func=run)
 
@@ -51,6 +57,11 @@ def run(args: argparse.Namespace) -> int:
     files = dict(program.files)
     if args.main:
         files[f"{prefix}_main.c"] = main_source(program)
+    if args.module_tasks:
+        from orccad_app.mission.plan import plan_mission
+        from orccad_app.sil.emit import module_task_files
+
+        files.update(module_task_files(plan_mission(source, mission), args.file))
     for path in write_files(args.output or prefix, files):
         print(path)
     return 0

@@ -15,6 +15,7 @@ was found (robustness < 0), 0 when none was; 2 on bad input.
 from __future__ import annotations
 
 import argparse
+import os
 
 from orccad_app.commands.arguments import non_negative_int
 from orccad_app.commands.campaign import _positive_int, add_common
@@ -59,6 +60,10 @@ def run(args: argparse.Namespace) -> int:
     if args.resume and not args.study:
         raise OrccadError("--resume needs --study FILE")
     spec = load_spec(args.spec)
+    if args.study and os.path.lexists(args.study):
+        from orccad_app.pipeline import require_regular_file
+
+        require_regular_file(args.study)  # never a FIFO or a device opened as SQLite
     storage = f"sqlite:///{args.study}" if args.study else None
     falsifier = Falsifier(args.file, spec, args.property, mission=args.mission,
                           until_s=args.until, sampler=args.sampler, seed=args.seed,
@@ -77,9 +82,12 @@ def run(args: argparse.Namespace) -> int:
                           "setting": replayed.setting.as_dict(), "replay": command,
                           "trace": trace}, indent=2))
     else:
-        found = (f"violated (robustness {result.best_robustness:.4g}), first at trial "
-                 f"{result.first_violation}" if violated else
-                 f"not violated: the smallest robustness is {result.best_robustness:.4g}")
+        if result.best_robustness is None:
+            margin = "no run gave it a robustness (undefined on every run)"
+        else:
+            margin = f"the smallest robustness is {result.best_robustness:.4g}"
+        found = (f"violated ({margin}), first at trial {result.first_violation}" if violated
+                 else f"not violated: {margin}")
         print(f"Falsify {args.property} on {falsifier.compiled.name} with {args.sampler}: "
               f"{result.trials} trials; {found}\n"
               f"Worst run: {replayed.outcome} at {replayed.sim_time_s:g} s\n"

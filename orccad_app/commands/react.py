@@ -2,8 +2,9 @@
 
 One instant per script line (see :mod:`orccad_app.reactive.script`); without ``--inputs`` the
 script is read from standard input. Robot-Tasks are seen through their interface: ``run X``
-emits ``X.start`` and waits for the inputs ``X.good_end`` or ``X.<exception>``, so a
-mission's logic is tested without the plant. Exit status 1 when the mission ends ``failed``
+emits ``X.start``, waits for its synchronization pre-conditions, then for the inputs
+``X.good_end`` (which emits its ``postcondition emit S`` signals, as ``run`` does) or
+``X.<exception>``, so a mission's logic is tested without the plant. Exit status 1 when the mission ends ``failed``
 or ``aborted``.
 """
 

@@ -172,14 +172,35 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     port = DEFAULT_PORT if args.foxglove_port is None else args.foxglove_port
     live = open_foxglove(port, {"mission": mission, "file": args.file, "seed": str(args.seed)},
                          sensor_ports(plan))
-    wait_s = 60.0 if args.foxglove_wait is None else args.foxglove_wait
+    wait_s = _foxglove_wait_s(args)
     print(f"orccad: streaming to Foxglove on {live.url} (in Foxglove: Open connection, "
           "Foxglove WebSocket)" + (f"; the run starts when Foxglove subscribes (at most "
                                    f"{wait_s:g} s from now)" if wait_s > 0 else ""),
           file=sys.stderr, flush=True)
-    if wait_s > 0 and not live.wait_for_client(wait_s):
-        print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
     return live
+
+
+def _foxglove_wait_s(args: argparse.Namespace) -> float:
+    return 60.0 if args.foxglove_wait is None else args.foxglove_wait
+
+
+def _wait_for_foxglove(args: argparse.Namespace, live: Any, mission_run: Any) -> None:
+    """Wait for a Foxglove subscriber (``--foxglove-wait``); Ctrl-C or SIGTERM meanwhile end
+    the run before it starts (``mission_run.abort``: its report and a valid trace are still
+    written)."""
+    import time
+
+    wait_s = _foxglove_wait_s(args)
+    if wait_s <= 0:
+        return
+    deadline = time.monotonic() + wait_s
+    while not mission_run.stopping:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            print("orccad: no Foxglove client yet: the run starts", file=sys.stderr, flush=True)
+            return
+        if live.wait_for_client(min(left, 0.1)):
+            return
 
 
 def _verdict_samples(monitor: Any) -> Any:
@@ -301,14 +322,16 @@ def run(args: argparse.Namespace) -> int:
                                                         "seed": str(args.seed)},
                                            sensor_ports(plan)), mission_run, verdicts=verdicts)
         mission_run.add_observer(writer)
-    live = None
+    live = server = None
     if args.foxglove:
-        live = trace_recorder(_foxglove(args, mission.name, plan), mission_run,
-                              verdicts=verdicts)
+        server = _foxglove(args, mission.name, plan)
+        live = trace_recorder(server, mission_run, verdicts=verdicts)
         mission_run.add_observer(live)
     try:
         try:
             with _signals_end_the_run(mission_run):
+                if server is not None:
+                    _wait_for_foxglove(args, server, mission_run)
                 result = mission_run.run()
         finally:
             if progress is not None:
@@ -338,7 +361,10 @@ def run(args: argparse.Namespace) -> int:
     if result.interrupted:
         print("orccad: interrupted", file=sys.stderr)
         return 130
-    if result.status != "done" and not args.json:
+    if result.status == "recovering" and not args.json:
+        print(f"orccad: mission aborted by {result.reason}, its 'on fatal' recovery cut by the "
+              f"horizon (status recovering)", file=sys.stderr)
+    elif result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = [v.name for v in verdicts if v.verdict.value == "false"]
     if violated and not args.json:

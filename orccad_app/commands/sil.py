@@ -194,6 +194,9 @@ def run(args: argparse.Namespace) -> int:
             print("\n".join(_timing_lines(timings)))
         if args.trace:
             print(f"Trace: {args.trace}")
+    if result.interrupted:
+        print("orccad: interrupted", file=sys.stderr)
+        return 130
     if result.status != "done" and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = [v.name for v in verdicts if v.verdict.value == "false"]

@@ -53,6 +53,10 @@ def run(args: argparse.Namespace) -> int:
     paths = [args.file] if args.file else []
     if args.file and not Path(args.file).exists():
         raise OrccadError(f"{args.file}: no such file or folder")
+    if args.file and not Path(args.file).is_dir():
+        from orccad_app.pipeline import require_regular_file
+
+        require_regular_file(args.file)  # a FIFO would block, /dev/zero never end
     from orccad_app.tui.app import OrccadApp  # Textual only now: the core never imports it
 
     selected = args.file if args.file and Path(args.file).is_file() else None

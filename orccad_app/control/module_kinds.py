@@ -30,7 +30,7 @@ from orccad_app.control.laws.base import ControlLaw
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches
 from orccad_app.control.task_functions import TaskFunction
-from orccad_app.control.trajectories import Sample
+from orccad_app.control.trajectories import Sample, retune
 
 __all__ = ["TrajectoryModule", "ControlLawModule"]
 
@@ -83,6 +83,7 @@ class _TrajectoryInstance(ModuleInstance):
         self.task_function = _task_function(kind.name, context)
         self._origin = self.task_function.trajectory.origin
         self._start: np.ndarray | None = None
+        self._last_t_s: float | None = None  # task time of the last job [s]
         self.ref = self.task_function.reference_name
         self._ref_dot, self._ref_ddot = f"{self.ref}_dot", f"{self.ref}_ddot"
         ports = _concrete(kind.ports, self.ref, self.task_function.dim, self.task_function.dof)
@@ -93,6 +94,7 @@ class _TrajectoryInstance(ModuleInstance):
         self.task_function = _task_function(self.kind.name, self._context)
         self._origin = self.task_function.trajectory.origin
         self._start = None
+        self._last_t_s = None
 
     def param_spec(self, name: str) -> ParamSpec:
         """The trajectory's parameters (``traj.omega`` of ``cosine``) are the module's."""
@@ -113,7 +115,8 @@ class _TrajectoryInstance(ModuleInstance):
 
     def set_param(self, name: str, value: Any) -> None:
         """Rebuild the trajectory with ``name`` changed (validated); its time goes on from the
-        module's start, and a measured start position is kept."""
+        module's start, a measured start position is kept, and the set-point stays continuous
+        from the last job on (:mod:`orccad_app.control.trajectories.retuned`)."""
         self.param_spec(name)
         origin = self._origin
         trajectory = origin.kind.create({**origin.params, name: value})
@@ -121,9 +124,14 @@ class _TrajectoryInstance(ModuleInstance):
             raise DimensionMismatch(f"trajectory {origin.name!r}: {name} gives "
                                     f"{trajectory.dim} components, the task has "
                                     f"{self.task_function.dim}")
+        previous = self.task_function.trajectory
         self.task_function.trajectory = trajectory
         if self._start is not None:
             self.task_function.start_from(self._start)
+        if self._last_t_s is not None and not previous.needs_start:
+            # the set-point stays continuous (phase, then a C² blend: trajectories/retuned.py)
+            self.task_function.trajectory = retune(previous, self.task_function.trajectory,
+                                                   self._last_t_s)
         self._origin = trajectory.origin
 
     def compute(self, t_s: float, inputs: Mapping[str, Any]) -> dict[str, Any]:
@@ -133,7 +141,8 @@ class _TrajectoryInstance(ModuleInstance):
                 return {}
             self._start = np.asarray(q, dtype=float)
             self.task_function.start_from(self._start)
-        sample = self.task_function.reference(self.task_time(t_s))
+        self._last_t_s = self.task_time(t_s)
+        sample = self.task_function.reference(self._last_t_s)
         return {self.ref: sample.pos, self._ref_dot: sample.vel, self._ref_ddot: sample.acc}
 
 

@@ -18,6 +18,7 @@ import importlib.resources
 import os
 import re
 from pathlib import Path
+from typing import Iterator
 
 from lark import Lark, Token, Tree
 from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken, VisitError
@@ -29,7 +30,8 @@ from orccad_app.lang.limits import check_tree, ensure_recursion_headroom
 from orccad_app.lang.syntax_errors import syntax_error
 from orccad_app.lang.transform import ToAst
 
-__all__ = ["parse", "keywords", "grammar_text", "grammar_lark"]
+__all__ = ["parse", "keywords", "grammar_text", "grammar_lark", "lex", "parse_interactive",
+           "literal_terminals"]
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
@@ -97,6 +99,36 @@ def keywords() -> frozenset[str]:
         if isinstance(t.pattern, PatternStr) and _NAME.match(t.pattern.value))
 
 
+@functools.lru_cache(maxsize=1)
+def _lexer():
+    """The grammar's terminals as one standalone lexer (no parser states: every terminal
+    everywhere), built once; for tools that read a text that may not parse."""
+    return _lark()._build_lexer()
+
+
+def lex(text: str) -> Iterator[Token]:
+    """The tokens of ``text`` by the grammar's own terminals, comments and blanks skipped,
+    without parsing (editor tools: outline, folding, names under the cursor of a file with
+    a syntax error). Raises lark's ``UnexpectedCharacters`` at a character no terminal
+    matches, after the tokens before it."""
+    from lark.lexer import LexerThread
+    return LexerThread.from_text(_lexer(), text).lex(None)
+
+
+def parse_interactive(text: str):
+    """lark's interactive parser over ``text`` (its ``accepts()`` is the set of terminals the
+    grammar takes next): for completion."""
+    return _lark().parse_interactive(text)
+
+
+@functools.lru_cache(maxsize=1)
+def literal_terminals() -> dict[str, str]:
+    """Terminal name → its literal text, for every terminal that is a fixed string
+    (keywords and punctuation: ``MISSION`` → ``mission``, ``LBRACE`` → ``{``)."""
+    return {t.name: t.pattern.value for t in _lark().terminals
+            if isinstance(t.pattern, PatternStr)}
+
+
 def _reserved_name(tree: Tree, filename: str) -> OrccadError | None:
     """An error for the first keyword used as an identifier, if any.
 
@@ -150,6 +182,13 @@ def parse(text: str, filename: str = "<input>") -> ast.Program:
     return _parse(text, filename)
 
 
+#: Parsed texts kept (the AST is immutable, so a repeated parse of the same text, such as
+#: the libraries a file imports, re-analysed at each keystroke by the language server,
+#: returns the same tree); errors are not kept.
+PARSE_CACHE_SIZE = 16
+
+
+@functools.lru_cache(maxsize=PARSE_CACHE_SIZE)
 def _parse(text: str, filename: str) -> ast.Program:
     try:
         tree = _lark().parse(text)

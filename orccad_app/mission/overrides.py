@@ -159,6 +159,21 @@ def parse_set(text: str) -> ParamOverride | NoiseOverride:
     return ParamOverride(robot, name, value)
 
 
+def _whole_ns(raw: str, value_ms: float, text: str) -> int:
+    """``raw`` ms as a whole number of nanoseconds, exactly (decimal arithmetic); a time that
+    is not one is refused, as the language refuses ``1.5 ns`` (never silently rounded)."""
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        exact = Decimal(raw.replace("_", "")) * 10**6
+    except InvalidOperation:  # another spelling _scalar accepted: from its float
+        exact = Decimal(value_ms) * 10**6
+    if exact != exact.to_integral_value():
+        raise OrccadError(f"--timing {text}: {raw} ms is not a whole number of nanoseconds "
+                          f"({exact.normalize():f} ns; the language refuses 1.5 ns too)")
+    return int(exact)
+
+
 def parse_timing(text: str) -> TimingOverride:
     """``TASK.MODULE.period_ms|wcet_ms|bcet_ms=MS``; raise :class:`OrccadError`."""
     match = _TIMING.match(text)
@@ -172,7 +187,7 @@ def parse_timing(text: str) -> TimingOverride:
     field = TimingField(field_name)
     if float(value) * 1e6 > MAX_DURATION_NS:
         raise OrccadError(f"--timing {text}: at most one year (the longest duration)")
-    value_ns = int(round(float(value) * 1e6))
+    value_ns = _whole_ns(raw.strip(), float(value), text)
     if field is TimingField.PERIOD and value_ns < MIN_PERIOD_NS:
         raise OrccadError(f"--timing {text}: a period must be at least 1 us (0.001 ms), as "
                           "in the language")

@@ -14,12 +14,18 @@ from orccad_app.jsonout import plain
 _dot = np.dot
 
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
-           "ErrorSamples", "STATUSES"]
+           "ErrorSamples", "STATUSES", "RECOVERING"]
 
-STATUSES = ("done", "failed", "aborted", "timeout")
-"""Final statuses: the mission ended normally, by an uncaught type-2 exception (or a run-time
-failure: deadlock, diverging plant, failing module), by a type-3 exception (or Ctrl-C), or was
-still running at ``--until``."""
+RECOVERING = "recovering"
+"""The status of a run cut by its horizon while the ``on fatal`` recovery that followed a type-3
+exception was still running (the reason names the exception)."""
+
+STATUSES = ("done", "failed", "aborted", RECOVERING, "timeout")
+"""Final statuses: the mission ended normally; by an uncaught type-2 exception (or a run-time
+failure: deadlock, diverging plant, failing module); by a type-3 exception, its ``on fatal``
+recovery (if any) finished (or by Ctrl-C); by a type-3 exception with the recovery still
+running at ``--until`` (``recovering``: where the recovery would end is unknown); or was still
+running at ``--until``."""
 
 
 class ErrorSamples:

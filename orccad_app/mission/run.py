@@ -65,7 +65,7 @@ from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.mission.result import RECOVERING, ExceptionRecord, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError, plain_arguments
@@ -437,8 +437,9 @@ class MissionRun:
         """Run until the mission ends, ``until_ns``, a run-time failure or Ctrl-C."""
         wall_start = time.perf_counter()
         status, reason = None, None
-        try:
-            self.sim.run(self.until_ns, realtime=self.realtime)
+        try:  # aborted before it started (Ctrl-C while waiting for Foxglove): no event runs
+            until_ns = self.kernel.now if self._stopped_by is not None else self.until_ns
+            self.sim.run(until_ns, realtime=self.realtime)
         except _RUN_FAILURES as error:
             status, reason = "failed", error.message
         except _LOCATED_FAILURES as error:
@@ -462,7 +463,9 @@ class MissionRun:
         reactor = self.reactor
         if reactor.finished:
             return reactor.status, reactor.reason
-        if reactor.status in ("failed", "aborted"):
+        if reactor.status == "aborted":  # the 'on fatal' recovery was cut by the horizon
+            return RECOVERING, reactor.reason
+        if reactor.status == "failed":
             return reactor.status, reactor.reason
         return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
 

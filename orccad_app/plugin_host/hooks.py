@@ -27,6 +27,8 @@ def describe_error(error: BaseException) -> str:
     """A one-line description of an exception raised by a plugin."""
     if isinstance(error, OrccadError):
         return error.message
+    if isinstance(error, SystemExit):
+        return f"called sys.exit({error.code!r})"
     return f"{type(error).__name__}: {error}"
 
 
@@ -90,7 +92,8 @@ class OrccadHooks:
             kwargs = arguments()
             try:
                 impl.function(**{arg: kwargs[arg] for arg in impl.argnames})
-            except Exception as error:  # noqa: BLE001 - a plugin must not crash the host
+            except (Exception, SystemExit) as error:  # noqa: BLE001 - a plugin must not
+                # crash the host, not even by calling sys.exit() in a hook
                 self._on_failure(name, hook_name, describe_error(error))
                 continue
             done.append((name, kwargs))

@@ -193,7 +193,8 @@ class PluginHost:
             dist = getattr(entry_point, "dist", None)
             try:
                 plugin = entry_point.load()
-            except Exception as error:  # noqa: BLE001 - any import error is the plugin's
+            except (Exception, SystemExit) as error:  # noqa: BLE001 - the plugin's, even
+                # sys.exit() at import: the plugin is disabled, the command goes on
                 self.failures.append(PluginFailure(name, "import", describe_error(error)))
                 continue
             self.add_plugin(plugin, name, dist.name if dist else None,

@@ -9,9 +9,11 @@
     are the observers' events (``X.TrackingLost``, ``X.at_goal``…) and the mission's inputs.
 
 ``abstract`` (``orccad react``: the mission's logic without the plant)
-    each ``run X(args)`` emits ``X.start`` and waits for the task's *outcome* as inputs:
-    ``X.good_end``, its type-2 exceptions ``X.E`` (and ``X.<obs>_timeout``), its type-3
-    exceptions ``X.F``.
+    each ``run X(args)`` emits ``X.start``, waits for its synchronization pre-conditions, then
+    for the task's *outcome* as inputs: ``X.good_end`` (emitting its ``postcondition emit S``
+    signals in that instant), its type-2 exceptions ``X.E`` (and ``X.<obs>_timeout``), its
+    type-3 exceptions ``X.F``. Every mission-level output agrees with the composed view's
+    (``tests/robottask/test_views_agree.py``).
 
 In both views the output ``E.raised`` is present in the instant exception ``E`` is raised,
 ``X.start`` when task X starts (and, composed, ``X.good_end`` at its good end); each instance
@@ -109,6 +111,8 @@ class ApplicationLowerer(Lowerer):
         self.task_sigs: dict[str, TaskSignals] = {}
         self.arg_signals: dict[tuple[str, str], ir.SignalDecl] = {}
         self.outcomes: dict[str, dict[str, ir.SignalDecl]] = {}
+        # abstract view: each task's synchronization pre-conditions and emitted post-conditions
+        self.sync: dict[str, tuple[tuple[ir.SignalDecl, ...], tuple[ir.SignalDecl, ...]]] = {}
         self.handlers: list[dict[str, ir.TrapDecl]] = []
         loc = mission.loc
         # two exceptions in one instant: the status reports the last one (hidden signals)
@@ -185,7 +189,9 @@ class ApplicationLowerer(Lowerer):
         return self.task_sigs[task.name]
 
     def outcomes_of(self, task: ast.RobotTask) -> dict[str, ir.SignalDecl]:
-        """Abstract view: ``start`` (output), ``good_end`` and the exceptions (inputs)."""
+        """Abstract view: ``start`` (output), ``good_end`` and the exceptions (inputs); the
+        synchronization pre-conditions (inputs) and ``postcondition emit S`` (outputs) are
+        the mission-level signals of the composed view (:meth:`sync_of`)."""
         if task.name not in self.outcomes:
             x, loc = task.name, task.loc
             found = {"start": self._add(ir.SignalDecl(f"{x}.start", ir.OUTPUT, None, loc)),
@@ -199,6 +205,11 @@ class ApplicationLowerer(Lowerer):
                 self.roles.add(found[name].name, RoleKind.EVENT, x, name)
             record_raisers(task, self.roles)
             self.outcomes[task.name] = found
+            self.sync[task.name] = (
+                tuple(self.global_signal(p.signal, p.loc, False) for p in task.preconditions
+                      if isinstance(p, ast.SignalPrecondition)),
+                tuple(self.global_signal(p.signal, p.loc, True) for p in task.postconditions
+                      if isinstance(p, ast.SignalPostcondition)))
         return self.outcomes[task.name]
 
     # ------------------------------------------------------------------ statements
@@ -243,19 +254,29 @@ class ApplicationLowerer(Lowerer):
         return tuple(arguments), emits
 
     def _abstract_run(self, task: ast.RobotTask, site: int, loc: SourceLocation) -> ir.Stmt:
+        """``X.start``; the synchronization pre-conditions awaited (immediately, as the RTA's
+        first phase does); then the first outcome input: ``X.good_end`` emits the task's
+        ``postcondition emit S`` signals in its instant (as the composed view does), an
+        exception is raised."""
         signals = self.outcomes_of(task)
+        pre, post = self.sync[task.name]
         ended = ir.TrapDecl("_ended", loc)
 
         def wait(name: str) -> ir.Stmt:
             return d.await_signal(ir.SigRef(signals[name], loc), loc=loc)
 
-        branches = [d.seq(wait("good_end"), ir.Exit(ended, loc))]
+        good_end = d.seq(wait("good_end"), *(ir.Emit(s, None, loc) for s in post),
+                         ir.Exit(ended, loc))
+        branches = [good_end]
         branches += [d.seq(wait(e), self.raise_(e, loc)) for e in task.raisable()]
         branches += [d.seq(wait(e.name), self.fatal(e.name, loc)) for e in task.exceptions
                      if e.type is ast.ExceptionType.FATAL]
         outcome = ir.Trap(ended, ir.Par(tuple(branches), loc), loc)
+        waits = [d.await_signal(ir.SigRef(s, loc), immediate=True, loc=loc) for s in pre]
+        synchronized = waits[0] if len(waits) == 1 else ir.Par(tuple(waits), loc) if waits \
+            else ir.Nothing(loc)
         return ir.Mark(RtLabel(task.name, site), d.seq(ir.Emit(signals["start"], None, loc),
-                                                outcome), loc)
+                                                        synchronized, outcome), loc)
 
     def _fail(self, s: ast.Fail, scope: Scope) -> ir.Stmt:
         """``fail E;``: a type-2 exception raised by the plan itself."""

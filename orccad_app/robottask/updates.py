@@ -161,6 +161,24 @@ def _check_call(call: ast.Call) -> None:
         if arg.name is not None:
             raise OrccadError(f"the arguments of {call.func} are positional", arg.loc)
         _check(arg.value)
+    if call.func == "clip":
+        low_value, high_value = _literal(call.args[1].value), _literal(call.args[2].value)
+        if low_value is not None and high_value is not None and low_value > high_value:
+            raise OrccadError(_clip_bounds(low_value, high_value), call.loc)
+
+
+def _literal(expr: ast.Expr) -> float | None:
+    """The value of a number literal, or of a negated one; else ``None``."""
+    if isinstance(expr, ast.Number):
+        return float(expr.value)
+    if isinstance(expr, ast.Unary) and expr.op == "-" and isinstance(expr.operand, ast.Number):
+        return -float(expr.operand.value)
+    return None
+
+
+def _clip_bounds(low: Any, high: Any) -> str:
+    return (f"clip(x, lo, hi) needs lo <= hi (got lo = {low}, hi = {high}): a clip with its "
+            "bounds swapped would silently give hi")
 
 
 def update_form(value: ast.Expr) -> UpdateForm:
@@ -186,6 +204,8 @@ def _call(call: ast.Call, args: list[Any]) -> Any:
             return _plain(np.maximum.reduce(np.broadcast_arrays(*args)))
         if call.func == "abs":
             return _plain(np.abs(args[0]))
+        if np.any(np.asarray(args[1]) > np.asarray(args[2])):
+            raise OrccadError(_clip_bounds(_plain(args[1]), _plain(args[2])), call.loc)
         return _plain(np.minimum(np.maximum(args[0], args[1]), args[2]))
 
 

@@ -37,13 +37,15 @@ def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
 
 
 def compiler() -> str:
-    """The C compiler's path (``$CC`` or ``cc``); raises :class:`BuildError` when missing."""
-    name = os.environ.get("CC", "cc")
-    found = shutil.which(name)
-    if found is None:
-        raise BuildError(f"orccad sil needs a C compiler: '{name}' was not found (install "
-                         f"gcc, e.g. apt-get install -y gcc, or set CC)")
-    return found
+    """The C compiler's path (``$CC``, else ``cc``, else ``gcc``); raises :class:`BuildError`
+    when none is found."""
+    names = [os.environ["CC"]] if os.environ.get("CC") else ["cc", "gcc"]
+    for name in names:
+        found = shutil.which(name)
+        if found is not None:
+            return found
+    raise BuildError(f"orccad sil needs a C compiler: {' or '.join(names)} not found (install "
+                     f"gcc, e.g. apt-get install -y gcc, or set CC)")
 
 
 def _cache_dir() -> Path:

@@ -9,11 +9,13 @@ mission's automaton and the MuJoCo plant, but no Module-Task job: every
 ``exchange_ns`` it brings the plant to now, writes the robot's sensors into the shared memory
 (:mod:`orccad_app.sil.shared`), applies the torques the controller wrote, and turns the
 observers' events the controller counted into the automaton's inputs; what the automaton
-decides (start, kill, type-1 updates, fresh ports) goes to the controller over the socket.
+decides (start, kill, type-1 updates, fresh ports) goes to the controller over the socket;
+the outputs of the controller's last jobs go to the executive's write listeners (the trace,
+the task errors of the report).
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
-Only periodic Module-Tasks and ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
+Only ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
 releases) do not: a mission with another protocol or a ramp is refused with what and why (the
 lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
@@ -43,7 +45,6 @@ from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
 from orccad_app.sil.lockstep import RemoteSite
 from orccad_app.sil.shared import SharedMemory
-from orccad_app.tcs.module_task import Activation
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
@@ -107,11 +108,6 @@ def _refuse_unsupported(plan: MissionPlan) -> None:
                 raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
                                   f"is stepped at the executive's releases, which the real-time "
                                   f"mode does not have (use --lockstep)", update.loc)
-    for task in plan.tcs.module_tasks:
-        if task.activation is not Activation.PERIODIC:
-            raise OrccadError(f"orccad sil --realtime runs periodic Module-Tasks only: "
-                              f"'{task.name}' is sporadic (released by interrupts; use "
-                              f"--lockstep)", task.location)
     for connection in plan.tcs.connections:
         if connection.protocol.value != "asyn/asyn":
             raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
@@ -167,10 +163,13 @@ class RealtimeRun(MissionRun):
         self._seqs = [0] * len(table.entries)
         self._observers = [(m, entry.name) for m, entry in enumerate(table.entries)
                            if entry.layout.outputs and entry.layout.outputs[0].type == "event"]
-        self._errors = [(m, entry.name, [p.name for p in entry.layout.outputs].index("e"),
-                         entry.layout.outputs[[p.name for p in entry.layout.outputs].index("e")].dim)
-                        for m, entry in enumerate(table.entries)
-                        if "e" in [p.name for p in entry.layout.outputs]]
+        hooks = self.sim.hooks
+        self._writes = [(m, entry.name,
+                         [(slot, port.name, port.type, port.dim,
+                           hooks.write_listeners(entry.name, port.name))
+                          for slot, port in enumerate(entry.layout.outputs)
+                          if port.type != "event"])
+                        for m, entry in enumerate(table.entries)]
         self._next_ping = 0
         # before the instant's reactions: at t = 0 the epoch and the first sensors are there
         # before the automaton activates anything (a trajectory's clock then starts with the
@@ -201,13 +200,19 @@ class RealtimeRun(MissionRun):
             if count > self._events[m]:
                 self._events[m] = count
                 self.signal(f"{name}.{self._table.entries[m].layout.outputs[0].name}", True)
-        for m, name, slot, dim in self._errors:
-            if shared.seq(m) == self._seqs[m]:
+        for m, name, ports in self._writes:  # each job's outputs, to the write listeners
+            if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
                 continue
             mirror = shared.mirror(m)
             self._seqs[m] = mirror.seq
-            if mirror.outputs[slot][0]:
-                self.task_error(name, mirror.outputs[slot][1:1 + dim].copy())
+            for slot, port, kind, dim, listeners in ports:
+                row = mirror.outputs[slot]
+                if not listeners or not row[0]:
+                    continue
+                value = (row[1:1 + dim].copy() if kind == "vector" else
+                         bool(row[1]) if kind == "bool" else float(row[1]))
+                for hook in listeners:
+                    hook(now, name, port, value)
         if now >= self._next_ping:
             self._next_ping = now + _HEARTBEAT_NS
             self._controller.request(Op.PING)
@@ -283,6 +288,7 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
             executable = build_executable(sources, "orccad_controller_rt", ("-lm", "-pthread"))
         controller = ControllerProcess(executable, len(table.entries), table.digest,
                                        heartbeat_s, ("--io", shared.path))
+        shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
             sites = []
             for site in plan.sites:

@@ -117,6 +117,14 @@ class SharedMemory:
         at = self._rings + m * LATENESS_RING
         return self.floats[at:at + min(count, LATENESS_RING)].copy()
 
+    def unlink(self) -> None:
+        """Remove the file once both sides have mapped it: nothing is left in ``/dev/shm``
+        even when a process is killed (the mappings live on until unmapped)."""
+        try:
+            os.unlink(self.path)
+        except FileNotFoundError:
+            pass
+
     def close(self) -> None:
         """Unmap and remove the file."""
         self.ints = self.floats = np.empty(0)

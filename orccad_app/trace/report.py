@@ -2,7 +2,7 @@
 
 JSON keys (docs/design.md, *Command line*):
 
-- ``status`` (``done``, ``failed``, ``aborted``, ``timeout``), ``reason`` (``null`` when done),
+- ``status`` (``done``, ``failed``, ``aborted``, ``recovering``, ``timeout``), ``reason`` (``null`` when done),
   ``mission``, ``seed``, ``sim_time_s``, ``wall_time_s``;
 - ``robot_tasks``: per Robot-Task run ``name``, ``args`` (each parameter's actual value at
   that start: run-time arguments evaluated, defaults filled in), ``start_s``, ``end_s``, ``outcome``,
@@ -247,8 +247,11 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
     report = report_dict(result, injections)
     ratio = report["sim_time_s"] / report["wall_time_s"] if report["wall_time_s"] else 0.0
     status = report["status"] + (f" ({report['reason']})" if report["reason"] else "")
-    lines = [f"mission {report['mission']}: {status}",
-             f"  simulated {report['sim_time_s']:.3f} s in {report['wall_time_s']:.2f} s wall "
+    lines = [f"mission {report['mission']}: {status}"]
+    if report["status"] == "recovering":
+        lines.append(f"  aborted by {report['reason']}; its 'on fatal' recovery was still "
+                     f"running at {report['sim_time_s']:g} s (the run's horizon)")
+    lines += [f"  simulated {report['sim_time_s']:.3f} s in {report['wall_time_s']:.2f} s wall "
              f"({ratio:.1f}× real time), seed {report['seed']}"]
     lines += _task_lines(report)
     if report["exceptions"]:

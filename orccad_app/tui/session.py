@@ -152,13 +152,14 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
 def inspect_file(path: str, text: str | None = None) -> FileView:
     """Load, check and compile every mission of ``path`` (or of ``text``, an edited version of
     it); errors become diagnostics."""
-    from orccad_app.pipeline import load
+    from orccad_app.pipeline import load, read_source
 
     try:
         edited = text is not None
-        text = text if text is not None else Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        return FileView(path, "", [FileDiagnostic("error", 0, 0, f"cannot read: {error}")])
+        # a regular file within the source budget (never a FIFO or /dev/zero)
+        text = text if text is not None else read_source(path)
+    except OrccadError as error:
+        return FileView(path, "", [FileDiagnostic("error", 0, 0, error.message)])
     view = FileView(path, text)
     try:
         source = load(path, text=text if edited else None)

@@ -4,18 +4,36 @@ the state reached and the instant's own status, or the located error)."""
 
 from __future__ import annotations
 
+import copy
+
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.expr import Store
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
 
 __all__ = ["python_records", "first_difference"]
 
 
+_PRISTINE: dict[int, tuple] = {}
+
+
+def _fresh(automaton) -> Reactor:
+    """A new reactor of ``automaton`` without lowering its trees again (a copy of a pristine
+    one, with a store of its own holding the initial values)."""
+    found = _PRISTINE.get(id(automaton))
+    if found is None or found[0] is not automaton:
+        found = _PRISTINE[id(automaton)] = (automaton, Reactor(automaton))
+    reactor = copy.copy(found[1])
+    reactor.store = Store()
+    reactor.store.values = dict(found[1].store.values)
+    return reactor
+
+
 def python_records(automaton, text: str, name: str) -> list[dict]:
     """Run ``text`` (a script) on a fresh reactor of ``automaton``."""
     instants = parse_script(text, name, automaton.inputs)
     timed = any(i.time_ns is not None for i in instants)
-    reactor = Reactor(automaton)
+    reactor = _fresh(automaton)
     records: list[dict] = []
     for number, instant in enumerate(instants, start=1):
         try:

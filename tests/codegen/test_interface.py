@@ -90,3 +90,48 @@ def test_the_hand_written_loop_of_the_docs_runs(tmp_path):
                    check=True)
     done = subprocess.run(["./loop"], cwd=tmp_path, capture_output=True, text=True, check=True)
     assert done.stdout == "instant 3: O (role 0)\ninstant 6: O (role 0)\n"
+
+
+def test_an_automaton_over_the_state_budget_is_refused(tmp_path, capsys):
+    assert orccad(["codegen", str(MISSIONS / "arm_recovery.orc"), "--max-states", "5", "-o",
+                   str(tmp_path / "o")]) == 2
+    assert "state budget exceeded" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
+
+
+def test_two_missions_link_and_run_in_one_process(tmp_path):
+    """Caller-owned memory and prefixed names: two generated automata (and two instances of
+    one) in one program."""
+    cc = compiler()
+    for stem, mission in (("abro", "ABRO"), ("auv_survey", "AuvSurvey")):
+        for name, text in generated(stem, mission).program.files.items():
+            (tmp_path / name).write_text(text)
+    (tmp_path / "both.c").write_text("""\
+#include <stdio.h>
+#include "abro.h"
+#include "auv_survey.h"
+int main(void)
+{
+    abro_mem a1, a2;
+    auv_survey_mem s;
+    abro_in in = {0};
+    auv_survey_in sin = {0};
+    abro_out out;
+    auv_survey_out sout;
+    abro_reset(&a1); abro_reset(&a2); auv_survey_reset(&s);
+    abro_step(&a1, 0, &in, &out); abro_step(&a2, 0, &in, &out);
+    in.A = true; in.B = true;
+    abro_step(&a1, 1, &in, &out);
+    printf("%d", out.O);
+    in.A = false; in.B = false;
+    abro_step(&a2, 1, &in, &out);
+    printf(" %d", out.O);
+    auv_survey_step(&s, 0, &sin, &sout);
+    printf(" %d\\n", sout.StationKeep_start);
+    return 0;
+}
+""")
+    subprocess.run([cc, *STRICT, "abro.c", "auv_survey.c", "both.c", "-o", "both"],
+                   cwd=tmp_path, check=True)
+    done = subprocess.run(["./both"], cwd=tmp_path, capture_output=True, text=True, check=True)
+    assert done.stdout == "1 0 1\n"

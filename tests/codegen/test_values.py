@@ -71,7 +71,7 @@ def _compare(automaton, binary, text: str, folder: Path) -> None:
     assert status in (0, 1, 2) and "runtime error" not in stderr, stderr
 
 
-@settings(max_examples=100, deadline=None, derandomize=True,
+@settings(max_examples=60, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(text=scripts())
 def test_hypothesis_scripts_agree(text, tmp_path_factory):

@@ -200,3 +200,33 @@ def test_a_plugin_that_fails_to_import_is_reported_by_name(tmp_path):
     assert "warning: plugin 'broken' disabled: import: ModuleNotFoundError" in result.stderr
     assert "Traceback" not in result.stderr
     assert "arm3dof" in result.stdout and "joint_limits" in result.stdout
+
+
+class ExitingPlugin:
+    """Calls sys.exit in a hook (issue 28: the command ended with exit 3 'this is a bug')."""
+
+    @staticmethod
+    @hookimpl
+    def orccad_register_trajectories(register):
+        import sys
+
+        sys.exit(4)
+
+
+def test_a_plugin_calling_sys_exit_in_a_hook_is_disabled_like_one_that_raises():
+    host = load(("good", GoodPlugin()), ("exiting", ExitingPlugin()))
+    [failure] = host.failures
+    assert (failure.plugin, failure.stage) == ("exiting", "orccad_register_trajectories")
+    assert failure.message == "called sys.exit(4)"
+    assert "exiting" not in host.plugins and host.trajectories.plugin_of("sine") == "good"
+
+
+def test_a_plugin_calling_sys_exit_at_import_is_reported_and_the_command_goes_on(tmp_path):
+    (tmp_path / "exiting_at_import.py").write_text("import sys\nsys.exit('no licence')\n",
+                                                   encoding="utf-8")
+    install_dist_info(tmp_path, "exiting-plugin", "1.0", {"exiting": "exiting_at_import"})
+    result = run_cli("plugins", pythonpath=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "warning: plugin 'exiting' disabled: import: called sys.exit('no licence')" \
+        in result.stderr
+    assert "arm3dof" in result.stdout

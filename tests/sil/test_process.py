@@ -118,3 +118,14 @@ def test_killing_the_plant_server_ends_the_controller_too():
     while time.monotonic() < deadline and not _gone(controller):
         time.sleep(0.02)  # the controller reads end-of-file on its socket and exits
     assert _gone(controller) or Path(f"/proc/{controller}/stat").read_text().split()[2] == "Z"
+
+
+def test_ctrl_c_ends_the_run_with_its_report_and_no_process_left():
+    command = _orccad(str(MISSIONS / "auv_survey.orc"), "--lockstep")
+    controller = _wait_for_controller(command.pid)
+    time.sleep(0.5)
+    command.send_signal(signal.SIGINT)
+    out, err = command.communicate(timeout=120)
+    assert command.returncode == 130, err
+    assert "mission AuvSurvey: aborted (interrupted (Ctrl-C))" in out and "interrupted" in err
+    assert _gone(controller)

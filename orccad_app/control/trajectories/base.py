@@ -8,7 +8,12 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Sample", "Trajectory", "frozen_array"]
+__all__ = ["Sample", "Trajectory", "frozen_array", "position_array", "MAX_POSITION"]
+
+MAX_POSITION = 1e6
+"""Largest magnitude of a trajectory position (``q0``, ``goal``, ``start``, ``value``) [rad or
+m]: beyond it the set-point, its derivatives or the tracking error's squares leave the finite
+numbers (a goal of 1e308 ended ``done`` with an infinite tracking error)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -23,6 +28,17 @@ class Sample:
 def frozen_array(values: Any) -> np.ndarray:
     array = np.array(values, dtype=float)
     array.setflags(write=False)
+    return array
+
+
+def position_array(values: Any, what: str) -> np.ndarray:
+    """``values`` as a frozen array of positions, each finite and within ``MAX_POSITION``."""
+    from orccad_app.control.errors import InvalidParameter
+
+    array = frozen_array(values)
+    if not np.all(np.isfinite(array)) or np.any(np.abs(array) > MAX_POSITION):
+        raise InvalidParameter(f"{what}: positions must be finite and within ±{MAX_POSITION:g} "
+                               f"(rad or m), got {values!r}")
     return array
 
 
@@ -57,3 +73,9 @@ class Trajectory(ABC):
     def with_start(self, start: np.ndarray) -> Trajectory:
         """This trajectory starting from the measured ``start`` (no-op if not needed)."""
         return self
+
+    def continuing(self, previous: Trajectory, previous_t_s: float, at_s: float) -> float:
+        """The time shift [s] with which this trajectory, replacing ``previous`` (sampled at
+        ``previous_t_s``) at task time ``at_s``, keeps its phase; 0 for a kind without phase
+        (see :mod:`orccad_app.control.trajectories.retuned`)."""
+        return 0.0

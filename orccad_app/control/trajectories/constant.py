@@ -7,7 +7,8 @@ from typing import Any
 import numpy as np
 
 from orccad_app.control.errors import InvalidParameter
-from orccad_app.control.trajectories.base import Sample, Trajectory, frozen_array
+from orccad_app.control.trajectories.base import (Sample, Trajectory, frozen_array,
+                                                  position_array)
 
 __all__ = ["Constant"]
 
@@ -19,7 +20,7 @@ class Constant(Trajectory):
     end_time_s = 0.0
 
     def __init__(self, value: Any = None, dim: int | None = None):
-        self.value = None if value is None else frozen_array(value)
+        self.value = None if value is None else position_array(value, "constant value")
         self._dim = self.value.size if self.value is not None else dim
         self.needs_start = self.value is None
         self._zero = None if self.value is None else frozen_array(np.zeros_like(self.value))

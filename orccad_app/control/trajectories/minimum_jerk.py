@@ -7,7 +7,8 @@ from typing import Any
 import numpy as np
 
 from orccad_app.control.errors import DimensionMismatch, InvalidParameter
-from orccad_app.control.trajectories.base import Sample, Trajectory, frozen_array
+from orccad_app.control.trajectories.base import (Sample, Trajectory, frozen_array,
+                                                  position_array)
 
 __all__ = ["MinimumJerk"]
 
@@ -21,11 +22,12 @@ class MinimumJerk(Trajectory):
     name = "min_jerk"
 
     def __init__(self, goal: Any, duration: float, start: Any = None):
-        if not duration > 0:
-            raise InvalidParameter(f"min_jerk: duration must be > 0, got {duration!r}")
-        self.goal = frozen_array(goal)
+        if not 1e-6 <= duration <= 365 * 24 * 3600.0:  # NaN fails this test too
+            raise InvalidParameter(f"min_jerk: duration must be in [1 us, one year] (its "
+                                   f"square divides the acceleration), got {duration!r}")
+        self.goal = position_array(goal, "min_jerk goal")
         self.duration = float(duration)
-        self.start = None if start is None else frozen_array(start)
+        self.start = None if start is None else position_array(start, "min_jerk start")
         if self.start is not None and self.start.shape != self.goal.shape:
             raise DimensionMismatch(f"min_jerk: start has {self.start.size} components "
                                     f"but goal has {self.goal.size}")

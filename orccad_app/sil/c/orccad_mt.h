@@ -54,8 +54,9 @@ typedef struct {
     int out_dim[ORC_MAX_PORTS];
     int n_params;
     double params[ORC_MAX_PARAMS];
-    long period_ns, wcet_ns;   /* declared timing */
+    long period_ns, wcet_ns;   /* declared timing (sporadic: period = minimum inter-arrival) */
     int processor, priority;   /* placement (priority 1 the highest) */
+    int sporadic;              /* 1: released by the writes on its inputs (interrupts) */
 } orc_mt_def;
 
 typedef struct {

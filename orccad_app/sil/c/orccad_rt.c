@@ -2,7 +2,10 @@
  *
  * One thread per processor of the placement runs the active Module-Tasks placed on it:
  * periodic releases by clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME), jobs in priority
- * order (1 the highest) at each release instant, read -> compute -> write. The threads run
+ * order (1 the highest) at each release instant, read -> compute -> write. A sporadic
+ * Module-Task is released by the writes on its inputs, at least its minimum inter-arrival
+ * apart (deferred, coalesced); a thread with an active sporadic one wakes every 100 µs at
+ * least to see an interrupt from another thread. The threads run
  * under SCHED_FIFO when the system permits it (priority 80 minus the processor's highest
  * Module-Task priority), else under the default policy after a warning on stderr.
  *
@@ -59,7 +62,8 @@ typedef struct {
 /* The state of one Module-Task in the runtime. */
 typedef struct {
     int active;
-    int64_t next_release_ns;  /* absolute, CLOCK_MONOTONIC */
+    int64_t next_release_ns;  /* absolute, CLOCK_MONOTONIC; INT64_MAX: none due (sporadic) */
+    int64_t last_release_ns;  /* sporadic: the previous release (INT64_MIN: none yet) */
     int64_t released, overruns, misses, events;
     double response_max_ns;
 } rt_task;
@@ -111,6 +115,21 @@ static void read_inputs(int m)
     }
 }
 
+/* A write on an input of sporadic Module-Task m: released now, or deferred to its minimum
+ * inter-arrival after the previous release; coalesced into a release already due; ignored
+ * while m is inactive (executive/sporadic.py's semantics). */
+static void interrupt(int m)
+{
+    rt_task *t = &tasks[m];
+    int64_t now = now_ns(), earliest;
+    if (!t->active || t->next_release_ns != INT64_MAX) {
+        return;
+    }
+    earliest = t->last_release_ns == INT64_MIN ? now
+                                              : t->last_release_ns + ORC_MODULES[m].period_ns;
+    t->next_release_ns = earliest > now ? earliest : now;
+}
+
 static int is_observer(int kind)
 {
     return (kind >= ORC_OBS_JOINT_LIMITS && kind <= ORC_OBS_AT_REST) || kind == ORC_AUV_OBSERVER;
@@ -132,6 +151,9 @@ static void write_outputs(int m)
         } else {
             buffers[c].present = 1;
             memcpy(buffers[c].v, out->v, sizeof buffers[c].v);
+            if (ORC_MODULES[k->dst_module].sporadic) {
+                interrupt(k->dst_module);
+            }
         }
     }
     if (is_observer(ORC_MODULES[m].kind) && mt->out[0].present) {
@@ -161,6 +183,18 @@ static void run_job(int m, int64_t release_ns, int64_t woke_ns)
 
 /* ---- processor threads ------------------------------------------------------------------- */
 
+static int has_sporadic(int processor)
+{
+    int m, found = 0;
+    pthread_mutex_lock(&rt_lock);
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        found |= tasks[m].active && ORC_MODULES[m].sporadic
+                 && ORC_MODULES[m].processor == processor;
+    }
+    pthread_mutex_unlock(&rt_lock);
+    return found;
+}
+
 static void *processor_thread(void *arg)
 {
     int processor = (int)(intptr_t)arg;
@@ -176,8 +210,11 @@ static void *processor_thread(void *arg)
             }
         }
         pthread_mutex_unlock(&rt_lock);
-        if (next == INT64_MAX) { /* nothing active here: look again in 200 µs */
+        if (next == INT64_MAX) { /* nothing due here: look again in 200 µs */
             next = now_ns() + 200000;
+        }
+        if (has_sporadic(processor) && next > now_ns() + 100000) {
+            next = now_ns() + 100000; /* an interrupt from another thread: seen in 100 µs */
         }
         ts.tv_sec = (time_t)(next / 1000000000LL);
         ts.tv_nsec = (long)(next % 1000000000LL);
@@ -195,6 +232,11 @@ static void *processor_thread(void *arg)
                 }
                 release = t->next_release_ns;
                 run_job(m, release, woke);
+                if (ORC_MODULES[m].sporadic) { /* the next release comes from an interrupt */
+                    t->last_release_ns = release;
+                    t->next_release_ns = INT64_MAX;
+                    continue;
+                }
                 t->next_release_ns = release + period;
                 while (t->next_release_ns <= now_ns()) { /* releases missed: overruns */
                     t->overruns += 1;
@@ -322,6 +364,10 @@ static uint32_t command(const request_t *req, double *answer, uint32_t *n)
         orc_mt_init(mt);
         tasks[req->module].active = 1;
         tasks[req->module].next_release_ns = at > now ? at : now;
+        if (ORC_MODULES[req->module].sporadic) { /* released by its first interrupt */
+            tasks[req->module].next_release_ns = INT64_MAX;
+            tasks[req->module].last_release_ns = INT64_MIN;
+        }
         return 0;
     }
     case OP_KILL:
