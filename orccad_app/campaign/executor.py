@@ -71,7 +71,6 @@ def run_job(job: Job) -> RunRecord:
     return record
 
 
-<<<<<<< HEAD
 _FROZEN = False
 
 
@@ -88,7 +87,8 @@ def _collect() -> None:
     if not _FROZEN:
         gc.freeze()
         _FROZEN = True
-=======
+
+
 def _die_with(parent: int) -> None:
     """Pool initializer: end this worker when the process ``parent`` is gone; ``SIGTERM`` (the
     parent's ``terminate`` of an interrupted campaign) ends it at once, whatever handler the
@@ -113,7 +113,6 @@ def _die_with(parent: int) -> None:
         os._exit(1)
 
     threading.Thread(target=watch, name="orccad-parent-watch", daemon=True).start()
->>>>>>> main
 
 
 class PoolBackend:
