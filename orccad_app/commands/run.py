@@ -5,7 +5,8 @@
     orccad run FILE [--mission M] [--until S] [--seed N] [--inject SIG@T ...]
                     [--inject-from SCRIPT]
                     [--set ROBOT.PARAM=V ...] [--timing TASK.MODULE.FIELD=MS ...]
-                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap] [--json]
+                    [--realtime [FACTOR]] [--trace OUT.csv|OUT.mcap|DIR]
+                    [--trace-format csv|mcap|rosbag2] [--json]
                     [--foxglove] [--foxglove-port PORT] [--foxglove-wait S]
                     [--scheduler fp|edf] [--context-switch-us US] [--bus-us US]
 
@@ -70,7 +71,12 @@ def register(sub) -> None:
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
-    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
+    parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap; a "
+                                                       "directory with --trace-format rosbag2)")
+    parser.add_argument("--trace-format", choices=("csv", "mcap", "rosbag2"), default=None,
+                        help="the trace's format (default: by OUT's suffix); rosbag2: a new "
+                             "directory OUT, MCAP storage, CDR (needs pip install -e "
+                             "'.[ros2]')")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--foxglove", action="store_true",
                         help="stream the run live to Foxglove over its WebSocket protocol on "
@@ -180,6 +186,30 @@ def _foxglove(args: argparse.Namespace, mission: str, plan):
     return live
 
 
+def _check_trace_format(args: argparse.Namespace) -> None:
+    """``--trace-format`` needs ``--trace``; rosbag2 needs its extra (said before the run)."""
+    from orccad_app.diagnostics import OrccadError
+
+    if args.trace_format is not None and not args.trace:
+        raise OrccadError("--trace-format needs --trace")
+    if args.trace_format == "rosbag2":
+        from orccad_app.ros2 import require
+
+        require("--trace-format rosbag2")
+
+
+def _open_trace(args: argparse.Namespace, mission: str, plan) -> Any:
+    """The trace writer of ``--trace`` (and ``--trace-format``)."""
+    from orccad_app.trace import open_trace, sensor_ports
+
+    metadata = {"mission": mission, "file": args.file, "seed": str(args.seed)}
+    if args.trace_format == "rosbag2":
+        from orccad_app.ros2.bag import Rosbag2TraceWriter
+
+        return Rosbag2TraceWriter(args.trace, metadata, sensor_ports(plan))
+    return open_trace(args.trace, metadata, sensor_ports(plan), args.trace_format)
+
+
 def _foxglove_wait_s(args: argparse.Namespace) -> float:
     return 60.0 if args.foxglove_wait is None else args.foxglove_wait
 
@@ -273,11 +303,11 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
     from orccad_app.properties.report import format_properties
-    from orccad_app.trace import (InjectionRecord, format_report, open_trace, report_dict,
-                                  sensor_ports, trace_recorder)
+    from orccad_app.trace import InjectionRecord, format_report, report_dict, trace_recorder
 
     _file_after_injections(args)
     _terminate_like_ctrl_c()
+    _check_trace_format(args)
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
@@ -317,10 +347,8 @@ def run(args: argparse.Namespace) -> int:
         mission_run.add_observer(progress)
     verdicts = _verdict_samples(monitor)
     if args.trace:
-        writer = trace_recorder(open_trace(args.trace, {"mission": mission.name,
-                                                        "file": args.file,
-                                                        "seed": str(args.seed)},
-                                           sensor_ports(plan)), mission_run, verdicts=verdicts)
+        writer = trace_recorder(_open_trace(args, mission.name, plan), mission_run,
+                                verdicts=verdicts)
         mission_run.add_observer(writer)
     live = server = None
     if args.foxglove:

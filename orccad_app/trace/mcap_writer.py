@@ -320,6 +320,19 @@ class TopicWriter:
                                      latched=True), time_ns,
                        transforms_message(time_ns, finite))
 
+    wants_joint_states = False
+    """Whether :meth:`joint_state` records anything (a rosbag2 trace); the Foxglove topics
+    hold the robot's sensors on ``/plant`` and its frames on ``/tf`` instead."""
+
+    def joint_state(self, time_ns: int, robot: str, names: tuple[str, ...],
+                    position: list[float], velocity: list[float],
+                    effort: list[float]) -> None:
+        """The state of ``robot``'s joints at ``time_ns`` [rad, rad/s, N·m] (or [m, m/s, N]
+        for a slide joint): ignored here."""
+
+    def pose(self, time_ns: int, robot: str, transform: Transform) -> None:
+        """The pose of ``robot``'s floating base in ``world``: on ``/tf`` here already."""
+
     def mission_state(self, time_ns: int, state: int, waiting_at: list[Any],
                       status: str) -> None:
         """The automaton's new state on ``/mission/state`` (:mod:`.state_topics`)."""

@@ -10,6 +10,10 @@ that also observes the mission run it is attached to — never reaching into it:
   the instant the plant's state is at (the plant is integrated up to each read and write of its
   ports: the frames lag the run by less than a control period, and a run with a trace is the
   same run as without), and once more at the end;
+- **joint states** (a writer that ``wants_joint_states``: rosbag2): at each instant a module
+  reads one of a robot's sensors, the position, velocity and actuator force of its hinge and
+  slide joints, from the plant's state at that instant; a floating base's pose with the
+  frames;
 - **parameters**: at each start of a Robot-Task, the nominal value of every parameter one of
   its type-1 exceptions updates (``/params/<module>/<param>``, then each update);
 - **phases and state**: at each change of the automaton's state, ``/mission/state`` (the
@@ -74,6 +78,14 @@ class RunTopicsRecorder(TraceRecorder):
         self._tasks = sorted({site.task for site in mission_run.plan.sites})
         self._task_phase: dict[str, int] = {}
         self._closed = False
+        self._by_robot = {scene.robot: (plant, scene) for plant, scene in self._plants}
+        self._sensed: dict[tuple[str, str], str] = {}
+        if writer.wants_joint_states:
+            from orccad_app.trace.writers import sensor_ports
+
+            self._sensed = {key: sensor.split(".", 1)[0]
+                            for key, sensor in sensor_ports(mission_run.plan).items()}
+        self._joints_at: dict[str, int] = {}
         now = mission_run.kernel.now
         writer.scene(now, [scene for _, scene in self._plants])
         self._frames()
@@ -87,7 +99,27 @@ class RunTopicsRecorder(TraceRecorder):
 
     def _frames(self) -> None:
         for plant, scene in self._plants:
-            self.topics.transforms(plant.time_ns, scene.transforms(plant.qpos))
+            transforms = scene.transforms(plant.qpos)
+            self.topics.transforms(plant.time_ns, transforms)
+            for transform in transforms:
+                if transform.child_id in scene.floating:
+                    self.topics.pose(plant.time_ns, scene.robot, transform)
+
+    def on_read(self, t_ns: int, module: str, port: str, value: Any) -> None:
+        """A module read a port: when it is a robot's sensor, the robot's joint state at this
+        instant (once per instant), from the plant's own state."""
+        super().on_read(t_ns, module, port, value)
+        robot = self._sensed.get((module, port))
+        if robot is None or self._joints_at.get(robot) == t_ns:
+            return
+        self._joints_at[robot] = t_ns
+        plant, scene = self._by_robot[robot]
+        joints, data = scene.joints, plant.data
+        if joints.names:
+            self.topics.joint_state(plant.time_ns, robot, joints.names,
+                                    [float(data.qpos[i]) for i in joints.qpos],
+                                    [float(data.qvel[i]) for i in joints.dof],
+                                    [float(data.qfrc_actuator[i]) for i in joints.dof])
 
     def _sample(self, t_ns: int, final: bool = False) -> None:
         if final or t_ns >= self._next_frame_ns:

@@ -32,7 +32,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-__all__ = ["WORLD", "BodyFrame", "Primitive", "GeomEntity", "Transform", "RobotScene",
+__all__ = ["WORLD", "BodyFrame", "Joints", "Primitive", "GeomEntity", "Transform", "RobotScene",
            "robot_scene", "FRAME_TRANSFORMS_SCHEMA", "SCENE_UPDATE_SCHEMA", "stamp",
            "transforms_message", "scene_message"]
 
@@ -97,14 +97,31 @@ class Transform:
     rotation: tuple[float, float, float, float]
 
 
+@dataclass(frozen=True)
+class Joints:
+    """A robot's hinge and slide joints, as ``sensor_msgs/JointState`` lists them: their MJCF
+    ``names`` and their indices in ``qpos`` and ``qvel`` (a free or ball joint is a body's
+    pose, not a joint state: see :attr:`RobotScene.floating`)."""
+
+    names: tuple[str, ...]
+    qpos: tuple[int, ...]
+    dof: tuple[int, ...]
+
+
 @dataclass
 class RobotScene:
-    """The frames and geometry of one robot's model (see the module docstring)."""
+    """The frames and geometry of one robot's model (see the module docstring).
+
+    :param floating: the frames of bodies on a free joint (the AUV's hull): their pose in
+        ``world`` is the robot's pose.
+    """
 
     robot: str
     model: Any
     frames: tuple[BodyFrame, ...]
     entities: tuple[GeomEntity, ...]
+    joints: Joints = Joints((), (), ())
+    floating: tuple[str, ...] = ()
     _scratch: Any = field(default=None, repr=False)
 
     def transforms(self, qpos: np.ndarray) -> list[Transform]:
@@ -225,7 +242,19 @@ def robot_scene(robot: str, model: Any) -> RobotScene:
             entities.append(GeomEntity(f"{robot}/{name}",
                                        _frame_id(robot, model, int(model.geom_bodyid[geom])),
                                        _rgba(model, geom), primitives))
-    return RobotScene(robot, model, frames, tuple(entities))
+    return RobotScene(robot, model, frames, tuple(entities), _joints(model),
+                      tuple(_frame_id(robot, model, int(model.jnt_bodyid[j]))
+                            for j in range(model.njnt)
+                            if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_FREE)))
+
+
+def _joints(model: Any) -> Joints:
+    kept = [j for j in range(model.njnt)
+            if int(model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE),
+                                          int(mujoco.mjtJoint.mjJNT_SLIDE))]
+    return Joints(tuple(model.joint(j).name or f"joint{j}" for j in kept),
+                  tuple(int(model.jnt_qposadr[j]) for j in kept),
+                  tuple(int(model.jnt_dofadr[j]) for j in kept))
 
 
 # -- messages ---------------------------------------------------------------------------------

@@ -53,11 +53,13 @@ def _open(path: str | Path, mode: str, **kwargs: Any) -> IO[Any]:
 
 
 def open_trace(path: str | Path, metadata: Mapping[str, str] | None = None,
-               sensors: Mapping[tuple[str, str], str] | None = None) -> Any:
-    """A writer for ``path``, chosen by its suffix (``.csv`` or ``.mcap``); ``sensors`` maps
-    the ``(module, port)`` inputs fed by robot sensors to them, for MCAP's ``/plant`` topics
-    (see :func:`sensor_ports`)."""
-    suffix = Path(path).suffix.lower()
+               sensors: Mapping[tuple[str, str], str] | None = None,
+               trace_format: str | None = None) -> Any:
+    """A writer for ``path``, chosen by ``trace_format`` (``csv`` or ``mcap``) or else by its
+    suffix (``.csv`` or ``.mcap``); ``sensors`` maps the ``(module, port)`` inputs fed by robot
+    sensors to them, for MCAP's ``/plant`` topics (see :func:`sensor_ports`). (A rosbag2
+    directory is :class:`orccad_app.ros2.bag.Rosbag2TraceWriter`, above this layer.)"""
+    suffix = f".{trace_format}" if trace_format else Path(path).suffix.lower()
     if suffix == ".csv":
         return CsvTraceWriter(path)
     if suffix == ".mcap":
