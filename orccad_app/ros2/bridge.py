@@ -190,6 +190,18 @@ class ZenohBridge:
             session.close()
 
 
+def _joint_actuators(model: Any) -> dict[str, int]:
+    """Joint name -> the index of the actuator that drives it (a joint transmission)."""
+    import mujoco
+
+    found = {}
+    for actuator in range(model.nu):
+        if int(model.actuator_trntype[actuator]) == int(mujoco.mjtTrn.mjTRN_JOINT):
+            joint = int(model.actuator_trnid[actuator, 0])
+            found[model.joint(joint).name or f"joint{joint}"] = actuator
+    return found
+
+
 def _drain(found: queue.Queue) -> list:
     items = []
     while True:
@@ -218,6 +230,8 @@ class MissionBridge(MissionObserver):
             domain_id)
         self._robots = {name: (plant, robot_scene(name, plant.model).joints)
                         for name, plant in mission_run.sim.plants.items()}
+        self._actuators = {name: _joint_actuators(plant.model)
+                           for name, plant in mission_run.sim.plants.items()}
         self._sensed = {key: sensor.split(".", 1)[0]
                         for key, sensor in sensor_ports(plan).items()}
         self._published_at: dict[str, int] = {}
@@ -253,13 +267,15 @@ class MissionBridge(MissionObserver):
         self._outputs_sent = len(emitted)
 
     def _apply(self, command: JointCommand) -> None:
-        for plant, joints in self._robots.values():
-            if not joints.names or not set(command.effort) & set(joints.names):
+        """Each effort on the actuator of its joint (a joint without one: ignored)."""
+        for robot, (plant, _) in self._robots.items():
+            actuators = self._actuators[robot]
+            named = [name for name in command.effort if name in actuators]
+            if not named:
                 continue
             tau = np.array(plant.ctrl, dtype=float)
-            for index, name in enumerate(joints.names):
-                if name in command.effort and index < len(tau):
-                    tau[index] = command.effort[name]
+            for name in named:
+                tau[actuators[name]] = command.effort[name]
             plant.actuate("tau", tau)
             self.applied += 1
 
