@@ -2,7 +2,8 @@
 
 ::
 
-    orccad sil FILE [--mission M] --lockstep [--until S] [--seed N] [--inject SIG@T ...]
+    orccad sil FILE [--mission M] (--lockstep | --realtime) [--until S] [--seed N]
+                    [--inject SIG@T ...] [--set ROBOT.PARAM=V ...] [--timing T.M.F=MS ...]
                     [--trace OUT.csv|OUT.mcap] [--json] [--heartbeat-s S] [--build-dir DIR]
 
 The Module-Tasks of every Robot-Task the mission runs are emitted as C
@@ -59,6 +60,11 @@ def register(sub) -> None:
                         help="seed of execution times and sensor noise (default 0)")
     parser.add_argument("--inject", action="extend", nargs="+", default=[], metavar="SIG@T",
                         help="raise input SIG at simulated time T [s] (as orccad run)")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="ROBOT.PARAM=V",
+                        help="set a parameter the robot type declares (as orccad run)")
+    parser.add_argument("--timing", action="append", default=[], metavar="T.M.F=MS",
+                        help="set a module's period_ms, wcet_ms or bcet_ms (as orccad run)")
     parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--heartbeat-s", type=_heartbeat, default=None, metavar="S",
@@ -128,7 +134,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.executive.bus import Bus
     from orccad_app.executive.processor import Processor
     from orccad_app.jsonout import dumps
-    from orccad_app.mission.plan import plan_mission
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
     from orccad_app.mission.run import MissionRun, run_horizon_s
     from orccad_app.pipeline import load, select_mission
     from orccad_app.properties import PropertyMonitor, results_dict
@@ -137,11 +143,12 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.trace import (InjectionRecord, TraceRecorder, format_report, open_trace,
                                   report_dict, sensor_ports)
 
+    overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     refuse_overwriting(args.trace, args.file)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
-    plan = plan_mission(source, mission)
+    plan = plan_with_overrides(source, mission, overrides)
     injections = _injections(args.inject, plan.automaton.inputs)
     injected = [InjectionRecord(i.time_ns, i.name, i.value, i.fault) for i in injections]
     until_s = min(args.until if args.until is not None else run_horizon_s(plan, 60.0),

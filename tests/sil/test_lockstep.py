@@ -126,3 +126,29 @@ def test_an_injected_exception_reaches_the_controllers_run():
     with lockstep(plan, "arm_pid.orc"):
         got = report(mission_run(plan, injections=inject).run())
     assert got["status"] == "failed" and got == expected
+
+
+def test_lockstep_with_noise_and_a_changed_timing_ends_as_the_executive():
+    """--set and --timing: noisy encoders drawn from the seed, a longer execution time."""
+    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
+    from orccad_app.pipeline import load, select_mission
+
+    def plan():
+        source = load(str(MISSIONS / "arm_pid.orc"))
+        overrides = PlanOverrides.from_arguments(["arm.noise_std=1e-3"],
+                                                 ["TrackPID.ctrl.wcet_ms=0.5"])
+        return plan_with_overrides(source, select_mission(source, None), overrides)
+
+    def run(planned):
+        from orccad_app.executive.bus import Bus
+        from orccad_app.executive.processor import Processor
+        from orccad_app.mission.run import MissionRun
+
+        return report(MissionRun(planned, seed=7, bus=Bus(), until_ns=4_000_000_000,
+                                 processors=[Processor(n) for n in planned.processor_names]
+                                 ).run())
+
+    expected = run(plan())
+    planned = plan()
+    with lockstep(planned, "arm_pid.orc"):
+        assert run(planned) == expected
