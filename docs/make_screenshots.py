@@ -7,13 +7,17 @@ tracking runs), ``docs/tui-report.svg`` (its report after ``Stop`` was raised) a
 AUV mission plans, ``docs/tui-auv.svg`` (the AUV survey after a leak); the run screen's tabs
 ``tui-run-source.svg``, ``tui-run-rta.svg``, ``tui-run-tcs.svg``, the help ``tui-help.svg``,
 the run at 80×24 ``tui-run-80x24.svg``, the editor with a diagnostic ``tui-editor.svg`` and a
-counterexample of missions/false_property.orc replayed ``tui-replay.svg``.
+counterexample of missions/false_property.orc replayed ``tui-replay.svg``, and the campaign
+screen after 16 runs of missions/auv_survey.campaign.toml ``tui-campaign.svg``
+(``python docs/make_screenshots.py campaign`` makes that one only).
 The snapshot tests (``tests/tui/__snapshots__``) hold the same screens at 80×24 and 160×48.
 """
 
 from __future__ import annotations
 
 import asyncio
+import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -125,7 +129,33 @@ async def replay() -> None:
         app.save_screenshot("tui-replay.svg", str(DOCS))
 
 
+async def campaign() -> None:
+    from orccad_app.tui.screens.campaign import CampaignScreen
+
+    with tempfile.TemporaryDirectory() as folder:
+        db = str(Path(folder) / "auv_survey.campaign.db")
+        app = OrccadApp([], selected="missions/auv_survey.orc",
+                        campaign={"db": db, "runs": 16, "workers": 2})
+        async with app.run_test(size=SIZE) as pilot:
+            await _until(pilot, lambda: isinstance(app.screen, CampaignScreen))
+            screen = app.screen
+            await pilot.press("s")
+            await _until(pilot, lambda: screen.state == "finished" and screen.snapshot
+                         is not None and screen.snapshot.runs == 16, timeout=600)
+            await pilot.pause(0.5)
+            app.clear_notifications()
+            screen.query_one("#campaign-db").value = "auv_survey.campaign.db"
+            status = screen.query_one("#campaign-status")
+            status.update(str(status.content).replace(db, "auv_survey.campaign.db"))
+            await pilot.pause(0.2)
+            app.save_screenshot("tui-campaign.svg", str(DOCS))
+
+
 def main() -> None:
+    if sys.argv[1:] == ["campaign"]:
+        asyncio.run(campaign())
+        return
+    asyncio.run(campaign())
     asyncio.run(replay())
     asyncio.run(small_and_editor())
     asyncio.run(browser())

@@ -12,6 +12,9 @@ import pytest
 
 #: ``file::function`` of the slow tests (every parameter of a parametrized test).
 SLOW = frozenset({
+    "tests/lsp/test_command.py::test_an_editor_that_goes_away_leaves_no_server_and_no_proof_behind",
+    "tests/lsp/test_proof.py::test_a_false_property_gets_an_error_with_its_counterexample_script",
+    "tests/lsp/test_proof.py::test_every_property_of_arm_recovery_is_proved",
     "tests/reactive/test_reference.py::test_compiled_automaton_agrees_with_the_reference_interpreter",
     "tests/verify/test_spin.py::test_spin_agrees",
     "tests/tui/test_tui_app.py::test_an_arm_run_goes_live_to_its_report_and_exports_its_trace",

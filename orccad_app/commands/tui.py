@@ -1,4 +1,5 @@
-"""``orccad tui [FILE] [--mission M] [--run] [--speed F|max] [--seed N]``: the terminal UI.
+"""``orccad tui [FILE] [--mission M] [--run] [--speed F|max] [--seed N] [--spec S | --db D]``:
+the terminal UI.
 
 Browse ``missions/`` and FILE (source with diagnostics, compile summary, ``orccad check``),
 run a mission live (speed control, Robot-Tasks and phases, automaton state, log, plots,
@@ -42,6 +43,10 @@ def register(sub) -> None:
                              "(default 1)")
     parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
                         help="seed of the runs (default 0)")
+    parser.add_argument("--spec", metavar="SPEC.toml",
+                        help="open the campaign screen for FILE with this campaign spec")
+    parser.add_argument("--db", metavar="CAMPAIGN.db",
+                        help="open the campaign screen on this campaign database")
     parser.set_defaults(func=run)
 
 
@@ -60,7 +65,16 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.tui.app import OrccadApp  # Textual only now: the core never imports it
 
     selected = args.file if args.file and Path(args.file).is_file() else None
+    for option, value in (("--spec", args.spec), ("--db", args.db)):
+        if value is not None and not Path(value).is_file():
+            raise OrccadError(f"{option} {value}: no such file")
+    if args.spec and selected is None:
+        raise OrccadError("--spec needs the mission FILE")
+    if args.run and (args.spec or args.db):
+        raise OrccadError("--run and --spec/--db: choose a live run or the campaign screen")
+    campaign = {"spec": args.spec, "db": args.db} if args.spec or args.db else None
     app = OrccadApp(paths, selected=selected, mission=args.mission, speed=args.speed,
-                    seed=args.seed, run_now=args.run and selected is not None)
+                    seed=args.seed, run_now=args.run and selected is not None,
+                    campaign=campaign)
     app.run()
     return 0

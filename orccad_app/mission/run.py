@@ -138,6 +138,7 @@ class MissionRun:
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
+        _check_run_budget(plan, until_ns)
         self.realtime = realtime
         self.tick_ns = tick_ns or plan.tick_ns
         self.reactor = Reactor(plan.automaton)
@@ -468,6 +469,25 @@ class MissionRun:
         if reactor.status == "failed":
             return reactor.status, reactor.reason
         return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
+
+
+MAX_RUN_EVENTS = 50_000_000
+"""Most reactions and Module-Task jobs one run may cost, counted before it starts (every
+Module-Task released over the whole horizon, an upper bound): a 1 us period costs about 50 s
+and 1.4 GB per simulated second, so the period's gcd alone is no budget."""
+
+
+def _check_run_budget(plan: MissionPlan, until_ns: int) -> None:
+    reactions = until_ns // plan.tick_ns if plan.tick_ns else 0
+    jobs = sum(until_ns // task.period_ns for task in plan.tcs.module_tasks
+               if task.period_ns > 0)
+    if reactions + jobs > MAX_RUN_EVENTS:
+        fastest = min((task.period_ns for task in plan.tcs.module_tasks), default=0)
+        raise OrccadError(
+            f"this run would cost up to {reactions + jobs:.3g} reactions and Module-Task jobs "
+            f"({until_ns / 1e9:g} s simulated, the fastest period {fastest} ns, reactions every "
+            f"{plan.tick_ns} ns): more than the {MAX_RUN_EVENTS:.3g} a run may cost; shorten "
+            "--until or lengthen the periods")
 
 
 def run_horizon_s(plan: MissionPlan, default_s: float) -> float:

@@ -39,7 +39,7 @@ from orccad_app.verify.checker import applicable
 from orccad_app.verify.formula import atoms, from_ast
 from orccad_app.verify.monitor import LtlMonitor, Verdict, ltl_verdict
 from orccad_app.lang.signal_types import formula_unit, port_signals
-from orccad_app.verify.stl import StlFormula, robustness, translate
+from orccad_app.verify.stl import StlFormula, UndefinedRobustness, robustness, translate
 
 __all__ = ["PropertyKind", "PropertyResult", "PropertyMonitor", "Verdict", "results_dict"]
 
@@ -64,6 +64,9 @@ class PropertyResult:
         plant: the verdict is then ``undecided``).
     :param unit: the robustness's unit (``[m]``), ``""`` when unknown or mixed.
     :param samples: the instants (LTL) or samples (signal) the run gave it.
+    :param reason: why a signal property has no verdict on the run (its arithmetic has no
+        value: a division by zero, a square root of a negative value, an overflow; a sampled
+        value that is not a number), else ``None``.
     """
 
     name: str
@@ -72,6 +75,7 @@ class PropertyResult:
     robustness: float | None = None
     unit: str = ""
     samples: int = 0
+    reason: str | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """Strict JSON: ``robustness`` is ``null`` for LTL properties and when infinite (then
@@ -80,9 +84,12 @@ class PropertyResult:
         finite = value is not None and math.isfinite(value)
         infinite = ("+inf" if value > 0 else "-inf") if value is not None and \
             math.isinf(value) else None
-        return {"name": self.name, "kind": self.kind.value, "verdict": self.verdict.value,
-                "robustness": value if finite else None, "robustness_infinite": infinite,
-                "unit": self.unit, "samples": self.samples}
+        found = {"name": self.name, "kind": self.kind.value, "verdict": self.verdict.value,
+                 "robustness": value if finite else None, "robustness_infinite": infinite,
+                 "unit": self.unit, "samples": self.samples}
+        if self.reason is not None:  # why there is no verdict
+            found["reason"] = self.reason
+        return found
 
 
 def results_dict(results: list[PropertyResult]) -> list[dict[str, Any]]:
@@ -212,9 +219,15 @@ class PropertyMonitor:
             return PropertyResult(signal.prop.name, PropertyKind.SIGNAL, Verdict.UNDECIDED,
                                   None, signal.unit, 0)
         value: float | None = None
-        if not any(math.isnan(v) for name in signal.stl.ports for v in samples[name]):
-            value = robustness(signal.stl, samples)  # else a diverged plant: no verdict
+        reason = None
+        if any(math.isnan(v) for name in signal.stl.ports for v in samples[name]):
+            reason = "a sampled value is not a number (a diverged plant)"
+        else:
+            try:
+                value = robustness(signal.stl, samples)
+            except UndefinedRobustness as undefined:
+                reason = f"no robustness on this run: {undefined.reason}"
         verdict = (Verdict.UNDECIDED if value is None or value == 0
                    else Verdict.TRUE if value > 0 else Verdict.FALSE)
         return PropertyResult(signal.prop.name, PropertyKind.SIGNAL, verdict, value,
-                              signal.unit, count)
+                              signal.unit, count, reason)

@@ -26,6 +26,8 @@ def format_properties(results: list[PropertyResult]) -> list[str]:
     for result in results:
         kind = "signal" if result.kind.value == "signal" else "LTL"
         detail = format_robustness(result)
+        if result.reason is not None:
+            detail = result.reason
         lines.append(f"  {result.verdict.value:<9} {kind:<6} {result.name}"
                      f"{'   ' + detail if detail else ''}")
     return lines

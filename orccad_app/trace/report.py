@@ -23,7 +23,8 @@ JSON keys (docs/design.md, *Command line*):
 - ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
 - ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
   ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
-  (``false`` when the run ended before its time);
+  (``false`` when the run ended before its time); an input held in the console at every tick
+  is one entry with ``until_s`` (its last instant) and ``instants`` (how many);
 - ``lateness_s`` (``--realtime`` only): ``median``, ``p99``, ``max``.
 """
 
@@ -55,6 +56,9 @@ class InjectionRecord:
     :param value: its value (``None`` for a pure signal).
     :param fault: a plant fault rather than an automaton input.
     :param by: who raised it: ``--inject`` (scheduled) or ``user`` (the console).
+    :param until_ns: for an input held at every tick (the console's hold), its last instant
+        [ns]; ``time_ns`` is its first.
+    :param instants: how many instants it was raised at (a hold: one per tick).
     """
 
     time_ns: int
@@ -62,6 +66,8 @@ class InjectionRecord:
     value: Any = None
     fault: bool = False
     by: str = "--inject"
+    until_ns: int | None = None
+    instants: int = 1
 
 
 def lateness_summary(samples: list[float]) -> dict[str, float]:
@@ -109,7 +115,10 @@ def _injections(result: RunResult, injections: Iterable[InjectionRecord]) -> lis
     ordered = sorted(injections, key=lambda i: (i.time_ns, i.name))
     return [{"time_s": i.time_ns / 1e9, "name": i.name, "value": plain_value(i.value),
              "kind": "fault" if i.fault else "input", "by": i.by,
-             "applied": i.time_ns <= result.sim_time_ns} for i in ordered]
+             "applied": i.time_ns <= result.sim_time_ns,
+             **({} if i.until_ns is None else {"until_s": i.until_ns / 1e9,
+                                                "instants": i.instants})}
+            for i in ordered]
 
 
 def report_dict(result: RunResult,
@@ -216,6 +225,10 @@ def _injection_lines(report: dict[str, Any]) -> list[str]:
         what = (f"{i['name']} = {i['value']} (plant fault" if i["kind"] == "fault" else
                 f"{i['name']}{_value_text(i['value'])} (input")
         late = "" if i["applied"] else ", after the end: not applied"
+        if "until_s" in i:  # held: one line for all its instants
+            lines.append(f"  {i['time_s']:.3f}–{i['until_s']:.3f} s  {what}, {i['by']}, at "
+                         f"{i['instants']} instants{late})")
+            continue
         lines.append(f"  {i['time_s']:.3f} s  {what}, {i['by']}{late})")
     return lines
 

@@ -7,6 +7,8 @@ the CLI (:mod:`orccad_app.tui.session`) and from an executive observer
 
 from __future__ import annotations
 
+from typing import Any
+
 from textual.app import App
 from textual.binding import Binding
 
@@ -15,6 +17,7 @@ from orccad_app.tui.commands import OrccadCommands
 from orccad_app.tui.messages import RunUpdated
 from orccad_app.tui.screens.help import HelpScreen
 from orccad_app.tui.screens.browser import BrowserScreen
+from orccad_app.tui.screens.campaign import CampaignScreen
 from orccad_app.tui.screens.report import ReportScreen
 from orccad_app.tui.screens.run import RunScreen
 from orccad_app.tui.session import LiveSession, ScriptedInputs, mission_files
@@ -42,7 +45,7 @@ class OrccadApp(App):
 
     def __init__(self, paths: list[str] = (), *, selected: str | None = None,
                  mission: str | None = None, speed: float | None = 1.0, seed: int = 0,
-                 run_now: bool = False) -> None:
+                 run_now: bool = False, campaign: dict[str, Any] | None = None) -> None:
         super().__init__()
         self.files = mission_files([*paths, "missions"])
         self.selected = selected or (self.files[0] if self.files else None)
@@ -50,16 +53,30 @@ class OrccadApp(App):
         self.speed = speed
         self.seed = seed
         self.run_now = run_now
+        self.campaign = campaign
         self.session: LiveSession | None = None
 
     def on_mount(self) -> None:
         self.push_screen(BrowserScreen(self.files, self.selected))
         if self.run_now and self.selected:
             self.start_run(self.selected, self.mission)
+        elif self.campaign is not None:
+            self.open_campaign(self.selected, **self.campaign)
 
-    def start_run(self, path: str, mission: str | None, script: ScriptedInputs | None = None) -> None:
+    def open_campaign(self, path: str | None, spec: str | None = None,
+                      db: str | None = None, **options: Any) -> None:
+        """The campaign screen for mission file ``path`` with campaign spec ``spec`` (default:
+        the ``.campaign.toml`` beside it), or for the existing database ``db``."""
+        from orccad_app.tui.campaigns import default_spec
+
+        spec = spec or (default_spec(path) if path else None)
+        self.push_screen(CampaignScreen(path, spec, db, **options))
+
+    def start_run(self, path: str, mission: str | None, script: ScriptedInputs | None = None,
+                  *, setting: Any = None, by: str = "") -> None:
         """Plan ``mission`` of ``path`` (as ``orccad run`` does) and show its live run
-        (``script``: a counterexample's inputs injected at its instants' times)."""
+        (``script``: a counterexample's inputs injected at its instants' times; ``setting``:
+        a campaign run's :class:`~orccad_app.campaign.setting.RunSetting`, raised ``by``)."""
         screen: RunScreen | None = None
 
         def post(update) -> None:
@@ -68,7 +85,7 @@ class OrccadApp(App):
 
         try:
             self.session = LiveSession(path, mission, post, speed=self.speed, seed=self.seed,
-                                       script=script)
+                                       script=script, setting=setting, by=by)
         except OrccadError as error:
             self.notify(error.format(), severity="error", timeout=10)
             return

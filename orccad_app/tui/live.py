@@ -5,10 +5,11 @@ executive's thread. At each reaction of the automaton it
 
 - **paces** the run against the wall clock (:class:`Pace`: paused, × factor, or as fast as
   possible) by sleeping;
-- raises the inputs queued by the user (:meth:`LiveObserver.raise_input`) with
-  :meth:`~orccad_app.mission.run.MissionRun.inject`, so they reach the automaton on
-  its own thread, in the current instant; applies the plant faults queued
-  (:meth:`LiveObserver.inject_fault`, e.g. ``auv.leak``) to the robot's plant;
+- schedules the inputs, holds and plant faults the user asked for since the last reaction
+  (:meth:`LiveObserver.raise_input`, :meth:`~LiveObserver.hold`,
+  :meth:`~LiveObserver.inject_fault`) as ``orccad run --inject`` schedules them
+  (:mod:`orccad_app.tui.user_inputs`): the run is the one ``--inject`` at the reported
+  instants gives;
 - hands a :class:`LiveUpdate` to ``post`` at most every ``flush_s`` wall seconds: the
   automaton's state, the phase of every running Robot-Task, new log entries, new plot samples
   (the task error ``e`` of the control laws, the robots' sensors as their modules read them),
@@ -22,23 +23,25 @@ from __future__ import annotations
 import math
 import threading
 import time
-from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
 
-from orccad_app.diagnostics import OrccadError, arguments_text
+from orccad_app.diagnostics import arguments_text
 from orccad_app.executive.observer import Observer
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
+from orccad_app.tui.user_inputs import UserInputs
 
 __all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
 
-_MISSING = object()
-
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
+
+BUSY_FRAME_S = 0.25
+"""Wall time between two frames [s] while the run goes as fast as it can (else ``flush_s``):
+the screen's drawing shares the interpreter with the run."""
 
 PHASES = {1: "waiting", 2: "measuring", 3: "running"}
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
@@ -180,54 +183,54 @@ class LiveObserver(Observer):
         self._sensors = sensor_ports(run.plan)
         self._site_task = {site.number: site.task for site in run.plan.sites}
         self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
-        self._queue: deque[tuple[str, Any, bool]] = deque()
+        self.inputs = UserInputs(run, self._log_entry)
+        """The user's inputs, holds and faults (:mod:`orccad_app.tui.user_inputs`)."""
         self._abort: str | None = None
         self._present: set[str] = set()
         self._next_sample: dict[str, int] = {}
         self._samples: dict[str, list[float]] = {}
         self._log: list[LogEntry] = []
-        self._busy: dict[str, int] = {}
-        self._running: dict[str, int] = {}
-        self._window = (0, {})  # (start instant, busy per processor at it)
+        self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}
         self._flushed_at = 0.0
-        self._held: dict[str, Any] = {}
-        self._held_at = -1
-        self._log_later: deque[tuple[str, Any, str]] = deque()
-        self.injected: list[InjectionRecord] = []
-        """What the user raised, when it reached the run (for the report)."""
+        self.reactions = 0
+        """Reactions seen so far."""
+        self.aborted_at: int | None = None
+        """The reaction (its count) at which the user's abort ended the run."""
 
     # -- from the UI's thread --------------------------------------------------------------
 
     def raise_input(self, name: str, value: Any = None) -> None:
-        """Queue input ``name`` (raised at the next reaction, on the executive's thread)."""
-        self._queue.append((name, value, False))
+        """Raise input ``name`` once, as ``--inject`` would at the due instant."""
+        self.inputs.pulse(name, value)
 
     def hold(self, name: str, value: Any = None) -> None:
-        """Raise input ``name`` at every instant from the next reaction until :meth:`release`."""
-        self._held[name] = value
-        self._log_later.append((name, value, "held by the user"))
+        """Raise input ``name`` at every tick from the due instant until :meth:`release`."""
+        self.inputs.hold(name, value)
 
     def release(self, name: str) -> None:
         """Stop holding input ``name``."""
-        if self._held.pop(name, _MISSING) is not _MISSING:
-            self._log_later.append((name, None, "released by the user"))
+        self.inputs.release(name)
 
     @property
     def held(self) -> tuple[str, ...]:
-        return tuple(self._held)
+        return self.inputs.held
 
     def inject_fault(self, name: str, value: Any) -> None:
-        """Queue the plant fault ``ROBOT.FAULT`` (applied at the next reaction, as
-        ``orccad run --inject ROBOT.FAULT=VALUE@T`` does); a value out of the fault's
-        declared range raises :class:`~orccad_app.diagnostics.OrccadError` now, as
-        ``--inject`` refuses it."""
-        robot, fault = name.split(".", 1)
-        plant = self.run.sim.plants.get(robot)
-        if plant is None or plant.extension is None:
-            raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
-        plant.extension.check_fault(fault, value)
-        self._queue.append((name, value, True))
+        """Apply the plant fault ``ROBOT.FAULT`` at the due instant, as
+        ``orccad run --inject ROBOT.FAULT=VALUE@T`` does; a value out of the fault's declared
+        range raises :class:`~orccad_app.diagnostics.OrccadError` now, as ``--inject``
+        refuses it."""
+        self.inputs.fault(name, value)
+
+    @property
+    def injected(self) -> list[InjectionRecord]:
+        """What the user raised, once it reached the run (for the report): one record per
+        pulse and fault, one per hold."""
+        return self.inputs.records()
+
+    def _log_entry(self, t_ns: int, kind: str, text: str) -> None:
+        self._log.append(LogEntry(t_ns, kind, text))
 
     def abort(self, reason: str = "stopped by the user") -> None:
         """End the run at the next reaction (status ``aborted``)."""
@@ -238,42 +241,29 @@ class LiveObserver(Observer):
 
     def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
                     status: str) -> None:
+        self.reactions += 1
         if self._abort is not None:
+            if self.aborted_at is None:
+                self.aborted_at = self.reactions
             self.run.abort(self._abort)
             return
-        for name in inputs:
-            if (t_ns, name) in self._scripted:
-                self._log.append(LogEntry(t_ns, "input", f"{name} raised by the "
-                                                         f"{self._scripted_by}"))
-        present = {name for name in outputs if name in self._outputs}
-        for name in sorted(present - self._present):  # a sustained output is logged once
-            self._log.append(LogEntry(t_ns, "output", name))
-        self._present = present
-        while self._queue:
-            self._raise(t_ns, *self._queue.popleft())
-        while self._log_later:
-            name, value, what = self._log_later.popleft()
-            shown = name if value is None else f"{name}({value})"
-            self._log.append(LogEntry(t_ns, "input", f"{shown} {what}"))
-        if self._held and self._held_at != t_ns:  # once per instant: the held inputs
-            self._held_at = t_ns
-            for name, value in list(self._held.items()):
-                self.run.inject(name, value)
-                self.injected.append(InjectionRecord(t_ns, name, value, False, "user (held)"))
-        if self.pace.paused or time.perf_counter() - self._flushed_at >= self.flush_s:
+        if inputs and self._scripted:
+            for name in inputs:
+                if (t_ns, name) in self._scripted:
+                    self._log.append(LogEntry(t_ns, "input", f"{name} raised by the "
+                                                             f"{self._scripted_by}"))
+        if outputs or self._present:
+            present = {name for name in outputs if name in self._outputs}
+            for name in sorted(present - self._present):  # a sustained output: logged once
+                self._log.append(LogEntry(t_ns, "output", name))
+            self._present = present
+        self.inputs.on_reaction(t_ns)
+        pace = self.pace
+        frame_s = self.flush_s if pace.factor is not None else BUSY_FRAME_S
+        if pace.factor == 0 or time.perf_counter() - self._flushed_at >= frame_s:
             self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
-        self.pace.wait(t_ns)
-
-    def _raise(self, t_ns: int, name: str, value: Any, fault: bool) -> None:
-        self.injected.append(InjectionRecord(t_ns, name, value, fault, "user"))
-        if fault:
-            robot, fault_name = name.split(".", 1)
-            self.run.sim.plants[robot].inject(fault_name, value)
-            self._log.append(LogEntry(t_ns, "fault", f"{name}={value} injected by the user"))
-            return
-        self.run.inject(name, value)
-        shown = name if value is None else f"{name}({value})"
-        self._log.append(LogEntry(t_ns, "input", f"{shown} raised by the user"))
+        if pace.factor is not None:  # as fast as possible: nothing to wait for
+            pace.wait(t_ns)
 
     def flush(self, t_ns: int) -> None:
         """Post what changed since the last update."""
@@ -281,22 +271,37 @@ class LiveObserver(Observer):
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
                  for site, phase in sorted(self.run.phases.items()) if phase > 0]
+        loads = self._loads(t_ns)
+        self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
-                            self._log, self._samples, self._loads(t_ns), dict(self._misses),
+                            self._log, self._samples, loads, dict(self._misses),
                             time.perf_counter(), self.pace.paused_s, self.held)
         self._log, self._samples = [], {}
         self.post(update)
 
     def _loads(self, t_ns: int) -> dict[str, float]:
+        """Each processor's busy share since the last update, from its statistics."""
         start, busy_then = self._window
-        busy = dict(self._busy)
-        for processor, since in self._running.items():
-            busy[processor] = busy.get(processor, 0) + t_ns - since
+        busy = {name: processor.stats.busy_ns
+                for name, processor in self.run.sim.processors.items()}
         span = t_ns - start
-        loads = {p: (b - busy_then.get(p, 0)) / span if span > 0 else 0.0
+        loads = {p: min(1.0, (b - busy_then.get(p, 0)) / span) if span > 0 else 0.0
                  for p, b in busy.items()}
         self._window = (t_ns, busy)
         return loads
+
+    def _count_misses(self, t_ns: int) -> None:
+        """Deadline misses since the last update, from the Module-Tasks' statistics: one log
+        line per Module-Task that missed (how many, and how)."""
+        for name, runtime in self.run.sim.tasks.items():
+            stats = runtime.stats
+            total = stats.late + stats.overruns
+            new = total - self._misses.get(name, 0)
+            if new > 0:
+                self._misses[name] = total
+                self._log.append(LogEntry(t_ns, "miss", f"{name}: {new} deadline "
+                                                        f"miss{'es' if new > 1 else ''} "
+                                                        f"(finished late or release skipped)"))
 
     def _sample(self, t_ns: int, name: str, values: list[float] | None) -> None:
         if values is None or t_ns < self._next_sample.get(name, 0):
@@ -311,40 +316,22 @@ class LiveObserver(Observer):
 
     def on_read(self, t_ns: int, module: str, port: str, value: Any) -> None:
         sensor = self._sensors.get((module, port))
-        if sensor is not None:
+        if sensor is not None and t_ns >= self._next_sample.get(sensor, 0):
             self._sample(t_ns, sensor, _components(value))
+
+    def wants_write(self, module: str, port: str) -> bool:
+        """Only the set-points and the task errors are plotted."""
+        return port in SETPOINT_PORTS or port == "e"
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port in SETPOINT_PORTS:  # the reference: the set-point of the measured joints
-            self._sample(t_ns, port, _components(value))
+            if t_ns >= self._next_sample.get(port, 0):
+                self._sample(t_ns, port, _components(value))
             return
         if port == "e" and t_ns >= self._next_sample.get("tracking error", 0):
             values = _components(value, limit=1 << 16)
             if values is not None:
                 self._sample(t_ns, "tracking error", [math.sqrt(sum(v * v for v in values))])
-
-    def on_start(self, t_ns: int, module: str, job: int, processor: str) -> None:
-        self._running[processor] = t_ns
-
-    on_resume = on_start
-
-    def on_preempt(self, t_ns: int, module: str, job: int, processor: str) -> None:
-        since = self._running.pop(processor, t_ns)
-        self._busy[processor] = self._busy.get(processor, 0) + t_ns - since
-
-    on_compute_end = on_preempt
-
-    def on_finish(self, t_ns: int, module: str, job: int, response_ns: int,
-                  missed: bool) -> None:
-        if missed:
-            self._miss(t_ns, module, "finished after its deadline")
-
-    def on_overrun(self, t_ns: int, module: str, job: int) -> None:
-        self._miss(t_ns, module, "release skipped (previous job unfinished)")
-
-    def _miss(self, t_ns: int, module: str, what: str) -> None:
-        self._misses[module] = self._misses.get(module, 0) + 1
-        self._log.append(LogEntry(t_ns, "miss", f"{module}: {what}"))
 
     def on_param(self, t_ns: int, module: str, name: str, value: Any) -> None:
         self._log.append(LogEntry(t_ns, "param", f"{module}.{name} := {value}"))

@@ -5,15 +5,13 @@
   mission;
 - :func:`check_file`: ``orccad check``'s :func:`~orccad_app.verify.checker.check_mission`;
 - :class:`LiveSession`: ``orccad run``'s plan and :class:`MissionRun`, observed by a
-  :class:`~orccad_app.tui.live.LiveObserver`, with the trace spooled to a temporary CSV file
-  for export.
+  :class:`~orccad_app.tui.live.LiveObserver`; its trace is exported by running it again
+  (deterministic: the same run) with a trace recorder.
 """
 
 from __future__ import annotations
 
-import csv
 import os
-import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -266,46 +264,6 @@ def _faults(run: Any) -> dict[str, str]:
     return found
 
 
-class _Spool:
-    """The run's trace, written as CSV to a temporary file as the run goes (a long run does
-    not fill the memory); :meth:`export` copies it, or converts it to MCAP."""
-
-    def __init__(self) -> None:
-        from orccad_app.trace import CsvTraceWriter
-
-        self._folder = tempfile.TemporaryDirectory(prefix="orccad-tui-")
-        self.path = Path(self._folder.name) / "trace.csv"
-        self.writer = CsvTraceWriter(self.path)
-
-    def export(self, path: str, metadata: dict[str, str],
-               sensors: dict[tuple[str, str], str] | None = None,
-               progress: Callable[[float], None] | None = None) -> None:
-        """Write the trace to ``path`` (``progress`` gets the fraction done)."""
-        from orccad_app.trace import TraceRow, open_trace
-
-        self.writer.close()
-        if Path(path).suffix.lower() == ".csv":
-            shutil.copyfile(self.path, path)
-            if progress is not None:
-                progress(1.0)
-            return
-        with self.path.open(encoding="utf-8") as rows:
-            total = max(1, sum(1 for _ in rows) - 1)
-        writer = open_trace(path, metadata, sensors)
-        try:
-            with self.path.open(newline="", encoding="utf-8") as rows:
-                reader = csv.reader(rows)
-                next(reader)  # the header
-                for n, (time_ns, event, module, port, job, value) in enumerate(reader, 1):
-                    writer.write(TraceRow(int(time_ns), event, module, port, int(job), value))
-                    if progress is not None and n % 20_000 == 0:
-                        progress(n / total)
-        finally:
-            writer.close()
-        if progress is not None:
-            progress(1.0)
-
-
 class LiveSession:
     """One live run of ``mission`` of ``path`` (see the module docstring).
 
@@ -317,11 +275,10 @@ class LiveSession:
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
                  speed: float | None = 1.0, seed: int = 0, until_s: float = 60.0,
-                 script: Any = None) -> None:
+                 script: Any = None, setting: Any = None, by: str = "") -> None:
         from orccad_app.mission.plan import plan_mission
         from orccad_app.mission.run import MissionRun
         from orccad_app.pipeline import load, select_mission
-        from orccad_app.trace import TraceRecorder
 
         from orccad_app.mission import run as mission_run
 
@@ -330,18 +287,37 @@ class LiveSession:
         self.text = source.text
         """The mission file's text (the run screen shows where the mission waits in it)."""
         self.mission = select_mission(source, mission).name
-        plan = plan_mission(source, source.program.mission(self.mission))
+        if setting is not None:  # a campaign's run: its overrides, seed, horizon
+            from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
+
+            overrides = PlanOverrides.from_arguments(list(setting.sets), list(setting.timings))
+            plan = plan_with_overrides(source, source.program.mission(self.mission), overrides)
+            seed, until_s = setting.seed, setting.until_s
+            self.seed = seed
+        else:
+            plan = plan_mission(source, source.program.mission(self.mission))
         self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
         """The mission's declared inputs (``SignalDecl``)."""
         self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
         horizon = getattr(mission_run, "run_horizon_s", None)  # robots with long missions
-        until_s = horizon(plan, until_s) if horizon is not None else until_s
+        if setting is None:
+            until_s = horizon(plan, until_s) if horizon is not None else until_s
         self.script = script
         """The counterexample run against the plant, or ``None``."""
         injections = [] if script is None else script.injections(plan.tick_ns)
         self.scripted = [InjectionRecord(i.time_ns, i.name, i.value, False, script.by)
                          for i in injections]
+        if setting is not None:
+            from orccad_app.mission.injection import parse_injection
+
+            given = [parse_injection(text) for text in setting.injections]
+            injections += given
+            self.scripted += [InjectionRecord(i.time_ns, i.name, i.value, i.fault, by)
+                              for i in given]
+        self.setting = setting
+        """The campaign run replayed (a :class:`~orccad_app.campaign.setting.RunSetting`),
+        or ``None``."""
         """The script's injections, for the report."""
         self.run = MissionRun(plan, seed=seed, until_ns=int(round(until_s * 1e9)),
                               injections=injections)
@@ -350,10 +326,9 @@ class LiveSession:
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
             (record.time_ns, record.name) for record in self.scripted},
-            scripted_by=script.by if script is not None else "")
-        self._trace = _Spool()
+            scripted_by=script.by if script is not None else by)
         self.run.add_observer(self.observer)
-        self.run.add_observer(TraceRecorder(self._trace.writer))
+        self._plan, self._injections = plan, list(injections)
         from orccad_app.properties import PropertyMonitor
 
         self.monitor = PropertyMonitor(source.program, source.program.mission(self.mission),
@@ -363,10 +338,7 @@ class LiveSession:
 
     def execute(self) -> Any:
         """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
-        try:
-            self.result = self.run.run()
-        finally:
-            self._trace.writer.close()
+        self.result = self.run.run()
         self.observer.flush(self.run.kernel.now)
         return self.result
 
@@ -413,10 +385,57 @@ class LiveSession:
         def write(tmp: Path) -> None:
             named = tmp.with_suffix(suffix)  # the writer picks the format by the suffix
             try:
-                self._trace.export(str(named), metadata, sensors, progress)
+                self._replay_trace(str(named), metadata, sensors, progress)
                 os.replace(named, tmp)
             finally:
                 named.unlink(missing_ok=True)
 
         write_atomically(path, write)
         return path
+
+    def _replay_trace(self, path: str, metadata: dict[str, str], sensors: Any,
+                      progress: Callable[[float], None] | None) -> None:
+        """Run the finished run again with a trace recorder: the same plan, seed and horizon,
+        the same injections (the user's as ``--inject`` at the instants they took effect: the
+        same run, :mod:`orccad_app.tui.user_inputs`), ended at the same reaction when the user
+        aborted it. The live run records no trace: a trace costs more than the run."""
+        from orccad_app.mission.injection import Injection
+        from orccad_app.mission.run import MissionRun
+        from orccad_app.trace import TraceRecorder, open_trace
+
+        tick = self.run.tick_ns
+        user = []
+        for record in self.observer.injected:
+            last = record.time_ns if record.until_ns is None else record.until_ns
+            user += [Injection(record.name, time_ns, record.value, record.fault)
+                     for time_ns in range(record.time_ns, last + 1, tick)]
+        replay = MissionRun(self._plan, seed=self.seed, until_ns=self.run.until_ns,
+                            injections=[*self._injections, *user])
+        end_ns = self.result.sim_time_ns if self.result is not None else self.run.until_ns
+        writer = open_trace(path, metadata, sensors)
+        try:
+            replay.add_observer(TraceRecorder(writer))
+            replay.add_observer(_Replaying(replay, self.observer.aborted_at, end_ns, progress))
+            replay.run()
+        finally:
+            writer.close()
+        if progress is not None:
+            progress(1.0)
+
+
+class _Replaying:
+    """Ends a replayed run at the reaction where the live run was aborted (``abort_at``, the
+    count of reactions then; ``None``: not aborted) and reports its progress."""
+
+    def __init__(self, run: Any, abort_at: int | None, end_ns: int,
+                 progress: Callable[[float], None] | None) -> None:
+        self.run, self.abort_at, self.end_ns, self.progress = run, abort_at, end_ns, progress
+        self.reactions = 0
+
+    def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
+                    status: str) -> None:
+        self.reactions += 1
+        if self.abort_at is not None and self.reactions >= self.abort_at:
+            self.run.abort("stopped by the user")
+        elif self.progress is not None and self.reactions % 2000 == 0 and self.end_ns:
+            self.progress(min(1.0, t_ns / self.end_ns))

@@ -25,12 +25,15 @@ robustness is finite exactly when some comparison decides it.
 Finite runs: rtamt evaluates windows over the samples that exist. ``always`` (bounded or
 not) is the minimum over the recorded part of its window (``+inf`` when none: vacuously
 true), ``eventually`` the maximum (``-inf`` when none: not seen); ``next`` at the last sample
-is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``).
+is ``+inf``, ``previously`` at the first is ``+inf`` (rtamt's weak ``prev``). A run of one
+sample follows the same rules on that one sample (``next``: ``+inf``; a window starting after
+it: none).
 """
 
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from dataclasses import dataclass
 from typing import Mapping, Sequence
@@ -39,7 +42,18 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.lang.signal_types import PortSignal
 
-__all__ = ["StlFormula", "translate", "robustness", "event_key", "Component"]
+__all__ = ["StlFormula", "translate", "robustness", "event_key", "Component",
+           "UndefinedRobustness"]
+
+
+class UndefinedRobustness(Exception):
+    """The property has no robustness on this run (``reason`` says why): a division by zero,
+    the square root of a negative value, an infinity minus an infinity, or an overflow of its
+    arithmetic to ±inf. The run's verdict is then *undecided*; the run itself goes on."""
+
+    def __init__(self, reason: str) -> None:
+        super().__init__(reason)
+        self.reason = reason
 
 INF = math.inf
 
@@ -74,6 +88,9 @@ class StlFormula:
     ports: dict[str, Component]
     events: dict[str, tuple]
     period_ns: int
+    operands: tuple[str, ...] = ()
+    """The rtamt text of each comparison's operands (arithmetic over the port variables),
+    evaluated on the samples to tell an overflow to ±inf from an infinite margin of events."""
 
 
 def event_key(formula: ast.Formula) -> tuple:
@@ -91,6 +108,7 @@ class _Writer:
         self.period_ns = period_ns
         self.port_vars: dict[str, Component] = {}
         self.event_vars: dict[str, tuple] = {}
+        self.operands: list[str] = []
         self._names: dict[object, str] = {}
 
     def _var(self, key: object, prefix: str) -> str:
@@ -119,7 +137,12 @@ class _Writer:
             self.event_vars[name] = ("true",)
             return f"({name} >= 0)" if f.value else f"(not({name} >= 0))"
         if isinstance(f, ast.FCompare):
-            return f"({self.scalar(f.left)} {_CMP[f.op]} {self.scalar(f.right)})"
+            if not _reads_a_port(f.left) and not _reads_a_port(f.right):
+                raise OrccadError("a comparison of constants reads no signal (its robustness "
+                                  "would be a constant margin): write true or false", f.loc)
+            left, right = self.scalar(f.left), self.scalar(f.right)
+            self.operands.extend((left, right))
+            return f"({left} {_CMP[f.op]} {right})"
         if isinstance(f, ast.FUnary):
             return self.unary(f)
         return self.binary(f)
@@ -182,6 +205,18 @@ class _Writer:
         return name
 
 
+def _reads_a_port(expr: ast.SignalExpr) -> bool:
+    if isinstance(expr, ast.SPort):
+        return True
+    if isinstance(expr, ast.SNumber):
+        return False
+    if isinstance(expr, ast.SNeg):
+        return _reads_a_port(expr.operand)
+    if isinstance(expr, ast.SCall):
+        return any(_reads_a_port(arg) for arg in expr.args)
+    return _reads_a_port(expr.left) or _reads_a_port(expr.right)
+
+
 def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
               period_ns: int) -> StlFormula:
     """``formula`` in rtamt's STL over samples of period ``period_ns``; ``ports`` are its typed
@@ -189,7 +224,8 @@ def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
     :class:`OrccadError` when a time bound is not a multiple of the period."""
     writer = _Writer(ports, period_ns)
     text = writer.formula(formula)
-    return StlFormula(text, writer.port_vars, writer.event_vars, period_ns)
+    return StlFormula(text, writer.port_vars, writer.event_vars, period_ns,
+                      tuple(writer.operands))
 
 
 def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
@@ -202,14 +238,11 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
         raise ValueError(f"samples of unequal or zero length: {sorted(lengths)}")
-    count = lengths.pop()
     data = {name: [float(v) for v in values] for name, values in samples.items()}
-    if count == 1:  # rtamt needs two samples; the run's only state holds one period more
-        data = {name: values * 2 for name, values in data.items()}
     spec = rtamt.StlDiscreteTimeSpecification()
     for name in data:
         spec.declare_var(name, "float")
-    spec.spec = stl.text
+    spec.spec = _clamped(stl.text, len(next(iter(data.values()))) * stl.period_ns)
     spec.set_sampling_period(stl.period_ns, "ns", 0.1)
     try:
         spec.parse()
@@ -217,4 +250,63 @@ def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float
         raise OrccadError(f"internal error: rtamt rejects {stl.text!r}: {error}") from None
     length = len(next(iter(data.values())))
     data["time"] = [k * stl.period_ns / 1e9 for k in range(length)]
-    return float(spec.evaluate(data)[0][1])
+    try:
+        value = _evaluate(spec, data)
+    except ZeroDivisionError:
+        raise UndefinedRobustness("a division by zero") from None
+    except ValueError as error:  # math domain error: sqrt of a negative value
+        raise UndefinedRobustness(f"the square root of a negative value ({error})") from None
+    except OverflowError:
+        raise UndefinedRobustness("an overflow of its arithmetic") from None
+    if math.isnan(value):
+        raise UndefinedRobustness("a value that is not a number (an infinity minus an "
+                                  "infinity, or a sample that is not a number)")
+    if math.isinf(value) and _overflows(stl, data):
+        raise UndefinedRobustness("an overflow of its arithmetic to ±inf")
+    return value
+
+
+_BOUNDS = re.compile(r"\[(\d+)ns:(\d+)ns\]")
+
+
+def _clamped(text: str, horizon_ns: int) -> str:
+    """``text`` with every time bound at most ``horizon_ns`` (one period past the last
+    sample). The samples past it do not exist, so the value is the same — a window reaching
+    past the run reads its recorded part, one starting past it reads none — but rtamt's
+    buffers follow the bounds: a window as long as the one-year bound exhausted memory."""
+    def clamp(match: re.Match) -> str:
+        low, high = (min(int(v), horizon_ns) for v in match.groups())
+        return f"[{low}ns:{high}ns]"
+    return _BOUNDS.sub(clamp, text)
+
+
+def _evaluate(spec: object, data: dict[str, list[float]]) -> float:
+    """The robustness at time 0. A one-sample run is evaluated on its one sample (``next`` and
+    windows after it see none: ``+inf`` / ``-inf`` by the rules above): rtamt 0.4's
+    ``evaluate`` computes that value, then fails checking the sampling period of a trace with
+    no interval between samples, so its offline interpreter is asked for the value directly
+    (reading the only sample twice, as before, invented a sample the run does not have)."""
+    try:
+        return float(spec.evaluate(data)[0][1])  # type: ignore[attr-defined]
+    except UnboundLocalError:
+        if len(data["time"]) != 1:
+            raise
+    interpreter = spec.offline_interpreter  # type: ignore[attr-defined]
+    result = interpreter.visitAst(interpreter.ast, 1)
+    return float(result[len(result) - 1][0])
+
+
+def _overflows(stl: StlFormula, data: Mapping[str, Sequence[float]]) -> bool:
+    """Some comparison operand leaves the finite numbers on some sample although the port
+    samples are finite (the operands are our translation's arithmetic: numbers, port
+    variables, + - * /, abs, sqrt — never user text)."""
+    import numpy as np
+
+    arrays = {name: np.asarray(data[name], dtype=float) for name in stl.ports}
+    with np.errstate(all="ignore"):
+        for operand in stl.operands:
+            value = eval(operand, {"__builtins__": {}, "abs": np.abs,  # noqa: S307
+                                   "sqrt": np.sqrt}, arrays)
+            if np.any(np.isinf(value)):
+                return True
+    return False

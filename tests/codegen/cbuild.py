@@ -21,7 +21,7 @@ import pytest
 from orccad_app.codegen.driver import main_source
 from orccad_app.codegen.generate import CProgram
 
-__all__ = ["STRICT", "SANITIZE", "compiler", "build", "run_trace", "run_traces"]
+__all__ = ["STRICT", "SANITIZE", "compiler", "build", "run_trace", "run_lines", "run_traces"]
 
 #: the flags the issue asks every generated file to pass
 STRICT = ("-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic")
@@ -73,10 +73,15 @@ def _cache() -> Path:
 
 def run_trace(binary: Path, script: Path) -> tuple[list[dict], int, str]:
     """The records ``binary SCRIPT --trace`` prints, its exit status and its stderr."""
+    lines, status, stderr = run_lines(binary, script)
+    return [json.loads(line) for line in lines], status, stderr
+
+
+def run_lines(binary: Path, script: Path) -> tuple[list[str], int, str]:
+    """The lines ``binary SCRIPT --trace`` prints (as text), its exit status and stderr."""
     done = subprocess.run([str(binary), str(script), "--trace"], capture_output=True,
                           text=True, timeout=120)
-    records = [json.loads(line) for line in done.stdout.splitlines()]
-    return records, done.returncode, done.stderr
+    return done.stdout.splitlines(), done.returncode, done.stderr
 
 
 def run_traces(binary: Path, scripts: list[Path]) -> dict[str, list[dict]]:

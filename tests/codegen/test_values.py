@@ -7,14 +7,16 @@ on a build with ``-fsanitize=undefined,address``."""
 from __future__ import annotations
 
 import itertools
+import json
 from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from orccad_app.codegen.mission import generate_mission
+from orccad_app.jsonout import dumps
 from orccad_app.pipeline import compose_mission, load
-from tests.codegen.cbuild import SANITIZE, STRICT, build, run_trace, run_traces
+from tests.codegen.cbuild import SANITIZE, STRICT, build, run_lines, run_traces
 from tests.codegen.differential import first_difference, python_records
 
 DATA = Path(__file__).parent / "data"
@@ -36,7 +38,8 @@ def _values():
 
 _INTS = st.one_of(st.integers(-5, 5), st.sampled_from([2**62, 2**63 - 1, -(2**63), -(2**62)]),
                   st.integers(-(2**63), 2**63 - 1))
-_FLOATS = st.one_of(st.sampled_from([0.0, -0.0, 0.5, 1e-300, 1e308, -1e308, 3.0, 1e16]),
+_FLOATS = st.one_of(st.sampled_from([0.0, -0.0, 0.5, 1e-300, 1e308, -1e308, 3.0, 1e16, 1e15,
+                                     2.5e-5, 1.5e-4, 123456789012345.6]),
                     st.floats(allow_nan=False, allow_infinity=False))
 _INPUT = st.one_of(
     st.builds(lambda v: f"N({v})", _INTS), st.builds(lambda v: f"D({v})", _INTS),
@@ -66,9 +69,15 @@ def _compare(automaton, binary, text: str, folder: Path) -> None:
     path = folder / f"h{next(_NAMES)}.in"
     path.write_text(text)
     expected = python_records(automaton, text, str(path))
-    got, status, stderr = run_trace(binary, path)
+    lines, status, stderr = run_lines(binary, path)
+    got = [json.loads(line) for line in lines]
     assert first_difference(expected, got) is None, f"{text}\n{first_difference(expected, got)}"
     assert status in (0, 1, 2) and "runtime error" not in stderr, stderr
+    # the text itself: what orccad react --jsonl prints (reals in Python's shortest form)
+    for line, record in zip(lines, expected):
+        if "error" not in record:
+            shown = {k: v for k, v in record.items() if k not in ("state", "step_status")}
+            assert line.split(', "state": ')[0] + "}" == dumps(shown), line
 
 
 @settings(max_examples=60, deadline=None, derandomize=True,
@@ -88,7 +97,7 @@ def test_errors_of_every_kind_agree(tmp_path):
     cases = ["N(9223372036854775807)", "N(3) D(0)", "N(-9223372036854775808) D(-1)",
              "N(-9223372036854775808) D(1)", "X(1e308) Y(1e-300)", "X(1.0) Y(0.0)",
              "X(1e308) N(9223372036854775807)", "V([1e308, 0, 0]) X(10.0)",
-             "N(5) D(3)\nN(-7) D(2)\nX(-2.5) Y(-0.0)"]
+             "N(5) D(3)\nN(-7) D(2)\nX(-2.5) Y(-0.0)", "B(true)"]
     for case in cases:
         _compare(automaton, binary, case + "\n", tmp_path)
 
@@ -112,3 +121,13 @@ def test_sanitized_build_runs_the_scripts_clean(tmp_path):
     for path in paths:
         expected = python_records(automaton, path.read_text(), str(path))
         assert first_difference(expected, got[str(path)]) is None
+
+
+def test_reals_print_as_python_prints_them(tmp_path):
+    """Python's shortest round-trip form at every decimal exponent (fixed notation from 1e-4 to
+    below 1e16, scientific outside), through the C's JSON printer."""
+    automaton, program = _values()
+    values = [1.2345 * 10.0**k for k in range(-9, 20)] + [
+        1e15, 1e16, 9999999999999998.0, 0.0001, 0.00001, 5e-324, 2.0**60, 0.1 + 0.2, -0.0]
+    text = "".join(f"X({v!r})\n" for v in values)
+    _compare(automaton, build(program), text, tmp_path)

@@ -161,3 +161,27 @@ def test_campaign_timing_draws_are_whole_nanoseconds():
     for index in range(20):
         for text in draw_setting(spec, index, 30.0).timings:
             parse_timing(text)  # refused if it were not whole nanoseconds
+
+
+def test_sub_missions_expanding_exponentially_are_refused_before_they_are_built(tmp_path):
+    lines = ["input A;", "output O;", "mission L0 { await A; emit O; }"]
+    for level in range(1, 6):
+        lines.append(f"mission L{level} {{ " + f"run mission L{level - 1}; " * 10 + "}")
+    lines.append("mission Top { " + "run mission L5; " * 4 + "}")
+    path = tmp_path / "exp.orc"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    outcome = run_orccad(["compile", str(path), "-m", "Top"], budget_s=20)
+    _refused(outcome, f"{path}:9:1", "more than 200000 syntax nodes")
+    assert outcome.seconds < 10
+
+
+def test_a_run_whose_reactions_and_jobs_exceed_the_budget_is_refused_before_it_starts(tmp_path):
+    # a 1 us period costs ~50 s and 1.4 GB per simulated second: the gcd check alone let it run
+    text = (ROOT / "missions" / "arm_pid.orc").read_text(encoding="utf-8")
+    path = tmp_path / "arm_pid.orc"
+    path.write_text(text.replace("period 1 ms", "period 0.001 ms"), encoding="utf-8")
+    outcome = run_orccad(["run", str(path), "--until", "60"], budget_s=30)
+    _refused(outcome, "reactions and Module-Task jobs", "more than the 5e+07 a run may cost")
+    assert outcome.seconds < 20
+    check_outcome(run_orccad(["run", str(path), "--until", "0.002", "--json"], budget_s=60),
+                  json_doc=True, budget_s=60)

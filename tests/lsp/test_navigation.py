@@ -162,3 +162,28 @@ async def test_definition_of_an_imported_mission_opens_its_file(client):
     library = (MISSIONS / "lib" / "homing.orc").read_text().split("\n")
     assert "mission Homing" in library[target.range.start.line]
     close_document(client, path)
+
+
+async def test_definition_of_robots_variables_modules_exceptions_and_traps(client):
+    path = MISSIONS / "arm_recovery.orc"
+    text = path.read_text()
+    lines = text.split("\n")
+    await open_document(client, path)
+
+    def at(line_text: str, name: str, nth: int = 0) -> types.Position:
+        line = [i for i, t in enumerate(lines) if line_text in t][nth]
+        return types.Position(line, lines[line].index(name, lines[line].index(line_text)))
+
+    def line_of(prefix: str) -> int:
+        return next(i for i, t in enumerate(lines) if t.strip().startswith(prefix))
+
+    cases = [(at("on arm {", "arm"), line_of("robot arm")),
+             (at("emit Retry(tries)", "tries"), line_of("var tries")),
+             (at("connect ctrl.tau", "ctrl"), line_of("module ctrl")),
+             (at("catch TrackingLost", "TrackingLost"), line_of("exception TrackingLost")),
+             (at("exit Success", "Success"), line_of("trap Success")),
+             (at("await immediate Tracked", "Tracked"), line_of("signal Tracked"))]
+    for position, declared in cases:
+        target = await _definition(client, path, position)
+        assert (target.uri, target.range.start.line) == (uri(path), declared), position
+    close_document(client, path)

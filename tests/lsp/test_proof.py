@@ -133,3 +133,32 @@ async def test_a_change_cancels_a_running_proof_and_kills_its_process(client, tm
              and any(d.code == "proof" for d in p.diagnostics)]
     assert proof == []
     close_document(client, path)
+
+
+async def test_a_compile_error_comes_with_the_proof_at_its_place(client, tmp_path):
+    """Errors only compiling finds (here a non-causal program) are the proof's: located."""
+    path = tmp_path / "causal.orc"
+    text = "mission M {\n    output S;\n    if S { nothing; } else { emit S; }\n}\n"
+    assert await open_document(client, path, text) == []
+    verdicts = await _verdicts(client, path, _save(client, path))
+    assert list(verdicts) == [2], verdicts
+    assert verdicts[2].severity == types.DiagnosticSeverity.Error
+    close_document(client, path)
+
+
+async def test_signal_properties_are_left_to_runs(client):
+    from orccad_app.lang import ast
+    from orccad_app.lang.parser import parse
+
+    path = MISSIONS / "arm_computed_torque.orc"
+    program = parse(path.read_text(), str(path))
+    signal = {p.loc.line - 1 for p in program.properties if ast.is_signal_formula(p.formula)}
+    assert len(signal) == 3
+    await open_document(client, path)
+    verdicts = await _verdicts(client, path, _save(client, path))
+    assert set(verdicts) == {p.loc.line - 1 for p in program.properties}
+    for line, verdict in verdicts.items():
+        expected = "left to runs" if line in signal else "proved"
+        assert expected in verdict.message, verdict.message
+        assert verdict.severity == types.DiagnosticSeverity.Information
+    close_document(client, path)

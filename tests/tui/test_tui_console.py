@@ -154,17 +154,20 @@ class _Inputs:
 
 
 def test_a_held_input_is_present_at_every_instant_until_released():
-    """Gripper held from the start is an input of a reaction at every tick (1 ms) until its
-    release at 0.5 s, and never after; a pulse is one reaction."""
+    """Gripper held from the start is an input of a reaction at every tick (1 ms) from its
+    due instant (the second tick) until its release at 0.5 s, and never after; the report
+    has one record for it."""
     session = LiveSession(RECOVERY, None, lambda update: None, speed=None, until_s=1.0)
     session.observer.hold("Gripper", 0.9)
     probe = _Inputs(session.observer, "Gripper", 500_000_000)
     session.run.add_observer(probe)
     session.execute()
     ticks = sorted(set(probe.seen))
-    assert ticks[0] == 0 and 500_000_000 <= ticks[-1] <= 501_000_000
-    assert len(ticks) >= 500  # one instant per millisecond tick, none missed
-    assert all(r.by == "user (held)" for r in session.observer.injected)
+    assert ticks[0] == 2_000_000 and 500_000_000 <= ticks[-1] <= 503_000_000
+    assert ticks == list(range(ticks[0], ticks[-1] + 1, 1_000_000))  # every tick, no other
+    [record] = session.observer.injected
+    assert (record.by, record.time_ns, record.until_ns) == ("user (held)", ticks[0], ticks[-1])
+    assert record.instants == len(ticks)
 
 
 @pilot_test

@@ -134,3 +134,26 @@ def test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused(tmp_path):
     assert "/plant/arm/q" in topics and "/log" in topics
     with pytest.raises(OrccadError):
         session.export(str(tmp_path / "run.txt"))
+
+
+def test_the_export_of_an_aborted_run_ends_where_the_run_ended(tmp_path):
+    """The live run records no trace: its export runs it again, aborted at the same
+    reaction."""
+    import csv
+
+    from orccad_app.trace import CsvTraceWriter, TraceRecorder
+
+    session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=None)
+    live = tmp_path / "live.csv"
+    writer = CsvTraceWriter(live)
+    session.run.add_observer(TraceRecorder(writer))
+    session.run.add_observer(_At(300_000_000, session.observer.abort))
+    result = session.execute()
+    writer.close()
+    assert result.status == "aborted"
+    exported = tmp_path / "exported.csv"
+    session.export(str(exported))
+    assert exported.read_text() == live.read_text()
+    with exported.open() as rows:
+        last = list(csv.reader(rows))[-1]
+    assert int(last[0]) <= result.sim_time_ns  # nothing after the reaction that ended it

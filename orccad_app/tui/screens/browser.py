@@ -34,6 +34,8 @@ class BrowserScreen(Screen):
                                                  "tab step by step (r there runs it on the "
                                                  "plant)"),
         Binding("ctrl+e", "edit", "Edit", tooltip="edit it with live diagnostics"),
+        Binding("k", "campaign", "Campaign", show=False, tooltip="campaigns and falsification of it "
+                                                     "(its .campaign.toml spec)"),
         Binding("slash", "search", "Search", tooltip="type to filter the mission list"),
         Binding("q", "app.quit", "Quit"),
     ]
@@ -260,3 +262,9 @@ class BrowserScreen(Screen):
             self.notify("cannot run: the file has errors or no mission", severity="error")
             return
         self.app.start_run(self.view.path, self.mission)
+
+    def action_campaign(self) -> None:
+        if self.selected is None:
+            self.notify("choose a mission file first", severity="warning")
+            return
+        self.app.open_campaign(self.selected)

@@ -20,7 +20,7 @@ from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_
                                     waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
-from orccad_app.tui.widgets.plots import Marker, Plots
+from orccad_app.tui.widgets.plots import BUSY_REDRAW_S, REDRAW_S, Marker, Plots
 from orccad_app.tui.widgets.source_view import SourceView
 from orccad_app.tui.widgets.tables import LoadTable, TaskTable, TcsTable
 
@@ -147,6 +147,7 @@ class RunScreen(Screen):
                                                                       update.state))
         self.query_one(LoadTable).show(update.loads, update.misses)
         plots = self.query_one(Plots)
+        plots.min_interval_s = BUSY_REDRAW_S if self.session.pace.factor is None else REDRAW_S
         plots.add_samples(update.samples)
         plots.add_markers(_markers(update.log))
         self.query_one(EventLog).add(update.log)
@@ -155,6 +156,7 @@ class RunScreen(Screen):
     def _finished(self, message: RunFinished) -> None:
         self.finished = True
         self.report_text = message.report
+        self.query_one(Plots).redraw()  # the whole run, at once
         result = message.result
         reason = f": {result.reason}" if result.reason else ""
         self.query_one(EventLog).add([LogEntry(result.sim_time_ns, "status",

@@ -9,6 +9,7 @@ legend in the terminal, which Textual's ``Sparkline`` (no axis, no time, one ser
 from __future__ import annotations
 
 import re
+import time
 from dataclasses import dataclass
 
 from textual.app import ComposeResult
@@ -25,7 +26,13 @@ heading); every other series follows in name order."""
 ROLLING_S = 10.0
 """Width of the rolling window [s]."""
 
-_MAX_POINTS = 400  # per series drawn: the terminal has fewer columns than that
+_MAX_POINTS = 240  # per series drawn: two braille dots per column of a wide terminal
+
+REDRAW_S = 0.25
+"""Plots are redrawn at most this often [s] (wall time) while samples arrive."""
+BUSY_REDRAW_S = 1.0
+"""... and at most this often while the run goes as fast as it can: a plot costs more to draw
+than a second of the arm's simulation, and the run shares the interpreter with the screen."""
 
 
 @dataclass(frozen=True)
@@ -83,13 +90,16 @@ class Plots(Vertical):
         self.chosen: list[str] | None = None
         self.rolling = False
         self._dirty = False
+        self.min_interval_s = REDRAW_S
+        """The least wall time between two redraws [s]."""
+        self._drawn_at = 0.0
 
     def compose(self) -> ComposeResult:
         yield Label("no samples yet", id="plots-caption")
         yield PlotextPlot(id="plot")
 
     def on_mount(self) -> None:
-        self.set_interval(0.25, self._redraw_if_dirty)
+        self.set_interval(REDRAW_S, self._redraw_if_dirty)
         self.redraw()
 
     def add_samples(self, samples: dict[str, list[tuple[float, float]]]) -> None:
@@ -129,7 +139,7 @@ class Plots(Vertical):
         self.redraw()
 
     def _redraw_if_dirty(self) -> None:
-        if self._dirty:
+        if self._dirty and time.monotonic() - self._drawn_at >= self.min_interval_s - 0.01:
             self.redraw()
 
     def _window(self) -> tuple[float, float] | None:
@@ -142,6 +152,7 @@ class Plots(Vertical):
     def redraw(self) -> None:
         """Draw the shown series (and their set-points) with the markers in the window."""
         self._dirty = False
+        self._drawn_at = time.monotonic()
         plot = self.query_one(PlotextPlot)
         plt = plot.plt
         plt.clear_data()

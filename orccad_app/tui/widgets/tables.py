@@ -9,7 +9,21 @@ from orccad_app.tui.live import PHASES
 __all__ = ["TaskTable", "LoadTable", "TcsTable"]
 
 
-class TaskTable(DataTable):
+class _Rows(DataTable):
+    """A table redrawn only when its rows change (a live run updates it every frame)."""
+
+    _shown: list[tuple[str, ...]] | None = None
+
+    def set_rows(self, rows: list[tuple[str, ...]]) -> None:
+        if rows == self._shown:
+            return
+        self._shown = rows
+        self.clear()
+        for row in rows:
+            self.add_row(*row)
+
+
+class TaskTable(_Rows):
     """The Robot-Tasks running now and the phase of each one's RTA."""
 
     DEFAULT_CSS = "TaskTable { height: auto; max-height: 8; }"
@@ -19,14 +33,11 @@ class TaskTable(DataTable):
         self.add_columns("task", "site", "phase")
 
     def show(self, tasks: list[tuple[str, int, int]]) -> None:
-        self.clear()
-        for task, site, phase in tasks:
-            self.add_row(task, str(site), f"{phase} {PHASES.get(phase, '')}")
-        if not tasks:
-            self.add_row("(none)", "", "")
+        self.set_rows([(task, str(site), f"{phase} {PHASES.get(phase, '')}")
+                       for task, site, phase in tasks] or [("(none)", "", "")])
 
 
-class LoadTable(DataTable):
+class LoadTable(_Rows):
     """Per processor, its load over the last update; per module, its deadline misses."""
 
     DEFAULT_CSS = "LoadTable { height: auto; max-height: 10; }"
@@ -36,16 +47,12 @@ class LoadTable(DataTable):
         self.add_columns("cpu / module", "load", "miss")
 
     def show(self, loads: dict[str, float], misses: dict[str, int]) -> None:
-        self.clear()
-        for processor, load in sorted(loads.items()):
-            self.add_row(processor, f"{load:.1%}", "")
-        for module, count in sorted(misses.items()):
-            self.add_row(f"  {module}", "", str(count))
-        if not misses:
-            self.add_row("deadline misses", "", "0")
+        rows = [(processor, f"{load:.1%}", "") for processor, load in sorted(loads.items())]
+        rows += [(f"  {module}", "", str(count)) for module, count in sorted(misses.items())]
+        self.set_rows(rows + ([] if misses else [("deadline misses", "", "0")]))
 
 
-class TcsTable(DataTable):
+class TcsTable(_Rows):
     """The TCS: every Module-Task with processor, period, WCET, priority, whether its task
     runs now and its deadline misses; then each processor's load."""
 
@@ -56,6 +63,4 @@ class TcsTable(DataTable):
         self.add_columns("Module-Task", "cpu", "T ms", "C ms", "prio", "active/load", "misses")
 
     def show(self, rows: list[tuple[str, ...]]) -> None:
-        self.clear()
-        for row in rows:
-            self.add_row(*row)
+        self.set_rows(rows)

@@ -3,7 +3,7 @@
 // strings, pre, combine, counters and timers. tests/codegen/test_values.py runs hypothesis
 // scripts on it and compares the C with the Python runtime instant by instant.
 mission Values {
-    input N : int, D : int, X : float, Y : float, B : bool, S : string := "low",
+    input N : int := 1, D : int, X : float, Y : float := 2.0, B : bool, S : string := "low",
           V : vector := [0.0, 0.0, 0.0], Go, Reset;
     output Sum : int := 0 combine +, Quot : int, Prod : int, Neg : int, Ratio : float,
            Mixed : float, Scaled : vector, Shift : vector, Same : bool, Flag : bool,

@@ -1,0 +1,82 @@
+"""TUI live-run benchmark: ``orccad tui MISSION --run --speed max`` against ``orccad run MISSION``.
+
+Both run the same mission to its end in this process, one after the other, ``--repeat`` times
+each (the best time of each is kept: the machine's load varies, the ratio of bests is stable):
+
+- **CLI**: ``orccad run MISSION`` through the command's own entry point (plan, run with the
+  property monitor, report; output discarded);
+- **TUI**: the console app (Textual, headless through ``App.run_test`` at 160×48: every widget
+  laid out and rendered as on a terminal) started with the mission running at "max" speed,
+  timed from the moment the run starts until the report screen is up.
+
+It prints both times and the ratio TUI / CLI; the target (issue 26) is at most 1.5.
+
+    python bench/bench_tui.py [--mission missions/arm_pid.orc] [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import io
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MISSION = ROOT / "missions" / "arm_pid.orc"
+TARGET = 1.5
+
+
+def time_cli(mission: str) -> float:
+    """Wall time [s] of ``orccad run MISSION`` (its output discarded)."""
+    from orccad_app.cli import main
+
+    start = time.perf_counter()
+    with contextlib.redirect_stdout(io.StringIO()):
+        status = main(["run", mission])
+    wall = time.perf_counter() - start
+    assert status == 0, status
+    return wall
+
+
+async def _tui(mission: str) -> float:
+    from orccad_app.tui.app import OrccadApp
+    from orccad_app.tui.screens.report import ReportScreen
+
+    app = OrccadApp([], selected=mission, speed=None, run_now=False)
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+        start = time.perf_counter()
+        app.start_run(mission, None)
+        while not (isinstance(app.screen, ReportScreen) and app.screen.query("#report-text")):
+            await asyncio.sleep(0.01)
+        wall = time.perf_counter() - start
+        await pilot.pause(0.2)  # let the report screen finish mounting before the app exits
+        assert app.session.result.status == "done", app.session.result.status
+    return wall
+
+
+def time_tui(mission: str) -> float:
+    """Wall time [s] of the console's live run of ``mission`` at max speed, from its start to
+    its report on screen."""
+    return asyncio.run(_tui(mission))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--mission", default=str(MISSION.relative_to(ROOT)))
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    time_cli(args.mission)  # warm: imports, plugins, MuJoCo models
+    cli = min(time_cli(args.mission) for _ in range(args.repeat))
+    tui = min(time_tui(args.mission) for _ in range(args.repeat))
+    ratio = tui / cli
+    print(f"{args.mission}: orccad run {cli:.2f} s, orccad tui at max speed {tui:.2f} s "
+          f"(start to report)")
+    print(f"ratio TUI / CLI: {ratio:.2f} (target <= {TARGET:g}: "
+          f"{'met' if ratio <= TARGET else 'MISSED'})")
+
+
+if __name__ == "__main__":
+    main()

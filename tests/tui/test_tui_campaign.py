@@ -1,0 +1,144 @@
+"""The campaign screen (issue 26): a campaign started from a spec in its own process, its
+estimates, histograms and closest runs read from the database as runs finish, a run replayed
+in the live view with its setting; stopping leaves the database resumable; a falsification
+the same way."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from orccad_app.campaign.runner import Campaign, CampaignOptions
+from orccad_app.campaign.spec import load_spec
+from orccad_app.campaign.store import CampaignStore
+from orccad_app.tui.app import OrccadApp
+from orccad_app.tui.campaigns import Bin, histogram
+from orccad_app.tui.screens.campaign import CampaignScreen, histogram_text
+from orccad_app.tui.screens.run import RunScreen
+
+from tests.tui.test_tui_app import _text, _until, pilot_test
+
+MISSION = "missions/arm_pid.orc"
+SPEC = "missions/arm_pid.campaign.toml"
+SIZE = (160, 48)
+WAIT_S = 120.0
+"""A campaign's process on a loaded machine: start-up, compilation, a few runs."""
+
+
+@pytest.fixture
+def short_spec(tmp_path) -> str:
+    """The arm's campaign spec with runs cut at 0.5 s (status ``timeout``): quick runs."""
+    path = tmp_path / "arm_short.campaign.toml"
+    text = open(SPEC, encoding="utf-8").read().replace("seed = 1", "seed = 1\nuntil_s = 0.5")
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def test_histogram_bins_cover_the_range_and_count_every_value():
+    bins = histogram([-1.0, 0.0, 0.5, 1.0, 3.0], bins=4)
+    assert [(b.low, b.high) for b in bins] == [(-1.0, 0.0), (0.0, 1.0), (1.0, 2.0), (2.0, 3.0)]
+    assert [b.count for b in bins] == [1, 2, 1, 1]  # [low, high); the last holds 3.0
+    assert histogram([2.0, 2.0]) == [Bin(2.0, 2.0, 2)]
+    assert histogram([float("nan"), float("inf")]) == [] == histogram([])
+    text = histogram_text({"p": [Bin(-1.0, 0.0, 2), Bin(0.0, 1.0, 1)]})
+    assert "[red]" in text and "[green]" in text and "(3 runs; left of 0: violated)" in text
+
+
+def _campaign(app) -> CampaignScreen:
+    screen = app.screen
+    assert isinstance(screen, CampaignScreen)
+    return screen
+
+
+def _run_screen(app) -> RunScreen:
+    """The live run (its report may already cover it: the short runs end in 0.5 s)."""
+    return next(s for s in app.screen_stack if isinstance(s, RunScreen))
+
+
+async def _type(pilot, screen, field: str, text: str) -> None:
+    screen.query_one(f"#campaign-{field}").value = text
+    await pilot.pause()
+
+
+@pilot_test
+async def test_a_campaign_shows_its_answer_as_runs_finish_replays_a_run_and_stops_resumable(
+        tmp_path, short_spec):
+    db = str(tmp_path / "arm.db")
+    app = OrccadApp([MISSION], selected=MISSION, campaign={"db": db, "workers": 1})
+    async with app.run_test(size=SIZE) as pilot:
+        await _until(pilot, lambda: isinstance(app.screen, CampaignScreen))
+        screen = _campaign(app)
+        assert screen.query_one("#campaign-spec").value == SPEC  # the spec beside the file
+        await _type(pilot, screen, "spec", short_spec)
+        await _type(pilot, screen, "count", "1000")  # more than the test waits for
+        await pilot.press("s")
+        process = screen.process
+        assert screen.state == "running" and process.running
+        assert process.args[:2] == ["campaign", MISSION]
+        await _until(pilot, lambda: screen.snapshot is not None and screen.snapshot.runs >= 2,
+                     timeout=WAIT_S)
+        n = screen.snapshot.runs
+        status = _text(screen, "#campaign-status")
+        assert f"[running]: {n}/1000 runs" in status and "P(done) = 0.000" in status
+        table = screen.query_one("#estimates")
+        rows = {table.get_row_at(i)[0]: table.get_row_at(i) for i in range(table.row_count)}
+        assert rows["timeout"][1:3] == [f"{n}/{n}", "1.000"]  # cut at 0.5 s
+        assert rows["bounded"][1] == f"{n}/{n}" and rows["bounded"][3].endswith("1.000] 95 %")
+        assert "bounded" in _text(screen, "#campaign-histogram")
+        records = {r.index: r for r in CampaignStore(db).records()}
+        first = screen.candidates[0]
+        assert first.setting == records[first.run].setting
+        assert screen.query_one("#candidates").row_count == len(screen.candidates) > 0
+        await pilot.press("enter")  # replay it in the live view while the campaign goes on
+        await _until(pilot, lambda: any(isinstance(s, RunScreen) for s in app.screen_stack))
+        run = _run_screen(app)
+        assert run.session.setting == first.setting
+        assert run.session.seed == first.setting.seed
+        assert run.session.run.until_ns == round(first.setting.until_s * 1e9)
+        periods = {m.name: m.period_ns for m in run.session.run.plan.tcs.module_tasks}
+        wanted = dict(t.split("=") for t in first.setting.timings)["TrackPID.ctrl.period_ms"]
+        assert periods["TrackPID.ctrl"] == round(float(wanted) * 1e6)  # its --timing
+        await _until(pilot, lambda: run.finished)  # 0.5 s at 1×
+        while app.screen is not screen:
+            await pilot.press("escape")
+        assert process.running
+        await pilot.press("escape")  # closing the screen stops the campaign
+        assert not isinstance(app.screen, CampaignScreen)
+        assert process.returncode == 130  # interrupted as by Ctrl-C
+    with pytest.raises(ProcessLookupError):
+        os.killpg(process.process.pid, 0)  # no worker of its pool left behind
+    recorded = CampaignStore(db).count()
+    assert n <= recorded < 1000
+    campaign = Campaign(MISSION, load_spec(short_spec),
+                        CampaignOptions(runs=1000, db=db, resume=True))
+    assert len(campaign.store.records()) == recorded  # --resume accepts it and keeps them
+
+
+@pilot_test
+async def test_a_falsification_shows_its_trials_and_replays_the_worst(tmp_path, short_spec):
+    pytest.importorskip("optuna")
+    study = str(tmp_path / "arm.study.db")
+    app = OrccadApp([MISSION], selected=MISSION, campaign={"db": study, "workers": 1,
+                                                           "spec": short_spec})
+    async with app.run_test(size=SIZE) as pilot:
+        await _until(pilot, lambda: isinstance(app.screen, CampaignScreen))
+        screen = _campaign(app)
+        await pilot.press("f")
+        assert screen.mode == "falsify"
+        await _type(pilot, screen, "prop", "bounded")
+        await _type(pilot, screen, "count", "2")
+        await pilot.press("s")
+        assert screen.process.args[:2] == ["falsify", MISSION]
+        await _until(pilot, lambda: screen.state == "finished" and screen.snapshot is not None
+                     and screen.snapshot.trials == 2, timeout=WAIT_S)
+        snapshot = screen.snapshot
+        assert snapshot.best == min(c.robustness for c in snapshot.candidates)
+        status = _text(screen, "#campaign-status")
+        assert "falsification of bounded [finished]: 2/2 trials" in status
+        assert "best robustness" in status
+        await pilot.press("enter")
+        await _until(pilot, lambda: any(isinstance(s, RunScreen) for s in app.screen_stack))
+        run = _run_screen(app)
+        assert run.session.setting == snapshot.candidates[0].setting
+        await _until(pilot, lambda: run.finished)  # 0.5 s at 1×
