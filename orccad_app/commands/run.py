@@ -88,6 +88,14 @@ def register(sub) -> None:
     parser.add_argument("--foxglove-wait", type=_wall_seconds, default=None, metavar="S",
                         help="with --foxglove, wait at most S wall seconds for Foxglove to "
                              "subscribe before the run starts (default 60; 0 starts at once)")
+    parser.add_argument("--ros2-zenoh", nargs="?", const="tcp/127.0.0.1:7447", default=None,
+                        metavar="ENDPOINT",
+                        help="(experimental) the robot's /joint_states and /joint_commands and "
+                             "the mission's inputs and outputs as ROS 2 topics over Zenoh, in "
+                             "rmw_zenoh's conventions, connecting to ENDPOINT only (default "
+                             "tcp/127.0.0.1:7447, rmw_zenoh's router; no multicast); paced at "
+                             "real time unless --realtime says otherwise; needs pip install "
+                             "-e '.[ros2]'")
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
     parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
@@ -308,6 +316,10 @@ def run(args: argparse.Namespace) -> int:
     _file_after_injections(args)
     _terminate_like_ctrl_c()
     _check_trace_format(args)
+    if args.ros2_zenoh is not None:
+        from orccad_app.ros2 import require
+
+        require("--ros2-zenoh", zenoh=True)
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         from orccad_app.diagnostics import OrccadError
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
@@ -336,8 +348,8 @@ def run(args: argparse.Namespace) -> int:
     mission_run = MissionRun(plan, seed=args.seed, until_ns=int(round(until_s * 1e9)),
                              injections=injections, processors=_processors(plan, args),
                              bus=Bus(transfer_ns=args.bus_us * 1000),
-                             realtime=1.0 if args.foxglove and args.realtime is None
-                             else args.realtime)
+                             realtime=1.0 if (args.foxglove or args.ros2_zenoh is not None)
+                             and args.realtime is None else args.realtime)
     monitor = PropertyMonitor(source.program, mission, mission_run)
     progress = None
     if sys.stderr.isatty():  # a progress line on long runs, never in a pipe or a file
@@ -350,6 +362,15 @@ def run(args: argparse.Namespace) -> int:
         writer = trace_recorder(_open_trace(args, mission.name, plan), mission_run,
                                 verdicts=verdicts)
         mission_run.add_observer(writer)
+    bridge = None
+    if args.ros2_zenoh is not None:
+        from orccad_app.ros2.bridge import MissionBridge
+
+        bridge = MissionBridge(mission_run, [args.ros2_zenoh])
+        mission_run.add_observer(bridge)
+        print(f"orccad: ROS 2 over Zenoh via {args.ros2_zenoh} (domain "
+              f"{bridge.bridge.domain_id}): /joint_states, /joint_commands, /orccad/input/*, "
+              "/orccad/output/*", file=sys.stderr, flush=True)
     live = server = None
     if args.foxglove:
         server = _foxglove(args, mission.name, plan)
@@ -368,6 +389,10 @@ def run(args: argparse.Namespace) -> int:
                 writer.close()
             if live is not None:
                 live.close()
+            if bridge is not None:
+                bridge.close()
+                print(f"orccad: ROS 2: {bridge.raised} inputs raised, {bridge.applied} joint "
+                      "commands applied", file=sys.stderr, flush=True)
     except OSError as error:  # the trace's disk is full or gone
         if not args.trace:
             raise

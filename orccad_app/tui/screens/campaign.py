@@ -376,7 +376,7 @@ def status_text(mode: str, state: str, snapshot: CampaignSnapshot | FalsifySnaps
         p = "" if not done or done["p"] is None else (
             f"   P(done) = {done['p']:.3f} [{done['low']:.3f}, {done['high']:.3f}]")
         crashed = f"   {snapshot.crashed} crashed" if snapshot.crashed else ""
-        head = (f"campaign {snapshot.mission} of {snapshot.file} [{state}]: "
+        head = (f"campaign {snapshot.mission} of {snapshot.file} ({state}): "
                 f"{snapshot.runs}/{snapshot.limit} runs {bar} {share:.0%}{p}{crashed}   "
                 f"db {snapshot.db}")
     elif isinstance(snapshot, FalsifySnapshot):
@@ -385,11 +385,11 @@ def status_text(mode: str, state: str, snapshot: CampaignSnapshot | FalsifySnaps
         best = "-" if snapshot.best is None else f"{snapshot.best:.4g}"
         found = ("no violation yet" if snapshot.first_violation is None else
                  f"[b red]violated[/], first at trial {snapshot.first_violation}")
-        head = (f"falsification of {snapshot.prop} [{state}]: {snapshot.trials}/"
+        head = (f"falsification of {snapshot.prop} ({state}): {snapshot.trials}/"
                 f"{snapshot.budget} trials {bar} {share:.0%}   best robustness {best}, "
                 f"{found}   study {snapshot.study}")
     else:
-        head = f"{mode} of {file or '(no mission file)'} [{state}]   db {db or '-'}"
+        head = f"{mode} of {file or '(no mission file)'} ({state})   db {db or '-'}"
     return f"{head}\n{hint}"
 
 
