@@ -18,6 +18,7 @@ the worker when the parent is gone.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import gc
 import multiprocessing
 import os
 import signal
@@ -64,8 +65,28 @@ def run_job(job: Job) -> RunRecord:
     except Exception as error:  # noqa: BLE001 - a crash of the run's code, recorded
         last = traceback.format_exception_only(type(error), error)[-1].strip()
         return crashed(job, f"internal error: {last}")
+    finally:
+        _collect()
     record.attempts = job.attempt
     return record
+
+
+_FROZEN = False
+
+
+def _collect() -> None:
+    """Free what the run left behind, so that a worker's memory stays flat over thousands of
+    runs. A run's objects form reference cycles (the executive, its observers and plants)
+    that hold MuJoCo's models and data in C memory, which Python's collector sees only as
+    small objects: left to the automatic collector, a worker grew by some 50 kB per run.
+    After its first run a worker *freezes* what it has built so far (modules, the compiled
+    mission, caches: ``gc.freeze``), so the full collection after each run only looks at the
+    run's own objects (about 1 ms instead of 200 ms)."""
+    global _FROZEN
+    gc.collect()
+    if not _FROZEN:
+        gc.freeze()
+        _FROZEN = True
 
 
 def _die_with(parent: int) -> None:

@@ -91,6 +91,8 @@ class Progress:
                        TimeRemainingColumn(), TextColumn("{task.fields[estimate]}"),
                        transient=True)
         self.task = self.bar.add_task("runs", total=None, estimate="")
+        self._counted = (0, 0)  # (prefix runs counted, of which done): each run counted once
+        self._text = ""
 
     def __enter__(self) -> Progress:
         self.bar.__enter__()
@@ -102,9 +104,13 @@ class Progress:
     def __call__(self, done: int, limit: int, prefix: list) -> None:
         from orccad_app.campaign.stats import clopper_pearson
 
-        text = ""
-        if prefix:
-            k = sum(1 for r in prefix if r.status == "done")
-            low, high = clopper_pearson(k, len(prefix), self.confidence)
-            text = f"P(done) = {k / len(prefix):.3f} [{low:.3f}, {high:.3f}]"
-        self.bar.update(self.task, completed=done, total=limit, estimate=text)
+        seen, k = self._counted
+        if len(prefix) < seen:  # another prefix: count again
+            seen, k = 0, 0
+        k += sum(1 for r in prefix[seen:] if r.status == "done")  # the new runs only
+        if len(prefix) != seen or not self._text:
+            self._counted = (len(prefix), k)
+            if prefix:
+                low, high = clopper_pearson(k, len(prefix), self.confidence)
+                self._text = f"P(done) = {k / len(prefix):.3f} [{low:.3f}, {high:.3f}]"
+        self.bar.update(self.task, completed=done, total=limit, estimate=self._text)

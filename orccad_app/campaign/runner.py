@@ -171,12 +171,14 @@ class Campaign:
               progress: Callable | None) -> str:
         queue = deque(i for i in range(self.limit) if i not in records)  # <= MAX_RUNS
         flying: dict[Any, Job] = {}
+        prefix = _Prefix()
         cap = 2 * max(1, getattr(backend, "workers", 1))
         stopped = self._stop(records)
         while (queue and stopped is None) or flying:
             while queue and stopped is None and len(flying) < cap:
                 job = self.job(queue.popleft())
                 flying[backend.submit(job)] = job
+            finished = []
             for future in backend.wait(flying):
                 job = flying.pop(future)
                 record = backend.result(future, job)
@@ -186,14 +188,16 @@ class Campaign:
                     continue
                 if job.attempt == 2 and record.status != "crashed":
                     record.error = "retried once after a crash"
+                finished.append((record, self.replay(record.setting)))
+            self.store.add_many(finished)  # the runs that came back together: one commit
+            for record, _ in finished:
                 records[record.index] = record
-                self.store.add(record, self.replay(record.setting))
             if backend.broken:
                 backend.restart()
             if stopped is None:
                 stopped = self._stop(records)
             if progress is not None:
-                progress(len(records), self.limit, _prefix(records))
+                progress(len(records), self.limit, prefix.extend(records))
         return stopped or "runs"
 
     def _stop(self, records: dict[int, RunRecord]) -> str | None:
@@ -257,6 +261,20 @@ class Campaign:
                               estimates(used, self.options.confidence), summary, stopped,
                               self.options.confidence, replays, sprt, interrupted,
                               getattr(self.backend, "name", "pool"), wall, self.store.path)
+
+
+class _Prefix:
+    """The runs ``0 … n−1`` recorded so far, extended as runs arrive (each run is looked at
+    once, instead of walking the whole prefix after every run)."""
+
+    def __init__(self) -> None:
+        self.runs: list[RunRecord] = []
+
+    def extend(self, records: dict[int, RunRecord]) -> list[RunRecord]:
+        runs = self.runs
+        while len(runs) in records:
+            runs.append(records[len(runs)])
+        return runs
 
 
 def _prefix(records: dict[int, RunRecord]) -> list[RunRecord]:

@@ -86,6 +86,14 @@ def register(sub) -> None:
     parser.add_argument("--foxglove-wait", type=_wall_seconds, default=None, metavar="S",
                         help="with --foxglove, wait at most S wall seconds for Foxglove to "
                              "subscribe before the run starts (default 60; 0 starts at once)")
+    parser.add_argument("--ros2-zenoh", nargs="?", const="tcp/127.0.0.1:7447", default=None,
+                        metavar="ENDPOINT",
+                        help="(experimental) the robot's /joint_states and /joint_commands and "
+                             "the mission's inputs and outputs as ROS 2 topics over Zenoh, in "
+                             "rmw_zenoh's conventions, connecting to ENDPOINT only (default "
+                             "tcp/127.0.0.1:7447, rmw_zenoh's router; no multicast); paced at "
+                             "real time unless --realtime says otherwise; needs pip install "
+                             "-e '.[ros2]'")
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
     parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
@@ -167,6 +175,10 @@ def _check_trace_format(args: argparse.Namespace) -> None:
         from orccad_app.ros2 import require
 
         require("--trace-format rosbag2")
+    if args.ros2_zenoh is not None:
+        from orccad_app.ros2 import require
+
+        require("--ros2-zenoh", zenoh=True)
 
 
 def _foxglove_wait_s(args: argparse.Namespace) -> float:
@@ -201,7 +213,8 @@ def _options(args: argparse.Namespace) -> Any:
     injections = tuple(_injection(text) for text in args.inject)
     _warn_first_instant(injections)
     overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
-    realtime = 1.0 if args.foxglove and args.realtime is None else args.realtime
+    live = args.foxglove or args.ros2_zenoh is not None  # paced at real time by default
+    realtime = 1.0 if live and args.realtime is None else args.realtime
     return RunOptions(overrides=overrides, injections=injections,
                       script=InputScript.from_file(args.inject_from) if args.inject_from
                       else None,
@@ -233,11 +246,30 @@ def _observe(args: argparse.Namespace, session: Any) -> Any:
 
         progress = ProgressLine(sys.stderr, session.until_ns)
         session.add_observer(progress, progress.close)
+    if args.ros2_zenoh is not None:
+        _bridge(args, session)
     if args.foxglove:
         server = _foxglove(args, session.mission.name, session.plan)
         session.record(server)
         return lambda mission_run: _wait_for_foxglove(args, server, mission_run)
     return None
+
+
+def _bridge(args: argparse.Namespace, session: Any) -> None:
+    """``--ros2-zenoh``: the plant and the mission's inputs and outputs as ROS 2 topics."""
+    from orccad_app.ros2.bridge import MissionBridge
+
+    bridge = MissionBridge(session.run, [args.ros2_zenoh])
+
+    def close() -> None:
+        bridge.close()
+        print(f"orccad: ROS 2: {bridge.raised} inputs raised, {bridge.applied} joint "
+              "commands applied", file=sys.stderr, flush=True)
+
+    session.add_observer(bridge, close)
+    print(f"orccad: ROS 2 over Zenoh via {args.ros2_zenoh} (domain "
+          f"{bridge.bridge.domain_id}): /joint_states, /joint_commands, /orccad/input/*, "
+          "/orccad/output/*", file=sys.stderr, flush=True)
 
 
 def _render(args: argparse.Namespace, report: Any) -> int:

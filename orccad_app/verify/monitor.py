@@ -19,6 +19,7 @@ A run is a finite word of instants (letters: the atoms true in each reaction, as
 
 from __future__ import annotations
 
+import functools
 from enum import Enum
 from itertools import product
 from typing import Sequence
@@ -72,27 +73,65 @@ def ltl_verdict(formula: F, word: Sequence[frozenset], ended: bool) -> Verdict:
     return Verdict.UNDECIDED
 
 
+@functools.lru_cache(maxsize=64)
+def _monitor(formula: F, keys: tuple) -> _Monitor:
+    """The tableau of ``formula`` over the atoms ``keys`` with its caches, built once per
+    process: a campaign's worker judges the same properties on every run, and building a
+    tableau generates and compiles its evaluation code."""
+    return _Monitor(Tableau(formula, _Bits(keys)))  # type: ignore[arg-type]
+
+
+class _Monitor:
+    """A tableau and what reading words through it has computed: the states reached from a
+    set of states by a letter, and the live states of a set (both bounded in size)."""
+
+    LIMIT = 4096
+
+    def __init__(self, tableau: Tableau) -> None:
+        self.tableau = tableau
+        self.steps: dict[tuple[frozenset, int], frozenset] = {}
+        self.live: dict[frozenset, set] = {}
+
+    def step(self, states: frozenset, mask: int) -> frozenset:
+        key = (states, mask)
+        found = self.steps.get(key)
+        if found is None:
+            if len(self.steps) >= self.LIMIT:
+                self.steps.clear()
+            successors = self.tableau.successors
+            found = self.steps[key] = frozenset(
+                (yn, guess) for prev, required in states
+                for guess, yn, _ in successors(mask, prev, required))
+        return found
+
+    def extensible(self, states: frozenset, bits: _Bits) -> bool:
+        """Some state of ``states`` (reached by a prefix) starts an accepting run."""
+        alive = self.live.get(states)
+        if alive is None:
+            if len(self.live) >= self.LIMIT:  # bounded memory: forget and start again
+                self.live.clear()
+            alive = self.live[states] = _live_states(self.tableau, bits, set(states))
+        return bool(states & alive)
+
+
 class _Prefix:
     """The tableau states a prefix read so far reaches (``_extensible``, one letter at a
-    time)."""
+    time), on the formula's shared :class:`_Monitor`."""
 
     def __init__(self, formula: F, bits: _Bits) -> None:
-        self.tableau = Tableau(formula, bits)  # type: ignore[arg-type]
+        self.monitor = _monitor(formula, tuple(bits.keys))
         self.bits = bits
-        self.states: set[tuple[int, int | None]] = {(0, None)}
+        self.states: frozenset = frozenset({(0, None)})
 
     def read(self, letters: Sequence[frozenset]) -> None:
-        tableau, bits = self.tableau, self.bits
+        step, bits = self.monitor.step, self.bits
         for letter in letters:
             if not self.states:
                 return
-            mask = bits.mask(letter)
-            self.states = {(yn, guess) for prev, required in self.states
-                           for guess, yn, _ in tableau.successors(mask, prev, required)}
+            self.states = step(self.states, bits.mask(letter))
 
     def extensible(self) -> bool:
-        return bool(self.states) and bool(self.states & _live_states(self.tableau, self.bits,
-                                                                     self.states))
+        return bool(self.states) and self.monitor.extensible(self.states, self.bits)
 
 
 class LtlMonitor:
@@ -129,15 +168,18 @@ class LtlMonitor:
 
 def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
     """Some infinite continuation of ``word`` satisfies ``formula``."""
-    tableau = Tableau(formula, bits)  # type: ignore[arg-type]
-    states: set[tuple[int, int | None]] = {(0, None)}
+    monitor = _monitor(formula, tuple(bits.keys))
+    masks: dict[frozenset, int] = {}
+    states: frozenset = frozenset({(0, None)})
+    step = monitor.step
     for letter in word:
-        mask = bits.mask(letter)
-        states = {(yn, guess) for prev, required in states
-                  for guess, yn, _ in tableau.successors(mask, prev, required)}
+        mask = masks.get(letter)
+        if mask is None:
+            mask = masks[letter] = bits.mask(letter)
+        states = step(states, mask)
         if not states:
             return False
-    return bool(states & _live_states(tableau, bits, states))
+    return monitor.extensible(states, bits)
 
 
 def _live_states(tableau: Tableau, bits: _Bits, start: set) -> set:

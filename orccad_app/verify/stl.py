@@ -32,11 +32,12 @@ it: none).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import warnings
 from dataclasses import dataclass
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
@@ -228,26 +229,39 @@ def translate(formula: ast.Formula, ports: Mapping[tuple[str, str], PortSignal],
                       tuple(writer.operands))
 
 
-def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
-    """The robustness at time 0 of ``stl`` on ``samples`` (rtamt variable -> one value per
-    sample, every list of one length ≥ 1; events as ``±inf``)."""
+@functools.lru_cache(maxsize=64)
+def _parsed(text: str, period_ns: int, names: tuple[str, ...]) -> Any:
+    """rtamt's parsed specification of ``text`` over the variables ``names``, parsed once per
+    process and reused (a campaign's worker judges the same properties on every run):
+    parsing costs some 20 ms of ANTLR per formula, more than judging a short run. rtamt's
+    offline evaluation sets every variable from its dataset and recomputes every node, so a
+    reused specification gives what a fresh one gives
+    (``tests/verify/test_stl.py::test_a_reused_specification_equals_a_fresh_one``)."""
     with warnings.catch_warnings():  # antlr4 4.7 imports typing.io (deprecated)
         warnings.simplefilter("ignore", DeprecationWarning)
         import rtamt
 
+    spec = rtamt.StlDiscreteTimeSpecification()
+    for name in names:
+        spec.declare_var(name, "float")
+    spec.spec = text
+    spec.set_sampling_period(period_ns, "ns", 0.1)
+    try:
+        spec.parse()
+    except rtamt.RTAMTException as error:  # pragma: no cover - a translation defect
+        raise OrccadError(f"internal error: rtamt rejects {text!r}: {error}") from None
+    return spec
+
+
+def robustness(stl: StlFormula, samples: Mapping[str, Sequence[float]]) -> float:
+    """The robustness at time 0 of ``stl`` on ``samples`` (rtamt variable -> one value per
+    sample, every list of one length ≥ 1; events as ``±inf``)."""
     lengths = {len(values) for values in samples.values()}
     if len(lengths) != 1 or 0 in lengths:
         raise ValueError(f"samples of unequal or zero length: {sorted(lengths)}")
     data = {name: [float(v) for v in values] for name, values in samples.items()}
-    spec = rtamt.StlDiscreteTimeSpecification()
-    for name in data:
-        spec.declare_var(name, "float")
-    spec.spec = _clamped(stl.text, len(next(iter(data.values()))) * stl.period_ns)
-    spec.set_sampling_period(stl.period_ns, "ns", 0.1)
-    try:
-        spec.parse()
-    except rtamt.RTAMTException as error:  # pragma: no cover - a translation defect
-        raise OrccadError(f"internal error: rtamt rejects {stl.text!r}: {error}") from None
+    horizon_ns = len(next(iter(data.values()))) * stl.period_ns
+    spec = _parsed(_clamped(stl.text, horizon_ns), stl.period_ns, tuple(data))
     length = len(next(iter(data.values())))
     data["time"] = [k * stl.period_ns / 1e9 for k in range(length)]
     try:

@@ -3,16 +3,24 @@ r"""The lean path of :meth:`ControlLaw.command`: joint tracking, diagonal gains.
 Most laws of a mission are joint tracking (:math:`\hat J = I`) with diagonal gains, an
 identity or Pinocchio model. For them :class:`LeanPath` evaluates eq. 5 without building a
 :class:`~orccad_app.control.task_functions.TaskState`, without the identity products, without
-the constraint's argument checks and with preallocated work arrays (Pinocchio's ``crba`` and ``nonLinearEffects`` write into the
-model's data). It performs the same floating-point operations as the general path, so the
-torques are bit-identical:
+the constraint's argument checks and with preallocated work arrays. For the identity model
+(PID) it performs the same floating-point operations as the general path, so the torques are
+bit-identical:
 
 - a diagonal matrix times a vector, ``K @ x``, is ``diag(K) * x`` (the off-diagonal terms
   add exact zeros; a matrix product never returns :math:`-0`, and every consumer below
   either adds a zero or is itself a matrix product, so the sign of a zero never shows);
-- :math:`\hat M = I` turns :math:`-\hat M \hat J^{-1} F + \hat N` into ``0 - F``;
-- the symmetric mass matrix is the upper triangle Pinocchio fills, mirrored, plus ``0.0``
-  (exactly what ``triu(M) + triu(M, 1).T`` computes).
+- :math:`\hat M = I` turns :math:`-\hat M \hat J^{-1} F + \hat N` into ``0 - F``.
+
+**Computed torque in one Pinocchio call.** With the Pinocchio model,
+:math:`-\hat M F + \hat N - \hat M \hat f` with :math:`\hat f = -\ddot q_d` is
+:math:`\hat M (\ddot q_d - F) + \hat N`, which is what the recursive Newton-Euler algorithm
+computes: ``rnea(q, q̇, a)`` :math:`= M(q) a + C(q, \dot q) \dot q + g(q)` with
+:math:`a = \ddot q_d - F` (the viscous damping :math:`D \dot q` added after). The general path
+computes the same quantity as ``crba`` (the mass matrix), two matrix products and
+``nonLinearEffects``; the two agree to rounding (a few units in the last place: relative
+differences of order 1e-15, ``tests/control/test_lean_path.py``), one ``rnea`` costing about
+a third of the three calls.
 
 Any other law (full gains, Cartesian tracking, a perturbed model with an integral, velocity-
 dependent bounds) or an input of the wrong shape goes through the general path.
@@ -20,15 +28,14 @@ dependent bounds) or an input of the wrong shape goes through the general path.
 **Small robots, plain floats.** For at most :data:`SCALAR_DOF` joints with constant or
 all-velocity-dependent bounds, :meth:`LeanPath.command` works on Python floats
 (``ndarray.tolist()``) instead of numpy arrays: for three joints numpy's per-call overhead is
-most of the cost. Computed torque keeps numpy for its two matrix products (numpy's ``matmul``
-sums in BLAS's order, which plain Python does not reproduce) and Pinocchio's in-place
-``crba``/``nonLinearEffects``. The operations are IEEE-754 double operations in the
-same order as the numpy ones, with numpy's tie rules: ``np.maximum(a, b)`` and
+most of the cost (computed torque hands its acceleration to ``rnea`` as an array). The
+operations are IEEE-754 double operations in the same order as the numpy ones, with numpy's tie rules: ``np.maximum(a, b)`` and
 ``np.minimum(a, b)`` return ``b`` when ``a == b`` (they differ only in the sign of a zero),
 ``np.sign`` returns ``+0.0`` for both zeros. Inputs with a NaN or an infinity, or an
 unsaturated torque that is not finite, take the numpy lean path from the same state (NaN
 propagation differs between Python's comparisons and numpy's). The torques are
-therefore bit-identical (``tests/control/test_lean_path.py`` compares both paths).
+therefore bit-identical to the numpy lean path (``tests/control/test_lean_path.py`` compares
+both paths).
 """
 
 from __future__ import annotations
@@ -119,13 +126,6 @@ class LeanPath:
                           "full" if np.all(constraint.beta != 0.0) else "mixed")
         self.low, self.high = constraint.bounds(np.zeros(dof))
         self.zeros = np.zeros(dof)
-        rows, cols = np.triu_indices(dof)
-        upper = np.zeros((dof, dof), dtype=np.intp)
-        upper[rows, cols] = rows * dof + cols
-        upper[cols, rows] = rows * dof + cols
-        self.mirror = upper.reshape(-1)
-        self.mass = np.empty((dof, dof))
-        self.neg_mass = np.empty((dof, dof))
         self.work = np.empty(dof)
         self.work2 = np.empty(dof)
         if not identity:
@@ -139,8 +139,6 @@ class LeanPath:
                 self.neg_alpha, self.beta, self.low, self.high))
             if not identity:
                 self.damping_list = np.asarray(self.damping, dtype=float).tolist()
-                self.mirror_list = self.mirror.tolist()
-                self.mass_flat = self.mass.reshape(-1)  # a view: writes fill self.mass
 
     def command(self, law: ControlLaw, t_s: float, q: Any, qdot: Any,
                 reference: Sample) -> LawOutput | None:
@@ -173,18 +171,15 @@ class LeanPath:
 
     def _model_torque(self, q: np.ndarray, qdot: np.ndarray, feedback: np.ndarray,
                       reference: Sample) -> np.ndarray:
-        """:math:`-\\hat M F + \\hat N` (and :math:`- \\hat M \\hat f`, :math:`\\hat f = -\\ddot q_d`)."""
-        upper = self.pin.crba(self.pin_model, self.pin_data, q)
-        mass = np.take(upper, self.mirror, out=self.mass.reshape(-1)).reshape(self.mass.shape)
-        mass += 0.0
-        tau_unsat = np.matmul(np.negative(mass, out=self.neg_mass), feedback)
-        bias = self.pin.nonLinearEffects(self.pin_model, self.pin_data, q, qdot)
-        nle = np.add(bias, np.multiply(self.damping, qdot, out=self.work), out=self.work)
-        tau_unsat += nle
+        """:math:`\\hat M (\\ddot q_d - F) + \\hat N` in one recursive Newton-Euler pass
+        (``rnea(q, q̇, a)`` is :math:`M(q) a + C(q, q̇) q̇ + g(q)` exactly), plus the
+        damping; without feed-forward :math:`a = -F`."""
         if self.feedforward:
-            tau_unsat -= np.matmul(mass, np.negative(reference.acc, out=self.work),
-                                   out=self.work2)
-        return tau_unsat
+            acc = np.subtract(reference.acc, feedback, out=self.work2)
+        else:
+            acc = np.subtract(0.0, feedback, out=self.work2)
+        torque = self.pin.rnea(self.pin_model, self.pin_data, q, qdot, acc)
+        return np.add(torque, np.multiply(self.damping, qdot, out=self.work))
 
     def _bounds(self, qdot: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`ActuatorConstraint.bounds` (same operations)."""
@@ -266,23 +261,18 @@ class LeanPath:
 
     def _model(self, q: np.ndarray, qdot: np.ndarray, ql: list, qdl: list, pl: list,
                vl: list, reference: Sample) -> tuple[list, list]:
-        """(e, the unsaturated torque) of computed torque: the feedback on floats, the mass
-        products with numpy (its matrix product's summation order is BLAS's), the rest on
-        floats, in :meth:`_model_torque`'s order."""
+        """(e, the unsaturated torque) of computed torque: the commanded acceleration
+        :math:`a = \\ddot q_d - F` on floats, then one ``rnea`` (:math:`M a + N`) and the
+        damping (see :meth:`_model_torque`)."""
         kp, kv = self.lists[:2]
         e = [a - b for a, b in zip(ql, pl)]
-        feedback = _array([p * x + v * (w - r) for p, x, v, w, r in zip(kp, e, kv, qdl, vl)])
-        upper = self.pin.crba(self.pin_model, self.pin_data, q).ravel().tolist()
-        self.mass_flat[:] = [upper[i] + 0.0 for i in self.mirror_list]  # mirrored, + 0.0
-        mass = self.mass
-        product = np.matmul(np.negative(mass, out=self.neg_mass), feedback).tolist()
-        bias = self.pin.nonLinearEffects(self.pin_model, self.pin_data, q, qdot).tolist()
-        tau_unsat = [u + (b + d * w) for u, b, d, w in zip(product, bias, self.damping_list, qdl)]
+        feedback = [p * x + v * (w - r) for p, x, v, w, r in zip(kp, e, kv, qdl, vl)]
         if self.feedforward:
-            acc = np.negative(reference.acc, out=self.work)
-            inertial = np.matmul(mass, acc, out=self.work2).tolist()
-            tau_unsat = [u - m for u, m in zip(tau_unsat, inertial)]
-        return e, tau_unsat
+            acc = _array([d - f for d, f in zip(reference.acc.tolist(), feedback)])
+        else:
+            acc = _array([0.0 - f for f in feedback])
+        torque = self.pin.rnea(self.pin_model, self.pin_data, q, qdot, acc).tolist()
+        return e, [t + d * w for t, d, w in zip(torque, self.damping_list, qdl)]
 
     def _clamp(self, law: ControlLaw, tau_unsat: list, e: list, qdl: list,
                integral: list | None) -> LawOutput:

@@ -1,0 +1,116 @@
+"""``orccad run --ros2-zenoh`` (issue 26, experimental): two processes on loopback — the run
+and this test as a Zenoh peer listening on ``tcp/127.0.0.1:PORT`` (no multicast, no gossip,
+no DDS) — speaking rmw_zenoh's key expressions, CDR payloads and attachments: the test reads
+``/joint_states``, sends a joint command and the mission's ``Stop`` input, and sees the
+mission's output ``Stopping``."""
+
+from __future__ import annotations
+
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from orccad_app.ros2.keyexpr import attachment, dds_type, read_attachment, topic_key
+
+JOINT_STATE_HASH = "RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e"
+
+
+def test_key_expressions_and_attachments_are_rmw_zenoh_s():
+    assert dds_type("sensor_msgs/msg/JointState") == "sensor_msgs::msg::dds_::JointState_"
+    assert topic_key(0, "/joint_states", "sensor_msgs/msg/JointState", JOINT_STATE_HASH) == (
+        f"0/joint_states/sensor_msgs::msg::dds_::JointState_/{JOINT_STATE_HASH}")
+    assert topic_key(3, "/orccad/output/Stopping/", "std_msgs/msg/Empty", "RIHS01_x") == (
+        "3/orccad/output/Stopping/std_msgs::msg::dds_::Empty_/RIHS01_x")
+    gid = bytes(range(16))
+    data = attachment(300, 1_500_000_000, gid)
+    assert data[:16] == b"\x0fsequence_number" and data[16:24] == (300).to_bytes(8, "little")
+    found = read_attachment(data)
+    assert (found.sequence_number, found.source_timestamp_ns, found.source_gid) == (
+        300, 1_500_000_000, gid)
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def test_a_run_and_a_ros_2_peer_exchange_states_commands_inputs_and_outputs():
+    zenoh = pytest.importorskip("zenoh", reason="the ros2 extra is not installed")
+    from orccad_app.ros2 import messages
+    from orccad_app.ros2.bridge import session_config
+
+    store = messages.typestore()
+    port = _free_port()
+    endpoint = f"tcp/127.0.0.1:{port}"
+    session = zenoh.open(session_config([], [endpoint]))
+    states, outputs, lock = [], [], threading.Lock()
+
+    def on_state(sample):
+        with lock:
+            states.append((sample.payload.to_bytes(), bytes(sample.attachment.to_bytes())))
+
+    def on_output(sample):
+        with lock:
+            outputs.append(str(sample.key_expr))
+
+    key = topic_key(0, "/joint_states", "sensor_msgs/msg/JointState", JOINT_STATE_HASH)
+    subscribers = [session.declare_subscriber(key, on_state),
+                   session.declare_subscriber("0/orccad/output/**", on_output)]
+    run = subprocess.Popen([sys.executable, "-m", "orccad_app.cli", "run",
+                            "missions/arm_recovery.orc", "--until", "12", "--realtime", "2",
+                            "--ros2-zenoh", endpoint], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 90
+        while time.monotonic() < deadline:  # until the run is 2 s in (simulated)
+            with lock:
+                latest = states[-1] if states else None
+            if latest is not None and store.deserialize_cdr(
+                    latest[0], "sensor_msgs/msg/JointState").header.stamp.sec >= 2:
+                break
+            assert run.poll() is None, run.communicate()
+            time.sleep(0.05)
+        else:
+            raise AssertionError("no joint states from the run")
+        command = messages.joint_state(0, ("j1", "j2", "j3"), [], [], [1.0, 2.0, 3.0])
+        session.put(topic_key(0, "/joint_commands", "sensor_msgs/msg/JointState",
+                              JOINT_STATE_HASH),
+                    bytes(store.serialize_cdr(command, "sensor_msgs/msg/JointState")))
+        empty = store.types["std_msgs/msg/Empty"](structure_needs_at_least_one_member=0)
+        session.put(topic_key(0, "/orccad/input/Stop", "std_msgs/msg/Empty",
+                              messages.type_hash("std_msgs/msg/Empty")),
+                    bytes(store.serialize_cdr(empty, "std_msgs/msg/Empty")))
+        out, err = run.communicate(timeout=120)
+    finally:
+        run.kill()
+        for subscriber in subscribers:
+            subscriber.undeclare()
+        session.close()
+    assert run.returncode == 0, err  # Stop: the arm parks, the mission is done
+    assert "1 inputs raised, 1 joint commands applied" in err
+    message = store.deserialize_cdr(states[0][0], "sensor_msgs/msg/JointState")
+    assert message.name == ["j1", "j2", "j3"] and len(message.position) == 3
+    stamps = [read_attachment(a) for _, a in states]
+    assert [s.sequence_number for s in stamps] == sorted({s.sequence_number for s in stamps})
+    assert len({s.source_gid for s in stamps}) == 1
+    assert stamps[0].source_timestamp_ns == (message.header.stamp.sec * 10**9
+                                             + message.header.stamp.nanosec)
+    stopping = [k for k in outputs if k.startswith("0/orccad/output/Stopping/")]
+    assert stopping == [f"0/orccad/output/Stopping/std_msgs::msg::dds_::Empty_/"
+                        f"{messages.type_hash('std_msgs/msg/Empty')}"]
+    assert "Stop" in out  # the report's outputs and the park
+
+
+def test_without_the_extra_the_option_says_what_to_install():
+    blocked = ("import sys; sys.modules['zenoh'] = None; from orccad_app.cli import main; "
+               "sys.exit(main(['run', 'missions/arm_pid.orc', '--ros2-zenoh']))")
+    result = subprocess.run([sys.executable, "-c", blocked], capture_output=True, text=True,
+                            timeout=120)
+    assert result.returncode == 2, result.stderr
+    assert "--ros2-zenoh needs the ros2 extra: pip install -e '.[ros2]'" in result.stderr
+    assert "Traceback" not in result.stderr and result.stdout == ""
