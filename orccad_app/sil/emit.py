@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from orccad_app.sil.layout import CLayout, c_layout
+from orccad_app.sil.layout import CKind, CLayout, c_layout
 
 __all__ = ["CConnection", "ModuleEntry", "ModuleTable", "RobotPortRef", "RUNTIME_FILES",
            "module_task_files", "module_table", "table_source", "write_generated"]
@@ -101,8 +101,30 @@ def module_table(plan: Any) -> ModuleTable:
         entries.append(ModuleEntry(task.name, layout, task.period_ns, task.wcet_ns,
                                    processors.index(task.processor), task.priority,
                                    task.activation.value == "sporadic"))
+    _refuse_trajectory_retunes(plan, entries)
     connections, robot_ports = _connections(plan.tcs, entries)
     return ModuleTable(plan.name, tuple(entries), processors, connections, robot_ports)
+
+
+_TRAJECTORY_KINDS = frozenset({CKind.TRAJ_COSINE, CKind.TRAJ_MIN_JERK, CKind.TRAJ_CONSTANT})
+
+
+def _refuse_trajectory_retunes(plan: Any, entries: list[ModuleEntry]) -> None:
+    """Refuse a type-1 update of a trajectory parameter, located at its ``adjust``: the
+    executive keeps the set-point continuous across it (same phase, then a C² blend,
+    ``control/trajectories/retuned.py``), the C trajectories do not, so the controller's
+    set-point would jump where the simulated one does not."""
+    from orccad_app.sil.layout import NoCImplementation
+
+    kinds = {entry.name: entry.layout.kind for entry in entries}
+    for site in plan.sites:
+        for exception, update in site.adjustments.items():
+            if kinds.get(update.module) in _TRAJECTORY_KINDS:
+                raise NoCImplementation(
+                    f"{site.task}.{exception}: the type-1 update of trajectory parameter "
+                    f"{update.module}.{update.param} has no C: the generated trajectory cannot "
+                    f"keep its set-point continuous across a retune as the executive does",
+                    update.loc)
 
 
 def _connections(tcs: Any, entries: list[ModuleEntry]

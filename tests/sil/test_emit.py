@@ -48,3 +48,35 @@ def test_regenerating_never_touches_a_users_file(tmp_path):
     refused = _codegen(str(MISSIONS / "arm_pid.orc"), "--module-tasks", "-o", str(out))
     assert refused.returncode == 2 and "orccad_io.c" in refused.stderr
     assert user.read_text() == "/* the robot's drivers */\n"
+
+
+RETUNED_TRAJECTORY = """robot arm : arm3dof;
+
+robottask Retune() on arm {
+    duration 3 s;
+    task_function joint_tracking(trajectory = cosine(q0 = [0.5, 0.5, 0.5], omega = pi));
+    law pid(kp = 100.0, kv = 20.0);
+    module traj : trajectory  period 1 ms wcet 0.1 ms;
+    module ctrl : control_law period 1 ms wcet 0.3 ms;
+    connect traj.qd -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect arm.q -> ctrl.q;
+    connect arm.qdot -> ctrl.qdot;
+    connect ctrl.tau -> arm.tau;
+    exception Slow from at_rest(tol = 0.001) : adjust traj.omega = 2.0 * pi;
+}
+
+mission RetuneDemo { run Retune(); }
+"""
+
+
+def test_a_retuned_trajectory_is_refused_at_its_adjust_not_run_with_a_jump(tmp_path):
+    # the executive keeps the set-point continuous across a retune of traj.omega; the C
+    # trajectory would jump, so the controller is not generated (issue 28 item 4)
+    mission = tmp_path / "retune.orc"
+    mission.write_text(RETUNED_TRAJECTORY)
+    done = _codegen(str(mission), "--module-tasks", "-o", str(tmp_path / "out"))
+    assert done.returncode == 2, done.stderr
+    assert "retune.orc:14:48:" in done.stderr
+    assert "Retune.traj.omega" in done.stderr and "continuous" in done.stderr
+    assert not (tmp_path / "out").exists()

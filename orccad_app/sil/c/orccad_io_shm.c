@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "orccad_io.h"
@@ -19,6 +20,9 @@
 #define MODULE_HEAD 8
 #define MODULE_WORDS (MODULE_HEAD + ORC_MAX_PORTS * (1 + ORC_MAX_DIM))
 #define LATENESS_RING 16384
+#define READ_SPIN_TRIES 64
+#define READ_PAUSE_NS 20000L
+#define READ_GIVE_UP_TRIES (READ_SPIN_TRIES + 5000)
 
 static int64_t *shm_words;
 
@@ -69,7 +73,20 @@ void orc_io_read_sensor(int k, orc_value *into)
     volatile int64_t *seq = (volatile int64_t *)robot_port(k);
     int64_t before, after;
     int i, dim = ORC_ROBOT_PORTS[k].dim;
+    long tries = 0;
     do {
+        /* A torn read: the plant server is writing. Past a few tries, sleep 20 µs so that a
+         * writer of lower priority on this core can finish (spinning at SCHED_FIFO would
+         * starve it for ever); past READ_GIVE_UP_TRIES (~0.1 s) the writer is gone: no value,
+         * so the thread gets back to its loop and sees the runtime stopping. */
+        if (++tries > READ_SPIN_TRIES) {
+            struct timespec pause = {0, READ_PAUSE_NS};
+            if (tries > READ_GIVE_UP_TRIES) {
+                into->present = 0;
+                return;
+            }
+            nanosleep(&pause, NULL);
+        }
         before = *seq;
         __sync_synchronize();
         for (i = 0; i < dim; i++) {
