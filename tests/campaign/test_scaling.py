@@ -74,12 +74,12 @@ def test_a_worker_frees_each_run():
         from orccad_app.campaign.spec import parse_spec
 
         built = []
-        make = adapter.CompiledMission.mission_run
+        make = adapter.CompiledMission.session
         def tracked(self, *args, **kwargs):
-            run = make(self, *args, **kwargs)
-            built.append(weakref.ref(run))
-            return run
-        adapter.CompiledMission.mission_run = tracked
+            session = make(self, *args, **kwargs)
+            built.append(weakref.ref(session.run))
+            return session
+        adapter.CompiledMission.session = tracked
         spec = parse_spec({SHORT!r})
         compiled = adapter.CompiledMission({ARM!r})
         for index in range(3):
