@@ -4,7 +4,6 @@ by ``--inject`` and the TUI alike (exit 2 with the fault and its range)."""
 from __future__ import annotations
 
 import math
-from collections import deque
 import subprocess
 import sys
 
@@ -61,10 +60,11 @@ def plan_file_auv():
     from orccad_app.mission.run import MissionRun
     from orccad_app.pipeline import load, select_mission
     from orccad_app.tui.live import LiveObserver
+    from orccad_app.tui.user_inputs import UserInputs
 
     source = load(AUV)
     run = MissionRun(plan_mission(source, select_mission(source, None)), until_ns=10**9)
     observer = LiveObserver.__new__(LiveObserver)  # only what inject_fault uses
     observer.run = run
-    observer._queue = deque()
+    observer.inputs = UserInputs(run, lambda t_ns, kind, text: None)
     return observer
