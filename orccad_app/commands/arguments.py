@@ -164,3 +164,19 @@ def emit_text(text: str, output: str | None) -> None:
             raise OrccadError(f"{output}: cannot write: {error.strerror or error}") from None
     else:
         sys.stdout.write(text + "\n")
+
+
+def checked_injection(text: str):
+    """``--inject`` text → :class:`Injection`, its time checked finite and within a year."""
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.mission.injection import parse_injection
+
+    when = text.rpartition("@")[2]
+    try:
+        time_s = float(when)
+    except ValueError:
+        time_s = 0.0  # parse_injection names the problem
+    if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
+        raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds in "
+                          f"[0, {MAX_SECONDS:.0f}] (one year)")
+    return parse_injection(text)

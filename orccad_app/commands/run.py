@@ -28,7 +28,7 @@ import math
 import sys
 from typing import Any
 
-from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, bounded_int,
+from orccad_app.commands.arguments import (add_mission, bounded_int, checked_injection,
                                            factor, non_negative_int, refuse_overwriting,
                                            seconds)
 
@@ -125,22 +125,6 @@ def _file_after_injections(args: argparse.Namespace) -> str:
     return args.file
 
 
-def _injection(text: str):
-    """``--inject`` text → :class:`Injection`, its time checked finite and within a year."""
-    from orccad_app.diagnostics import OrccadError
-    from orccad_app.mission.injection import parse_injection
-
-    when = text.rpartition("@")[2]
-    try:
-        time_s = float(when)
-    except ValueError:
-        time_s = 0.0  # parse_injection names the problem
-    if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
-        raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds in "
-                          f"[0, {MAX_SECONDS:.0f}] (one year)")
-    return parse_injection(text)
-
-
 def _warn_first_instant(injections) -> None:
     for injection in injections:
         if injection.time_ns == 0 and not injection.fault:
@@ -210,7 +194,7 @@ def _options(args: argparse.Namespace) -> Any:
     from orccad_app.mission.overrides import PlanOverrides
     from orccad_app.session import InputScript, RunOptions
 
-    injections = tuple(_injection(text) for text in args.inject)
+    injections = tuple(checked_injection(text) for text in args.inject)
     _warn_first_instant(injections)
     overrides = PlanOverrides.from_arguments(args.overrides, args.timing)
     live = args.foxglove or args.ros2_zenoh is not None  # paced at real time by default

@@ -22,7 +22,7 @@ import argparse
 import math
 import sys
 
-from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, non_negative_int,
+from orccad_app.commands.arguments import (MAX_SECONDS, add_mission, checked_injection, non_negative_int,
                                            refuse_overwriting, seconds)
 
 __all__ = ["register", "run"]
@@ -76,20 +76,9 @@ def register(sub) -> None:
 
 
 def _injections(texts: list[str], inputs) -> list:
-    from orccad_app.diagnostics import OrccadError
-    from orccad_app.mission.injection import parse_injection, typed_injections
+    from orccad_app.mission.injection import typed_injections
 
-    parsed = []
-    for text in texts:
-        when = text.rpartition("@")[2]
-        try:
-            time_s = float(when)
-        except ValueError:
-            time_s = 0.0  # parse_injection names the problem
-        if not (time_s == time_s and abs(time_s) <= MAX_SECONDS):
-            raise OrccadError(f"bad injection {text!r}: the time must be a number of seconds "
-                              f"in [0, {MAX_SECONDS:.0f}] (one year)")
-        parsed.append(parse_injection(text))
+    parsed = [checked_injection(text) for text in texts]
     return typed_injections(parsed, inputs)
 
 
