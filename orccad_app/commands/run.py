@@ -43,6 +43,14 @@ def register(sub) -> None:
     parser.add_argument("file", nargs="?", metavar="FILE",
                         help="the .orc file (may also come after --inject specs)")
     add_mission(parser)
+    _add_run_arguments(parser)
+    _add_output_arguments(parser)
+    _add_timing_arguments(parser)
+    parser.set_defaults(func=run)
+
+
+def _add_run_arguments(parser: argparse.ArgumentParser) -> None:
+    """What the run is: its horizon, seed, injections, overrides and pacing."""
     parser.add_argument("--until", type=seconds, default=None, metavar="S",
                         help="simulated-time limit [s] (default 60, or the robot type's "
                              "longer run_horizon_s; at most one year); status 'timeout' if "
@@ -69,6 +77,10 @@ def register(sub) -> None:
     parser.add_argument("--realtime", type=factor, nargs="?", const=1.0, metavar="FACTOR",
                         help="pace simulated time to the wall clock (× FACTOR in "
                              "[0.001, 1000], default 1) and report lateness")
+
+
+def _add_output_arguments(parser: argparse.ArgumentParser) -> None:
+    """Where the run goes besides the report: the trace, JSON, live streams."""
     parser.add_argument("--trace", metavar="OUT", help="write a trace (.csv or .mcap; a "
                                                        "directory with --trace-format rosbag2)")
     parser.add_argument("--trace-format", choices=("csv", "mcap", "rosbag2"), default=None,
@@ -94,13 +106,16 @@ def register(sub) -> None:
                              "tcp/127.0.0.1:7447, rmw_zenoh's router; no multicast); paced at "
                              "real time unless --realtime says otherwise; needs pip install "
                              "-e '.[ros2]'")
+
+
+def _add_timing_arguments(parser: argparse.ArgumentParser) -> None:
+    """How the executive schedules: the policy, the overheads."""
     parser.add_argument("--scheduler", choices=("fp", "edf"), default="fp",
                         help="scheduling policy of every processor (default fp)")
     parser.add_argument("--context-switch-us", type=bounded_int(0, 10**9), default=0,
                         metavar="US", help="context-switch overhead [µs] (default 0)")
     parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
-    parser.set_defaults(func=run)
 
 
 def _wall_seconds(text: str) -> float:
