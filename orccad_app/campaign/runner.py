@@ -240,6 +240,7 @@ class Campaign:
 
     def _sprt(self, prefix: list[RunRecord]) -> Sprt:
         alpha = 1.0 - self.options.confidence
+        assert self.hypothesis is not None
         test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
         for record in prefix:
             if test.add(record) is not None:
