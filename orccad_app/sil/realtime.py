@@ -176,6 +176,11 @@ class RealtimeRun(MissionRun):
         # plant's), and at every exchange the events are read before the instant's tick
         self.kernel.schedule(0, _EXCHANGE, self._exchange)
 
+    @property
+    def shared_memory_path(self) -> str:
+        """The shared memory's file (removed as soon as the controller has mapped it)."""
+        return self._shared.path
+
     def _exchange(self, _: object) -> None:
         now = self.kernel.now
         if now == 0:

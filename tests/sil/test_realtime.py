@@ -14,28 +14,25 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.injection import parse_injection
-from orccad_app.sil.realtime import RealtimeRun, realtime
+from orccad_app.sil.realtime import realtime
+from orccad_app.sil.runs import ControllerRuns, SilMode
 
-from tests.sil.helpers import MISSIONS, plan_of
+from tests.sil.helpers import MISSIONS, plan_of, session_of
 from tests.sil.test_process import _controllers_of, _gone
 
 
-def _run(plan, table, controller, shared, **options) -> RealtimeRun:
-    from orccad_app.executive.bus import Bus
-    from orccad_app.executive.processor import Processor
-
-    until_ns = int(plan.run_horizon_s(60.0) * 1e9)
-    return RealtimeRun(plan, table, controller, shared, until_ns=until_ns, bus=Bus(),
-                       processors=[Processor(name) for name in plan.processor_names], **options)
+def _realtime(file: str, mission: str | None = None, **options):
+    """The result and timings of a real-time SIL run of shipped ``file``, and its
+    controller runs."""
+    with ControllerRuns(SilMode.REALTIME, file) as runs:
+        result = session_of(file, mission, runs, **options).execute().result
+        timings = {t.name: t for t in runs.timings()}
+    return result, timings, runs
 
 
 def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
-    plan = plan_of("arm_recovery.orc")
-    inject = [parse_injection("TrackPID.TrackingLost@2.5")]
-    with realtime(plan, "arm_recovery.orc") as (table, controller, shared):
-        run = _run(plan, table, controller, shared, injections=inject)
-        result = run.run()
-        timings = {t.name: t for t in run.timings()}
+    inject = (parse_injection("TrackPID.TrackingLost@2.5"),)
+    result, timings, runs = _realtime("arm_recovery.orc", injections=inject)
     assert result.status == "done", result.reason
     assert [(r.name, r.outcome) for r in result.robot_tasks] == [
         ("Home", "good_end"), ("TrackPID", "TrackingLost"), ("Home", "good_end"),
@@ -48,23 +45,21 @@ def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     assert ctrl.predicted_s == pytest.approx(0.0003)
     assert timings["Park.ctrl"].released == 0  # never started
     assert _controllers_of(os.getpid()) == []
-    assert not os.path.exists(shared.path)  # removed once mapped: nothing left in /dev/shm
+    assert not os.path.exists(runs.run.shared_memory_path)  # removed once mapped: none left
 
 
 def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
-    plan = plan_of("arm_pid.orc")
-
     class Kill:
         sent = False
 
         def on_reaction(self, now, inputs, outputs, status):
             if now >= 500_000_000 and not self.sent:
                 self.sent = True
-                os.kill(controller.pid, signal.SIGKILL)
+                os.kill(runs.controller.pid, signal.SIGKILL)
 
-    with realtime(plan, "arm_pid.orc") as (table, controller, shared):
-        result = _run(plan, table, controller, shared, observers=[Kill()]).run()
-        assert _gone(controller.pid)
+    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
+        result = session_of("arm_pid.orc", runs=runs, observers=(Kill(),)).execute().result
+        assert _gone(runs.controller.pid)
     assert result.status == "failed"
     assert "killed by SIGKILL" in result.reason
     assert _controllers_of(os.getpid()) == []
@@ -79,11 +74,7 @@ def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason():
 def test_a_sporadic_module_task_is_released_by_its_producers_writes():
     """arm_interrupts: the tracking-error observer on cpu1 is released by each write of the
     control law on cpu0 (another thread), never more often than every 2 ms."""
-    plan = plan_of("arm_interrupts.orc", "ArmInterrupts")
-    with realtime(plan, "arm_interrupts.orc") as (table, controller, shared):
-        run = _run(plan, table, controller, shared)
-        result = run.run()
-        timings = {t.name: t for t in run.timings()}
+    result, timings, _ = _realtime("arm_interrupts.orc", "ArmInterrupts")
     assert result.status == "done", result.reason
     assert 0 < timings["TrackWatched.watch"].released <= 4.0 / 0.002 + 1
 
