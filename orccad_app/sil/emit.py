@@ -45,9 +45,15 @@ class ModuleEntry:
 class RobotPortRef:
     """A robot port a Module-Task reads (sensor) or writes (actuator): ``arm.q``."""
 
-    name: str
+    robot: str
+    port: str
     dim: int
     actuator: bool
+
+    @property
+    def name(self) -> str:
+        """``robot.port``, as the generated table names it."""
+        return f"{self.robot}.{self.port}"
 
 
 @dataclass(frozen=True)
@@ -143,7 +149,7 @@ def _connections(tcs: Any, entries: list[ModuleEntry]
         ref = f"{module}.{port}"
         if ref not in robot:
             dim = resources[module].port(port).dim if module in resources else 1
-            robot[ref] = RobotPortRef(ref, dim, not output)
+            robot[ref] = RobotPortRef(module, port, dim, not output)
         return -1, list(robot).index(ref)
 
     connections = []

@@ -144,7 +144,7 @@ class RealtimeRun(MissionRun):
         self._table, self._controller, self._shared = table, controller, shared
         self.sim = _ControllerSim(self.sim, controller, table)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
-        self._ports = [(k, port, *port.name.rsplit(".", 1))
+        self._ports = [(k, port, port.robot, port.port)
                        for k, port in enumerate(table.robot_ports)]
         self._seen_actuators = [0] * len(table.robot_ports)
         self._events = [0] * len(table.entries)
