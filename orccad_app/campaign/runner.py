@@ -96,9 +96,7 @@ class Campaign:
     def events(self) -> list[str]:
         """What a ``--hypothesis`` may name: the outcomes (with the mission's exceptions), its
         properties and the spec's checks."""
-        exceptions = sorted({s.name[:-len(".raised")] for s in
-                             self.compiled.composition.automaton.outputs
-                             if s.name.endswith(".raised")})
+        exceptions = self.compiled.composition.roles.raised_exceptions()
         statuses = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
         return [*statuses, *(f"{status}({name})" for status in ("failed", "aborted",
                                                                  "recovering")

@@ -28,6 +28,7 @@ from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 from orccad_app.tcs.phasing import Activation
+from orccad_app.tcs.port import PortRef
 
 __all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
            "instantiate", "check_tasks",
@@ -101,7 +102,7 @@ class RobotTaskInstance:
     context: ModuleContext
     modules: dict[str, ModuleSpec] = field(default_factory=dict)
     connections: list = field(default_factory=list)
-    events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
+    events: dict[str, PortRef] = field(default_factory=dict)  # event -> its observer's port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
     #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
@@ -232,17 +233,17 @@ def _conditions(inst: RobotTaskInstance, host) -> None:
     for pre in task.preconditions:
         if isinstance(pre, ast.MeasurePrecondition):
             module = _observer(pre.observer, pre.loc, inst, host)
-            inst.events[pre.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+            inst.events[pre.observer.func] = PortRef(module, inst.modules[module].kind.event_ports[0])
             measuring.append(module)
     for exc in task.exceptions:
         module = _observer(exc.source, exc.loc, inst, host)
-        inst.events[exc.name] = (module, inst.modules[module].kind.event_ports[0])
+        inst.events[exc.name] = PortRef(module, inst.modules[module].kind.event_ports[0])
         if exc.adjust is not None:
             inst.adjustments[exc.name] = _adjustment(exc, inst)
     for post in task.postconditions:
         if isinstance(post, ast.MeasurePostcondition):
             module = _observer(post.observer, post.loc, inst, host)
-            inst.events[post.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+            inst.events[post.observer.func] = PortRef(module, inst.modules[module].kind.event_ports[0])
     inst.measuring = tuple(measuring)
 
 

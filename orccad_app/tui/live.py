@@ -182,7 +182,7 @@ class LiveObserver(Observer):
         self.sample_ns, self.flush_s = sample_ns, flush_s
         self._sensors = sensor_ports(run.plan)
         self._site_task = {site.number: site.task for site in run.plan.sites}
-        self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
+        self._outputs = set(run.plan.roles.own(s.name for s in run.plan.automaton.outputs))
         self.inputs = UserInputs(run, self._log_entry)
         """The user's inputs, holds and faults (:mod:`orccad_app.tui.user_inputs`)."""
         self._abort: str | None = None

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
 
@@ -135,13 +136,13 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     except StateBudgetExceeded:
         composition = compose_mission(source, mission, lazy=True)
         tasks = ", ".join(dict.fromkeys(site.task for site in composition.sites)) or "-"
-        inputs = [s.name for s in composition.automaton.inputs if "." not in s.name]
+        inputs = composition.roles.own(s.name for s in composition.automaton.inputs)
         return (f"mission {mission.name}: more than {SUMMARY_MAX_STATES} states (a run builds "
                 f"the states it reaches; orccad check explores them all)\n"
                 f"  Robot-Tasks: {tasks}\n"), inputs
     automaton, sites = composition.automaton, composition.sites
     tasks = ", ".join(dict.fromkeys(site.task for site in sites)) or "-"
-    inputs = [s.name for s in automaton.inputs if "." not in s.name]
+    inputs = composition.roles.own(s.name for s in automaton.inputs)
     head = (f"mission {mission.name}: {automaton.state_count} states, "
             f"{automaton.transition_count} transitions\n  Robot-Tasks: {tasks}\n")
     return head + to_summary(automaton), inputs
@@ -274,9 +275,10 @@ class LiveSession:
         """The run, planned (:class:`~orccad_app.session.RunSession`)."""
         self.run = self.session.run
         plan = self.session.plan
-        self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
+        self.inputs = [s for s in plan.automaton.inputs if plan.roles.is_own(s.name)]
         """The mission's declared inputs (``SignalDecl``)."""
-        self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
+        events = plan.roles.of_kind(RoleKind.EVENT)
+        self.events = [s.name for s in plan.automaton.inputs if s.name in events]
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
         self.script = script
         """The counterexample run against the plant, or ``None``."""
