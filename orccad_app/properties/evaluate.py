@@ -12,7 +12,7 @@ The entry point for commands and campaigns::
   formula translation: ``true`` / ``false`` when the mission ended (the run then stutters
   forever), else the LTL3 verdict (``undecided`` when the finite run cannot decide);
   ``robustness`` is ``None``.
-- **Signal properties** (STL) are evaluated by rtamt on the run's samples
+- **Signal properties** (STL) are evaluated on the run's samples (linear in the run)
   (:mod:`orccad_app.verify.stl`): ``robustness`` is the robustness at time 0 in the unit of
   the signals (``unit`` when they share one), ``verdict`` is ``true`` when it is > 0,
   ``false`` when < 0, ``undecided`` when exactly 0 (on the boundary). ``±inf`` when no
