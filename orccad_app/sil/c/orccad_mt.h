@@ -81,7 +81,7 @@ extern const orc_mt_def ORC_MODULES[];
 extern const int ORC_N_MODULES;
 extern const char ORC_TABLE_DIGEST[];
 /* A connection of the TCS (RR-1801 §3.2.1): module -1 is the robot (its port index in
- * ORC_ROBOT_PORTS); protocol 0 is asyn/asyn (the only one the real-time runtime runs). */
+ * ORC_ROBOT_PORTS); protocol: enum orc_protocol of orccad_port.h (0: asyn/asyn). */
 typedef struct {
     int src_module, src_slot, dst_module, dst_slot, protocol;
 } orc_connection;
