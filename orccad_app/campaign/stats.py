@@ -235,16 +235,16 @@ def summarize(records: list[RunRecord], closest: int = 5) -> dict[str, Any]:
     robustness = {}
     worst = {}
     for name in props:
-        scored = [(r.properties[name].robustness, r.index) for r in records
-                  if name in r.properties and r.properties[name].robustness is not None]
+        scored = [(value, r.index) for r in records if name in r.properties
+                  if (value := r.properties[name].robustness) is not None]
         robustness[name] = _describe([value for value, _ in scored])
         worst[name] = [{"run": index, "robustness": value}
                        for value, index in sorted(scored)[:closest]]
     metrics = sorted({name for r in records for name in r.metrics})
     return {"completion_time_s": _describe(done),
             "robustness": robustness,
-            "metrics": {name: _describe([r.metrics[name] for r in records
-                                         if r.metrics.get(name) is not None])
+            "metrics": {name: _describe([value for r in records
+                                         if (value := r.metrics.get(name)) is not None])
                         for name in metrics},
             "closest_to_violation": worst}
 

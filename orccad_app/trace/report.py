@@ -153,7 +153,7 @@ def report_dict(result: RunResult,
                 injections: Iterable[InjectionRecord] = ()) -> dict[str, Any]:
     """The JSON report of ``result`` and what was ``injections`` (see the module docstring)."""
     bus = result.stats.bus
-    report = {
+    report: dict[str, Any] = {
         "mission": result.mission, "status": result.status, "reason": result.reason,
         "seed": result.seed, "sim_time_s": result.sim_time_ns / 1e9,
         "wall_time_s": result.wall_time_s,

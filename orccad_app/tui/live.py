@@ -188,7 +188,7 @@ class LiveObserver(Observer):
         self._abort: str | None = None
         self._present: set[str] = set()
         self._next_sample: dict[str, int] = {}
-        self._samples: dict[str, list[float]] = {}
+        self._samples: dict[str, list[tuple[float, float]]] = {}
         self._log: list[LogEntry] = []
         self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}

@@ -770,6 +770,9 @@ void orc_mt_init(orc_mt *m)
     for (i = 0; i < ORC_MAX_STATE; i++) {
         m->s[i] = 0.0;
     }
+    if (m->kind >= ORC_PLUGIN_BASE) {
+        (void)orc_plugin_init(m);
+    }
 }
 
 int orc_mt_compute(orc_mt *m, double t_s)
@@ -793,7 +796,7 @@ int orc_mt_compute(orc_mt *m, double t_s)
     case ORC_AUV_AUTOPILOT: autopilot(m, t_s); break;
     case ORC_AUV_GUIDANCE: guidance(m); break;
     case ORC_AUV_OBSERVER: auv_observer(m, t_s); break;
-    default: return -1;
+    default: return orc_plugin_compute(m, t_s);
     }
     return 0;
 }

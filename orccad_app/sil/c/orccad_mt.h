@@ -102,4 +102,12 @@ extern const int ORC_N_PROCESSORS;
 /* The generated instances' memory, one per table entry (no allocation at run time). */
 extern orc_mt ORC_INSTANCES[];
 
+/* The plugin kinds' C (ModuleKind.c_implementation; docs/deploy.md): kind ORC_PLUGIN_BASE + k
+ * is the table's k-th plugin kind, its functions PREFIX_init(orc_mt *) and
+ * PREFIX_compute(orc_mt *, double) called through these two, which the generated table
+ * defines; -1 for a kind that is not a plugin's. */
+#define ORC_PLUGIN_BASE 100
+int orc_plugin_init(orc_mt *m);
+int orc_plugin_compute(orc_mt *m, double t_s);
+
 #endif
