@@ -30,11 +30,12 @@ import numpy as np
 
 from orccad_app.diagnostics import arguments_text
 from orccad_app.executive.observer import Observer
+from orccad_app.robottask.labels import Phase
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
 from orccad_app.tui.user_inputs import UserInputs
 
-__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "sensor_ports"]
 
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
@@ -43,7 +44,6 @@ BUSY_FRAME_S = 0.25
 """Wall time between two frames [s] while the run goes as fast as it can (else ``flush_s``):
 the screen's drawing shares the interpreter with the run."""
 
-PHASES = {1: "waiting", 2: "measuring", 3: "running"}
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
@@ -270,7 +270,7 @@ class LiveObserver(Observer):
         self._flushed_at = time.perf_counter()
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
-                 for site, phase in sorted(self.run.phases.items()) if phase > 0]
+                 for site, phase in sorted(self.run.phases.items()) if phase is not Phase.IDLE]
         loads = self._loads(t_ns)
         self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
