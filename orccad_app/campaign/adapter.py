@@ -140,7 +140,7 @@ def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, 
     anything else propagates (a crash)."""
     extrema = SignalExtrema(signals)
     session = compiled.session(setting, observers=(extrema, *observers), trace=trace)
-    extrema.bind(session.run.sim)
+    extrema.bind(session.run)
     report = session.execute()
     result = report.result
     if result.interrupted:

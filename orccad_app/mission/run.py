@@ -255,6 +255,44 @@ class MissionRun:
             raise OrccadError(f"{name}: not an input of mission '{self.plan.name}'")
         self._post(name, value)
 
+    # -- what observers read and do (they never reach into the executive's Simulation) ----
+
+    @property
+    def plants(self) -> dict[str, MujocoPlant]:
+        """Robot name -> its plant (read its true state: ``observe``, ``qpos``…)."""
+        return self.sim.plants
+
+    def faults(self) -> dict[str, str]:
+        """Every plant fault ``ROBOT.FAULT`` the run can apply -> its description."""
+        found: dict[str, str] = {}
+        for robot, plant in self.sim.plants.items():
+            extension = plant.extension
+            faults = getattr(extension, "faults", None) or {}
+            found.update({f"{robot}.{fault}": text for fault, text in faults.items()})
+        return found
+
+    def check_fault(self, robot: str, fault: str, value: Any) -> None:
+        """Refuse (:class:`OrccadError`) a fault the robot's plant does not have, or a value
+        out of its declared range, before it is due."""
+        plant = self.sim.plants.get(robot)
+        if plant is None or plant.extension is None:
+            raise OrccadError(f"fault {robot}.{fault}: robot '{robot}' has no faults")
+        plant.extension.check_fault(fault, value)
+
+    def apply_fault(self, robot: str, fault: str, value: Any) -> None:
+        """Apply a plant fault now (from an observer's callback)."""
+        self.sim.plants[robot].inject(fault, value)
+
+    def processor_busy_ns(self) -> dict[str, int]:
+        """Processor -> its busy time so far [ns] (context switches included)."""
+        return {name: processor.stats.busy_ns for name, processor in self.sim.processors.items()}
+
+    def missed_jobs(self) -> dict[str, int]:
+        """Module-Task -> its jobs so far that finished after their deadline or whose release
+        was skipped (an overrun)."""
+        return {name: runtime.stats.late + runtime.stats.overruns
+                for name, runtime in self.sim.tasks.items()}
+
     @property
     def stopping(self) -> bool:
         """:meth:`abort` was called: the run ends after the current event."""

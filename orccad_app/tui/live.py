@@ -282,8 +282,7 @@ class LiveObserver(Observer):
     def _loads(self, t_ns: int) -> dict[str, float]:
         """Each processor's busy share since the last update, from its statistics."""
         start, busy_then = self._window
-        busy = {name: processor.stats.busy_ns
-                for name, processor in self.run.sim.processors.items()}
+        busy = self.run.processor_busy_ns()
         span = t_ns - start
         loads = {p: min(1.0, (b - busy_then.get(p, 0)) / span) if span > 0 else 0.0
                  for p, b in busy.items()}
@@ -293,9 +292,7 @@ class LiveObserver(Observer):
     def _count_misses(self, t_ns: int) -> None:
         """Deadline misses since the last update, from the Module-Tasks' statistics: one log
         line per Module-Task that missed (how many, and how)."""
-        for name, runtime in self.run.sim.tasks.items():
-            stats = runtime.stats
-            total = stats.late + stats.overruns
+        for name, total in self.run.missed_jobs().items():
             new = total - self._misses.get(name, 0)
             if new > 0:
                 self._misses[name] = total
