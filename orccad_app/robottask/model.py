@@ -134,13 +134,14 @@ def _context(task: ast.RobotTask, params: dict, robots: Mapping[str, ast.Robot],
             robot_type = robot_type.configure(robot_args)
     except OrccadError as error:
         raise _located(error, robot.loc) from None
-    tf = None if task.task_function is None else call_form(task.task_function, params)
+    function = task.task_function
+    tf = None if function is None else call_form(function, params)
     law = None if task.law is None else call_form(task.law, params)
-    if tf is not None:
+    if function is not None and tf is not None:
         try:
             resolve(host, "task function", tf)
         except OrccadError as error:
-            raise _located(error, task.task_function.loc) from None
+            raise _located(error, function.loc) from None
     try:
         return module_context(host, robot_type, tf, law, task.duration_ns and
                               task.duration_ns / 1e9, task.robot)
@@ -253,6 +254,7 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
     finiteness); a computed one has the parameter's type at the nominal values (its range is
     checked when it is applied)."""
     adjust = exc.adjust
+    assert adjust is not None, "a type-1 exception without its update was refused by the parser"
     target = adjust.target
     module = inst.modules.get(target.component)
     if module is None:
@@ -378,9 +380,9 @@ def check_tasks(program: ast.Program, host) -> TaskInstances:
     defaults: dict[str, RobotTaskInstance] = {}
     by_run: dict[SourceLocation, RobotTaskInstance] = {}
     same: dict[tuple, RobotTaskInstance] = {}
-    for task in program.robottasks:
-        if all(p.default is not None for p in task.params):
-            defaults[task.name] = instantiate(task, robots, host)
+    for declared in program.robottasks:
+        if all(p.default is not None for p in declared.params):
+            defaults[declared.name] = instantiate(declared, robots, host)
     for mission in program.missions + program.imported_missions:
         for run in runs(mission):
             task = tasks.get(run.task)

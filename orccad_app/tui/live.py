@@ -30,11 +30,12 @@ import numpy as np
 
 from orccad_app.diagnostics import arguments_text
 from orccad_app.executive.observer import Observer
+from orccad_app.robottask.labels import Phase
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
 from orccad_app.tui.user_inputs import UserInputs
 
-__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "sensor_ports"]
 
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
@@ -43,7 +44,6 @@ BUSY_FRAME_S = 0.25
 """Wall time between two frames [s] while the run goes as fast as it can (else ``flush_s``):
 the screen's drawing shares the interpreter with the run."""
 
-PHASES = {1: "waiting", 2: "measuring", 3: "running"}
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
@@ -188,7 +188,7 @@ class LiveObserver(Observer):
         self._abort: str | None = None
         self._present: set[str] = set()
         self._next_sample: dict[str, int] = {}
-        self._samples: dict[str, list[float]] = {}
+        self._samples: dict[str, list[tuple[float, float]]] = {}
         self._log: list[LogEntry] = []
         self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}
@@ -270,7 +270,7 @@ class LiveObserver(Observer):
         self._flushed_at = time.perf_counter()
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
-                 for site, phase in sorted(self.run.phases.items()) if phase > 0]
+                 for site, phase in sorted(self.run.phases.items()) if phase is not Phase.IDLE]
         loads = self._loads(t_ns)
         self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
@@ -282,8 +282,7 @@ class LiveObserver(Observer):
     def _loads(self, t_ns: int) -> dict[str, float]:
         """Each processor's busy share since the last update, from its statistics."""
         start, busy_then = self._window
-        busy = {name: processor.stats.busy_ns
-                for name, processor in self.run.sim.processors.items()}
+        busy = self.run.processor_busy_ns()
         span = t_ns - start
         loads = {p: min(1.0, (b - busy_then.get(p, 0)) / span) if span > 0 else 0.0
                  for p, b in busy.items()}
@@ -293,9 +292,7 @@ class LiveObserver(Observer):
     def _count_misses(self, t_ns: int) -> None:
         """Deadline misses since the last update, from the Module-Tasks' statistics: one log
         line per Module-Task that missed (how many, and how)."""
-        for name, runtime in self.run.sim.tasks.items():
-            stats = runtime.stats
-            total = stats.late + stats.overruns
+        for name, total in self.run.missed_jobs().items():
             new = total - self._misses.get(name, 0)
             if new > 0:
                 self._misses[name] = total

@@ -15,12 +15,15 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
+
+if TYPE_CHECKING:
+    from orccad_app.verify.checker import MissionReport, PropertyOutcome
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
            "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
@@ -114,7 +117,8 @@ def mission_files(paths: list[str]) -> list[str]:
 def _diagnostic(severity: str, error: Any, path: str | None = None) -> FileDiagnostic:
     loc = getattr(error, "location", None) or getattr(error, "loc", None)
     message = getattr(error, "message", str(error))
-    if loc is not None and path is not None and getattr(loc, "line", 0) and \
+    line = getattr(loc, "line", None) or 0
+    if loc is not None and path is not None and line and \
             Path(loc.file).resolve() != Path(path).resolve():  # in an imported file
         return FileDiagnostic(severity, 0, 0, f"{loc}: {message}")
     return FileDiagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
@@ -128,6 +132,7 @@ SUMMARY_MAX_STATES = 2000
 
 def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     from orccad_app.pipeline import compose_mission
+    from orccad_app.reactive.automaton import Automaton
     from orccad_app.reactive.compiler import StateBudgetExceeded
     from orccad_app.reactive.export import to_summary
 
@@ -141,6 +146,7 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
                 f"the states it reaches; orccad check explores them all)\n"
                 f"  Robot-Tasks: {tasks}\n"), inputs
     automaton, sites = composition.automaton, composition.sites
+    assert isinstance(automaton, Automaton)  # compiled whole (lazy=False)
     tasks = ", ".join(dict.fromkeys(site.task for site in sites)) or "-"
     inputs = composition.roles.own(s.name for s in automaton.inputs)
     head = (f"mission {mission.name}: {automaton.state_count} states, "
@@ -231,17 +237,9 @@ ScriptedInputs = InputScript
 :meth:`InputScript.of` a failed property's outcome."""
 
 
-def failed_outcomes(report: Any) -> list[Any]:
+def failed_outcomes(report: MissionReport) -> list[PropertyOutcome]:
     """The outcomes of a check report that failed with a counterexample."""
     return [o for o in report.outcomes if not o.holds and o.script is not None]
-
-
-def _faults(run: Any) -> dict[str, str]:
-    found = {}
-    for robot, plant in run.sim.plants.items():
-        faults = getattr(getattr(plant, "extension", None), "faults", None) or {}
-        found.update({f"{robot}.{fault}": text for fault, text in faults.items()})
-    return found
 
 
 class LiveSession:
@@ -287,7 +285,7 @@ class LiveSession:
         self.setting = setting
         """The campaign run replayed (a :class:`~orccad_app.campaign.setting.RunSetting`),
         or ``None``."""
-        self.faults = _faults(self.run)
+        self.faults = self.run.faults()
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
@@ -325,7 +323,7 @@ class LiveSession:
         return "\n".join(lines)
 
     def export(self, path: str, *, overwrite: bool = False,
-               progress: Callable[[float], None] | None = None) -> str:
+               progress: Callable[[float], object] | None = None) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path`` and return it: atomically (a
         temporary file renamed once complete), never over an existing file unless
         ``overwrite`` (``FileExistsError``)."""
@@ -349,7 +347,7 @@ class LiveSession:
         write_atomically(path, write)
         return path
 
-    def _replay_trace(self, path: str, progress: Callable[[float], None] | None) -> None:
+    def _replay_trace(self, path: str, progress: Callable[[float], object] | None) -> None:
         """Run the finished run again with a trace recorder: the same options (plan, seed,
         horizon, injections), the user's inputs as ``--inject`` at the instants they took
         effect (the same run, :mod:`orccad_app.tui.user_inputs`), ended at the same reaction
@@ -381,7 +379,7 @@ class _Replaying:
     count of reactions then; ``None``: not aborted) and reports its progress."""
 
     def __init__(self, run: Any, abort_at: int | None, end_ns: int,
-                 progress: Callable[[float], None] | None) -> None:
+                 progress: Callable[[float], object] | None) -> None:
         self.run, self.abort_at, self.end_ns, self.progress = run, abort_at, end_ns, progress
         self.reactions = 0
 

@@ -26,7 +26,6 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.trace.report import InjectionRecord
 
@@ -92,10 +91,7 @@ class UserInputs:
         of the fault's declared range raises :class:`OrccadError` now, as ``--inject``
         refuses it."""
         robot, fault = name.split(".", 1)
-        plant = self.run.sim.plants.get(robot)
-        if plant is None or plant.extension is None:
-            raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
-        plant.extension.check_fault(fault, value)
+        self.run.check_fault(robot, fault, value)
         self._queue.append(("fault", name, value))
 
     def hold(self, name: str, value: Any = None) -> None:
@@ -147,7 +143,7 @@ class UserInputs:
         name, value = item
         now = self.run.kernel.now
         robot, fault = name.split(".", 1)
-        self.run.sim.plants[robot].inject(fault, value)
+        self.run.apply_fault(robot, fault, value)
         self._records.append(InjectionRecord(now, name, value, True, RAISED_BY))
         self.log(now, "fault", f"{name}={value} injected by the user")
 

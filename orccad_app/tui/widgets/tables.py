@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from textual.widgets import DataTable
 
-from orccad_app.tui.live import PHASES
+from orccad_app.robottask.labels import Phase
 
 __all__ = ["TaskTable", "LoadTable", "TcsTable"]
 
@@ -33,7 +33,7 @@ class TaskTable(_Rows):
         self.add_columns("task", "site", "phase")
 
     def show(self, tasks: list[tuple[str, int, int]]) -> None:
-        self.set_rows([(task, str(site), f"{phase} {PHASES.get(phase, '')}")
+        self.set_rows([(task, str(site), f"{phase} {Phase(phase).word}")
                        for task, site, phase in tasks] or [("(none)", "", "")])
 
 
@@ -47,7 +47,8 @@ class LoadTable(_Rows):
         self.add_columns("cpu / module", "load", "miss")
 
     def show(self, loads: dict[str, float], misses: dict[str, int]) -> None:
-        rows = [(processor, f"{load:.1%}", "") for processor, load in sorted(loads.items())]
+        rows: list[tuple[str, ...]] = [(processor, f"{load:.1%}", "")
+                                       for processor, load in sorted(loads.items())]
         rows += [(f"  {module}", "", str(count)) for module, count in sorted(misses.items())]
         self.set_rows(rows + ([] if misses else [("deadline misses", "", "0")]))
 
