@@ -24,8 +24,9 @@ import pytest
 #: ``file::function`` of parametrized tests whose parameters are independent and long enough to
 #: be worth sharing out one by one
 SPLIT = frozenset({
-    "tests/codegen/test_equivalence.py::test_main_equals_react_composed",
-    "tests/sil/test_lockstep.py::test_lockstep_ends_as_orccad_run_does",
+    "tests/verify/test_spin.py::test_spin_agrees",
+    "tests/verify/test_check_cli.py::test_check_proves_the_missions",
+    "tests/sil/test_lockstep.py::test_lockstep_ends_as_the_executive",
 })
 
 _DOC_PAGE = re.compile(r"\[([^:\]]+\.md):")
