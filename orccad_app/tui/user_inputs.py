@@ -91,12 +91,17 @@ class UserInputs:
         """Apply plant fault ``ROBOT.FAULT`` with ``value`` (at the due instant); a value out
         of the fault's declared range raises :class:`OrccadError` now, as ``--inject``
         refuses it."""
-        robot, fault = name.split(".", 1)
+        self.check_fault(name, value)
+        self._queue.append(("fault", name, value))
+
+    def check_fault(self, name: str, value: Any) -> None:
+        """Raise :class:`OrccadError` unless ``ROBOT.FAULT`` is a fault of a robot of the run
+        and ``value`` within its declared range."""
+        robot, fault = name.split(".", 1) if "." in name else (name, "")
         plant = self.run.sim.plants.get(robot)
         if plant is None or plant.extension is None:
             raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
         plant.extension.check_fault(fault, value)
-        self._queue.append(("fault", name, value))
 
     def hold(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` at every tick from the due instant until :meth:`release`."""
