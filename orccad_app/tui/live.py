@@ -35,7 +35,8 @@ from orccad_app.trace.writers import sensor_ports
 from orccad_app.tui.run_process import Request, RunEnded
 from orccad_app.tui.user_inputs import UserInputs
 
-__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports"]
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports",
+           "StateView", "SeenStates"]
 
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
@@ -159,6 +160,36 @@ class LiveUpdate:
     """Wall time spent paused so far [s]."""
     held: tuple[str, ...] = ()
     """Inputs held (raised at every instant until released)."""
+    states: dict[int, StateView] = field(default_factory=dict)
+    """What the screen reads of the automaton about ``state`` when it is a state not shown
+    before: the automaton is built as the run reaches its states (a lazy automaton), in the
+    run's process (:class:`SeenStates`)."""
+
+
+@dataclass(frozen=True)
+class StateView:
+    """A state of the mission's automaton as the screen reads it: its labels (running
+    Robot-Tasks, sub-missions) and the statements it waits at."""
+
+    labels: frozenset
+    waiting: tuple
+
+
+class SeenStates:
+    """The states of the automaton that a run in another process has shown, with the
+    ``labels`` and ``waiting`` of an automaton (indexed by state; empty for states not
+    seen): what :mod:`orccad_app.tui.status` reads."""
+
+    def __init__(self) -> None:
+        self.labels: list[frozenset] = []
+        self.waiting: list[tuple] = []
+
+    def learn(self, states: dict[int, StateView]) -> None:
+        for state, view in states.items():
+            while len(self.labels) <= state:
+                self.labels.append(frozenset())
+                self.waiting.append(())
+            self.labels[state], self.waiting[state] = view.labels, view.waiting
 
 
 def _components(value: Any, limit: int = 6) -> list[float] | None:
@@ -181,7 +212,8 @@ class LiveObserver(Observer):
         raised ``by`` ``scripted_by`` when they reach the automaton).
     :param wait_for_screen: post a frame only once the previous one was taken
         (:meth:`frame_taken`; a pause's frame always goes): a screen that falls behind gets
-        fewer, fuller frames and never shows an old state.
+        fewer, fuller frames and never shows an old state; and a paced run waits at its
+        first frame until the screen shows it (its pacing starts then).
     """
 
     def __init__(self, run: Any, post: Callable[[LiveUpdate], None], pace: Pace, *,
@@ -211,6 +243,8 @@ class LiveObserver(Observer):
         self._forward: Callable[[Request], None] | None = None  # to the run's process
         self._remote = False  # the run is (or was) in another process
         self._held: dict[str, Any] = {}  # ... and these inputs are held there
+        self._described: set[int] = set()  # states whose StateView was posted
+        self._screen_up = threading.Event()  # the screen took a frame (or the run ends)
         self._adopted: list[InjectionRecord] | None = None  # ... and raised there
         self.reactions = 0
         """Reactions seen so far."""
@@ -307,10 +341,12 @@ class LiveObserver(Observer):
         elif what == "abort":
             self._abort = name
             self.pace.stop()
+            self._screen_up.set()
         elif what == "pace":
             self.pace.set(value)
         elif what == "taken":
             self._taken += 1
+            self._screen_up.set()
 
     def _log_entry(self, t_ns: int, kind: str, text: str) -> None:
         self._log.append(LogEntry(t_ns, kind, text))
@@ -344,6 +380,8 @@ class LiveObserver(Observer):
             return
         if pace.factor == 0 or (ready and time.perf_counter() - self._flushed_at >= self.flush_s):
             self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
+            if self.wait_for_screen and self._posted == 1:
+                self._screen_up.wait()  # a paced run starts when the screen shows it
         pace.wait(t_ns)
 
     def flush(self, t_ns: int) -> None:
@@ -357,9 +395,19 @@ class LiveObserver(Observer):
         self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
                             self._log, self._samples, loads, dict(self._misses),
-                            time.perf_counter(), self.pace.paused_s, self.held)
+                            time.perf_counter(), self.pace.paused_s, self.held,
+                            self._describe(reactor.state))
         self._log, self._samples = [], {}
         self.post(update)
+
+    def _describe(self, state: int | None) -> dict[int, StateView]:
+        """``state``'s :class:`StateView` if not posted before."""
+        automaton = self.run.plan.automaton
+        if state is None or state in self._described or not 0 <= state < len(automaton.labels):
+            return {}
+        self._described.add(state)
+        waiting = automaton.waiting[state] if state < len(automaton.waiting) else ()
+        return {state: StateView(automaton.labels[state], tuple(waiting))}
 
     def _loads(self, t_ns: int) -> dict[str, float]:
         """Each processor's busy share since the last update, from its statistics."""

@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.session import InputScript, RunOptions, RunSession
-from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
+from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace, SeenStates
 from orccad_app.tui.run_process import can_fork, run_forked
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
@@ -301,6 +301,9 @@ class LiveSession:
             scripted_by=script.by if script is not None else by, wait_for_screen=wait_for_screen)
         self.session.add_observer(self.observer)
         self.own_process = own_process and can_fork()
+        self.automaton: Any = SeenStates() if self.own_process else plan.automaton
+        """The automaton's states as the screen reads them (:mod:`orccad_app.tui.status`):
+        the plan's (lazy) automaton, or the states the run's process has shown."""
         self.result: Any = None
         self.run_report: Any = None
         """The :class:`~orccad_app.session.RunReport` of the finished run."""
@@ -308,7 +311,13 @@ class LiveSession:
     def execute(self) -> Any:
         """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
         if self.own_process:
-            ended = run_forked(self._execute_here, self.observer, self.observer.post)
+            post = self.observer.post
+
+            def shown(update: LiveUpdate) -> None:  # learn the states, then show them
+                self.automaton.learn(update.states)
+                post(update)
+
+            ended = run_forked(self._execute_here, self.observer, shown)
             self.observer.adopt(ended)
             result = dataclasses.replace(ended.report.result, modules=self.run.plan.tcs.modules)
             self.run_report = dataclasses.replace(ended.report, result=result)

@@ -81,12 +81,11 @@ def test_the_actual_speed_excludes_pauses_and_a_slow_run_is_flagged():
         class pace:  # noqa: N801 - a stand-in attribute holder
             factor, paused, label, paused_s = 1.0, False, "1×", 0.0
 
+        class automaton:  # noqa: N801
+            waiting, labels = ((),), ()
+
         class run:  # noqa: N801
             until_ns = 60_000_000_000
-
-            class plan:  # noqa: N801
-                class automaton:  # noqa: N801
-                    waiting, labels = ((),), ()
 
     from orccad_app.tui.status import status_text
     text = status_text(_Session, LiveUpdate(1_500_000_000, 0, "running", "1×"), meter)
