@@ -12,7 +12,8 @@ type-2 and a type-3 exception and a 1 s duration), in two families:
 
 Each mission is checked with 5 properties (mutual exclusion on a robot, a hand-over, a
 recovery, fatal → aborted, termination under fairness: one liveness property with N + 2
-fairness sets) plus the 4 built-in ones. Target: N = 20 with 5 properties in under 5 s.
+fairness sets) plus the 4 built-in ones. Target: N = 20 with 5 properties in at most 1 s
+(issue 27; issue 14 asked 5 s).
 
 Baseline measured in the same command: the compile time of the same mission (parse, check,
 lower, compile, minimize): the ratio check / compile says what the proofs cost on top.
@@ -36,7 +37,7 @@ from orccad_app.robottask.model import check_tasks  # noqa: E402
 from orccad_app.verify.checker import check_mission  # noqa: E402
 from orccad_app.robottask.composition import compose  # noqa: E402
 
-TARGET_SECONDS = 5.0
+TARGET_SECONDS = 1.0
 
 TASK = """robottask T{i}() on {robot} {{
     duration 1 s;
@@ -143,10 +144,10 @@ def main(argv: list[str] | None = None) -> int:
             if n == 20:
                 worst = max(worst, row["check"])
     if not args.quick:
-        verdict = "met" if worst < TARGET_SECONDS else "MISSED"
-        print(f"target: 20 Robot-Tasks + 5 properties under {TARGET_SECONDS:g} s: {verdict} "
+        verdict = "met" if worst <= TARGET_SECONDS else "MISSED"
+        print(f"target: 20 Robot-Tasks + 5 properties in at most {TARGET_SECONDS:g} s: {verdict} "
               f"(worst {worst:.2f} s)")
-        return 0 if worst < TARGET_SECONDS else 2
+        return 0 if worst <= TARGET_SECONDS else 2
     return 0
 
 

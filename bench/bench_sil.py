@@ -28,27 +28,19 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from orccad_app.executive.bus import Bus  # noqa: E402
-from orccad_app.executive.processor import Processor  # noqa: E402
-from orccad_app.mission.plan import plan_mission  # noqa: E402
-from orccad_app.mission.run import MissionRun  # noqa: E402
 from orccad_app.pipeline import load, select_mission  # noqa: E402
-from orccad_app.sil.lockstep import lockstep  # noqa: E402
-from orccad_app.trace import report_dict  # noqa: E402
+from orccad_app.session import RunOptions, RunSession  # noqa: E402
+from orccad_app.sil.runs import ControllerRuns, SilMode  # noqa: E402
 
 
-def _plan(path: Path):
+def _run(path: Path, runs: ControllerRuns | None = None) -> tuple[float, dict]:
+    """One run through the run façade (the controller's when ``runs`` is given): its wall
+    time [s] and its report without the wall time."""
     source = load(str(path))
-    return plan_mission(source, select_mission(source, None))
-
-
-def _run(plan) -> tuple[float, dict]:
-    run = MissionRun(plan, until_ns=int(plan.run_horizon_s(60.0) * 1e9), bus=Bus(),
-                     processors=[Processor(name) for name in plan.processor_names])
+    session = RunSession(source, select_mission(source, None), RunOptions(run_factory=runs))
     start = time.perf_counter()
-    result = run.run()
+    report = session.execute().as_dict()
     wall = time.perf_counter() - start
-    report = report_dict(result, [])
     report.pop("wall_time_s")
     return wall, report
 
@@ -57,11 +49,10 @@ def lockstep_against_run(path: Path, repeat: int) -> None:
     best_run = best_sil = float("inf")
     expected = got = None
     for _ in range(repeat):
-        wall, expected = _run(_plan(path))
+        wall, expected = _run(path)
         best_run = min(best_run, wall)
-        plan = _plan(path)
-        with lockstep(plan, str(path)):  # compiled once (cached), started per run
-            wall, got = _run(plan)
+        with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:  # compiled once (cached)
+            wall, got = _run(path, runs)
         best_sil = min(best_sil, wall)
     assert got == expected, "lockstep and orccad run disagree"
     sim_s = expected["sim_time_s"]

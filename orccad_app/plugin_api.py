@@ -4,7 +4,8 @@ A plugin (docs/plugins.md) marks its hook implementations with :data:`hookimpl` 
 registers objects built from the classes below: robot types (:class:`RobotType`, with its
 sensor parameters :class:`SensorParam` and its extension points :meth:`RobotType.plant_extension` and :attr:`RobotType.run_horizon_s`),
 component kinds (:class:`TrajectoryKind`, :class:`TaskFunctionKind`, :class:`LawKind`) and
-Module-Task kinds (:class:`ModuleKind`), declared with :class:`ParamSpec`, :class:`PortSpec`
+Module-Task kinds (:class:`ModuleKind`, with their C for ``orccad sil``:
+:class:`CImplementation`), declared with :class:`ParamSpec`, :class:`PortSpec`
 and :class:`Timing`. Errors it raises are :class:`OrccadError` (or the control library's
 subclasses: :class:`ControlError`, :class:`DimensionMismatch`, :class:`InvalidParameter`).
 
@@ -12,6 +13,7 @@ Everything else in ``orccad_app`` is internal and may change without notice; a t
 that the built-in plugins (``plugins/``) import nothing else from the core.
 """
 
+from orccad_app.control.c_implementation import CImplementation
 from orccad_app.control.catalogue import (
     LAW_KINDS,
     MODULE_KINDS,
@@ -85,6 +87,7 @@ __all__ = [
     "PinocchioModel",
     # Module-Tasks
     "ModuleKind",
+    "CImplementation",
     "ModuleInstance",
     "ModuleContext",
     "PortSpec",

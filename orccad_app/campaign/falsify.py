@@ -98,8 +98,8 @@ class Falsifier:
         values: dict[str, Any] = {}
         for entry in self.spec.params:
             values[entry.target] = _suggest(trial, entry.target, entry.dist)
-        for entry in self.spec.timings:  # whole nanoseconds, as --timing takes them
-            values[entry.target] = whole_ns_ms(_suggest(trial, entry.target, entry.dist))
+        for timing in self.spec.timings:  # whole nanoseconds, as --timing takes them
+            values[timing.target] = whole_ns_ms(_suggest(trial, timing.target, timing.dist))
         for number, inject in enumerate(self.spec.injections):
             prefix = f"inject[{number}]"
             if inject.probability in (0.0, 1.0):

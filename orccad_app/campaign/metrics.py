@@ -49,7 +49,10 @@ class SignalExtrema(Observer):
 
         self._kernel = sim.kernel
         for signal in self.signals:
-            robot, port, index = _SIGNAL.match(signal).groups()
+            match = _SIGNAL.match(signal)
+            if match is None:  # the spec's parser matched the same pattern
+                raise OrccadError(f"metric signal {signal!r}: expected ROBOT.PORT[INDEX]")
+            robot, port, index = match.groups()
             plant = sim.plants.get(robot)
             if plant is None:
                 raise OrccadError(f"signal {signal}: no robot '{robot}' in the mission "

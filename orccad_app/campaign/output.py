@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from orccad_app.campaign.runner import CampaignResult
+from orccad_app.campaign.runner import CampaignResult, PrefixCounts
 from orccad_app.jsonout import plain
 
 __all__ = ["result_dict", "format_result", "Progress"]
@@ -91,7 +91,7 @@ class Progress:
                        TimeRemainingColumn(), TextColumn("{task.fields[estimate]}"),
                        transient=True)
         self.task = self.bar.add_task("runs", total=None, estimate="")
-        self._counted = (0, 0)  # (prefix runs counted, of which done): each run counted once
+        self._shown: tuple[int, int] | None = None  # (prefix runs, of which done) shown
         self._text = ""
 
     def __enter__(self) -> Progress:
@@ -101,16 +101,13 @@ class Progress:
     def __exit__(self, *exc: Any) -> None:
         self.bar.__exit__(*exc)
 
-    def __call__(self, done: int, limit: int, prefix: list) -> None:
+    def __call__(self, done: int, limit: int, prefix: PrefixCounts) -> None:
         from orccad_app.campaign.stats import clopper_pearson
 
-        seen, k = self._counted
-        if len(prefix) < seen:  # another prefix: count again
-            seen, k = 0, 0
-        k += sum(1 for r in prefix[seen:] if r.status == "done")  # the new runs only
-        if len(prefix) != seen or not self._text:
-            self._counted = (len(prefix), k)
-            if prefix:
-                low, high = clopper_pearson(k, len(prefix), self.confidence)
-                self._text = f"P(done) = {k / len(prefix):.3f} [{low:.3f}, {high:.3f}]"
+        counted = (prefix.length, prefix.done)
+        if counted != self._shown and prefix.length:
+            self._shown = counted
+            low, high = clopper_pearson(prefix.done, prefix.length, self.confidence)
+            self._text = (f"P(done) = {prefix.done / prefix.length:.3f} "
+                          f"[{low:.3f}, {high:.3f}]")
         self.bar.update(self.task, completed=done, total=limit, estimate=self._text)

@@ -95,8 +95,8 @@ def _score(result: CampaignResult) -> tuple[str, dict[int, float]]:
                                            - result.estimates[k]["count"]),
                                          result.summary["robustness"][k]["min"]))
         return f"robustness of {name}", {
-            r.index: r.properties[name].robustness for r in result.records
-            if name in r.properties and r.properties[name].robustness is not None}
+            r.index: value for r in result.records if name in r.properties
+            if (value := r.properties[name].robustness) is not None}
     return "done (1) or not (0)", {r.index: float(r.status == "done") for r in result.records}
 
 

@@ -27,13 +27,13 @@ from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
 from orccad_app.campaign.setting import RunSetting, draw_setting, replay_command
 from orccad_app.campaign.spec import MAX_RUNS, CampaignSpec
-from orccad_app.campaign.stats import (Hypothesis, Sprt, chernoff_runs, estimates,
-                                       precise_enough, summarize)
+from orccad_app.campaign.stats import (EventCounts, Hypothesis, Sprt, chernoff_runs,
+                                       estimates, precise_enough, summarize)
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CampaignOptions", "CampaignResult", "Campaign"]
+__all__ = ["CampaignOptions", "CampaignResult", "Campaign", "PrefixCounts"]
 
 
 @dataclass
@@ -96,9 +96,7 @@ class Campaign:
     def events(self) -> list[str]:
         """What a ``--hypothesis`` may name: the outcomes (with the mission's exceptions), its
         properties and the spec's checks."""
-        exceptions = sorted({s.name[:-len(".raised")] for s in
-                             self.compiled.composition.automaton.outputs
-                             if s.name.endswith(".raised")})
+        exceptions = self.compiled.composition.roles.raised_exceptions()
         statuses = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
         return [*statuses, *(f"{status}({name})" for status in ("failed", "aborted",
                                                                  "recovering")
@@ -143,37 +141,44 @@ class Campaign:
 
     # -- running -------------------------------------------------------------------------
 
-    def run(self, progress: Callable[[int, int, list[RunRecord]], None] | None = None,
+    def run(self, progress: Callable[[int, int, PrefixCounts], None] | None = None,
             backend: Any = None) -> CampaignResult:
-        """Run (or resume) the campaign; ``progress(done, limit, prefix)`` after each run."""
+        """Run (or resume) the campaign; ``progress(recorded, limit, prefix)`` after each
+        batch of runs (``prefix``: the counts of the runs ``0 … n−1``, :class:`PrefixCounts`).
+
+        The runs are kept in the database, not in memory: the stopping rule and the progress
+        fold each run into counts once the prefix reaches it, and the statistics at the end
+        read the runs they use back from the database."""
         start = time.perf_counter()
-        records = {r.index: r for r in self.store.records()}
-        for record in records.values():  # a resumed database holds this campaign's draws
+        prefix = PrefixCounts()
+        recorded = 0
+        for record in self.store.records():  # a resumed database holds this campaign's draws
             if record.setting != self.setting(record.index):
                 raise OrccadError(f"--resume: {self.store.path}: run {record.index} holds a "
                                   "setting this campaign does not draw (an edited row?)")
+            prefix.waiting[record.index] = record
+            recorded += 1
         backend = backend or make_backend(self.options.workers, self.options.cluster)
         self.backend = backend
         interrupted = False
         try:
-            stopped = self._loop(backend, records, progress)
+            stopped = self._loop(backend, prefix, recorded, progress)
         except KeyboardInterrupt:
             interrupted, stopped = True, "interrupted"
         finally:
             backend.close(cancel=interrupted)
-        if stopped in ("runs", "interrupted"):
-            used = [records[i] for i in sorted(records) if i < self.limit]
-        else:
-            used = _prefix(records)[:self.stop_n]
+        bound = self.limit if stopped in ("runs", "interrupted") else self.stop_n
+        used = self.store.records(bound)
         return self._result(used, stopped, interrupted, time.perf_counter() - start)
 
-    def _loop(self, backend: Any, records: dict[int, RunRecord],
+    def _loop(self, backend: Any, prefix: PrefixCounts, recorded: int,
               progress: Callable | None) -> str:
-        queue = deque(i for i in range(self.limit) if i not in records)  # <= MAX_RUNS
+        stored = self.store.done()
+        queue = deque(i for i in range(self.limit) if i not in stored)  # <= MAX_RUNS
+        del stored
         flying: dict[Any, Job] = {}
-        prefix = _Prefix()
         cap = 2 * max(1, getattr(backend, "workers", 1))
-        stopped = self._stop(records)
+        stopped = self._stop(prefix)
         while (queue and stopped is None) or flying:
             while queue and stopped is None and len(flying) < cap:
                 job = self.job(queue.popleft())
@@ -190,59 +195,50 @@ class Campaign:
                     record.error = "retried once after a crash"
                 finished.append((record, self.replay(record.setting)))
             self.store.add_many(finished)  # the runs that came back together: one commit
-            for record, _ in finished:
-                records[record.index] = record
+            recorded += len(finished)
+            if stopped is None:
+                for record, _ in finished:
+                    prefix.waiting[record.index] = record
+                stopped = self._stop(prefix)
             if backend.broken:
                 backend.restart()
-            if stopped is None:
-                stopped = self._stop(records)
             if progress is not None:
-                progress(len(records), self.limit, prefix.extend(records))
+                progress(recorded, self.limit, prefix)
         return stopped or "runs"
 
-    def _stop(self, records: dict[int, RunRecord]) -> str | None:
-        """Why to stop submitting, if the prefix already answers.
+    def _stop(self, prefix: PrefixCounts) -> str | None:
+        """Fold the runs that extend the prefix; why to stop submitting, if it answers.
 
-        The rule is tested at every prefix length ``n`` not tested before, in order, and the
-        campaign stops at the *smallest* ``n`` where it holds (``stop_n``): when runs finish out
-        of order the prefix can grow by several runs at once, and testing only its new length
-        would make the answer depend on which worker was faster.
+        The rule is tested at every new prefix length ``n``, in order, and the campaign stops
+        at the *smallest* ``n`` where it holds (``stop_n``): when runs finish out of order the
+        prefix can grow by several runs at once, and testing only its new length would make
+        the answer depend on which worker was faster. The SPRT wins a tie with the precision
+        rule.
         """
-        if self.hypothesis is None and self.options.epsilon is None:
-            return None
-        prefix = _prefix(records)
-        decided = self._sprt_decided_at(prefix) if self.hypothesis is not None else None
-        precise = None
-        if self.options.epsilon is not None:
-            for n in range(self._tested + 1, len(prefix) + 1):
-                if decided is not None and n >= decided:
-                    break
-                if precise_enough(prefix[:n], self.options.epsilon, self.options.confidence):
-                    precise = n
-                    break
-        self._tested = len(prefix)
-        if decided is not None and (precise is None or decided <= precise):
-            self.stop_n = decided
-            return "hypothesis"
-        if precise is not None:
-            self.stop_n = precise
-            return "epsilon"
-        self.stop_n = len(prefix)
+        epsilon = self.options.epsilon
+        while prefix.length in prefix.waiting:
+            record = prefix.waiting.pop(prefix.length)
+            prefix.add(record)
+            if self.hypothesis is not None:
+                if prefix.sprt is None:
+                    prefix.sprt = self._new_sprt()
+                if prefix.sprt.add(record) is not None:
+                    self.stop_n = prefix.length
+                    return "hypothesis"
+            if epsilon is not None and precise_enough(prefix.counts, epsilon,
+                                                      self.options.confidence):
+                self.stop_n = prefix.length
+                return "epsilon"
+        self.stop_n = prefix.length
         return None
 
-    def _sprt_decided_at(self, prefix: list[RunRecord]) -> int | None:
-        """The number of prefix runs after which the SPRT decides, or ``None``."""
+    def _new_sprt(self) -> Sprt:
         alpha = 1.0 - self.options.confidence
         assert self.hypothesis is not None
-        test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
-        for n, record in enumerate(prefix, start=1):
-            if test.add(record) is not None:
-                return n
-        return None
+        return Sprt(self.hypothesis, self.options.delta, alpha, alpha)
 
     def _sprt(self, prefix: list[RunRecord]) -> Sprt:
-        alpha = 1.0 - self.options.confidence
-        test = Sprt(self.hypothesis, self.options.delta, alpha, alpha)
+        test = self._new_sprt()
         for record in prefix:
             if test.add(record) is not None:
                 break
@@ -263,24 +259,22 @@ class Campaign:
                               getattr(self.backend, "name", "pool"), wall, self.store.path)
 
 
-class _Prefix:
-    """The runs ``0 … n−1`` recorded so far, extended as runs arrive (each run is looked at
-    once, instead of walking the whole prefix after every run)."""
+class PrefixCounts:
+    """The runs ``0 … n−1`` recorded so far, as counts (no record kept): ``length`` is ``n``,
+    ``done`` how many of them are ``done``; :attr:`waiting` holds the runs that finished
+    before an earlier one, until the prefix reaches them."""
+
+    __slots__ = ("length", "done", "counts", "sprt", "waiting")
 
     def __init__(self) -> None:
-        self.runs: list[RunRecord] = []
+        self.length = 0
+        self.done = 0
+        self.counts = EventCounts()
+        self.sprt: Sprt | None = None
+        self.waiting: dict[int, RunRecord] = {}
 
-    def extend(self, records: dict[int, RunRecord]) -> list[RunRecord]:
-        runs = self.runs
-        while len(runs) in records:
-            runs.append(records[len(runs)])
-        return runs
-
-
-def _prefix(records: dict[int, RunRecord]) -> list[RunRecord]:
-    prefix = []
-    index = 0
-    while index in records:
-        prefix.append(records[index])
-        index += 1
-    return prefix
+    def add(self, record: RunRecord) -> None:
+        """Fold the run ``length`` in."""
+        self.length += 1
+        self.done += record.status == "done"
+        self.counts.add(record)

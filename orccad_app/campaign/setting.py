@@ -109,8 +109,8 @@ def draw_values(spec: CampaignSpec, rng: np.random.Generator) -> dict[str, Any]:
     values: dict[str, Any] = {}
     for entry in spec.params:
         values[entry.target] = entry.dist.sample(rng)
-    for entry in spec.timings:  # whole nanoseconds: --timing refuses anything finer
-        values[entry.target] = whole_ns_ms(entry.dist.sample(rng))
+    for timing in spec.timings:  # whole nanoseconds: --timing refuses anything finer
+        values[timing.target] = whole_ns_ms(timing.dist.sample(rng))
     for number, inject in enumerate(spec.injections):
         values[f"inject[{number}].occurs"] = int(rng.random() < inject.probability)
         if inject.value is not None:
@@ -126,7 +126,8 @@ def build_setting(spec: CampaignSpec, index: int, seed: int, until_s: float,
     sets = tuple(f"{e.target}={_text(values[e.target])}" for e in spec.params)
     timings = tuple(f"{e.target}={_text(values[e.target])}" for e in spec.timings)
     injections = []
-    kept = {e.target: float(values[e.target]) for e in (*spec.params, *spec.timings)}
+    kept = {target: float(values[target])
+            for target in (*(e.target for e in spec.params), *(e.target for e in spec.timings))}
     for number, inject in enumerate(spec.injections):
         prefix = f"inject[{number}]"
         occurs = bool(values[f"{prefix}.occurs"])

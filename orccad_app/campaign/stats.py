@@ -29,8 +29,9 @@ from typing import Any, Iterable
 from orccad_app.campaign.adapter import RunRecord
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "event_counts",
-           "estimates", "precise_enough", "summarize", "influence"]
+__all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "EventCounts",
+           "event_counts", "estimates", "estimates_of", "precise_enough", "summarize",
+           "influence"]
 
 _HYPOTHESIS = re.compile(r"^\s*P\(\s*(.+?)\s*\)\s*(>=|<=)\s*([0-9.eE+-]+)\s*$")
 _OUTCOMES = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
@@ -53,24 +54,56 @@ def chernoff_runs(epsilon: float, confidence: float) -> int:
     return math.ceil(math.log(2.0 / (1.0 - confidence)) / (2.0 * epsilon ** 2))
 
 
+class EventCounts:
+    """Per event, the runs where it happened and the runs where it was defined, counted one
+    run at a time (a campaign folds its runs in as they come, keeping no record)."""
+
+    __slots__ = ("runs", "_status", "_outcomes", "_holds", "_known")
+
+    def __init__(self) -> None:
+        self.runs = 0
+        self._status: dict[str, int] = {}
+        """Per status or outcome label, the runs with that status or that outcome."""
+        self._outcomes: set[str] = set(_OUTCOMES)
+        """The events counted: every status, and each outcome label seen."""
+        self._holds: dict[str, int] = {}
+        self._known: dict[str, int] = {}
+        """Per property, the runs where it holds / where its verdict is known."""
+
+    def add(self, record: RunRecord) -> None:
+        """Count one run."""
+        self.runs += 1
+        status = self._status
+        status[record.status] = status.get(record.status, 0) + 1
+        if record.outcome != record.status:
+            status[record.outcome] = status.get(record.outcome, 0) + 1
+        self._outcomes.add(record.outcome)
+        for name, result in record.properties.items():
+            holds = result.holds
+            known = self._known.get(name, 0)
+            self._known[name] = known if holds is None else known + 1
+            self._holds[name] = self._holds.get(name, 0) + (1 if holds else 0)
+
+    def counts(self) -> tuple[dict[str, int], dict[str, int]]:
+        """``(hits, defined)``: the outcomes (every status, and each outcome label seen) in
+        the order of :data:`_OUTCOMES`, then the properties by name."""
+        hits: dict[str, int] = {}
+        defined: dict[str, int] = {}
+        for name in sorted(self._outcomes, key=_order):
+            hits[name] = self._status.get(name, 0)
+            defined[name] = self.runs
+        for name in sorted(self._holds):
+            hits[name] = self._holds[name]
+            defined[name] = self._known[name]
+        return hits, defined
+
+
 def event_counts(records: Iterable[RunRecord]) -> tuple[dict[str, int], dict[str, int]]:
     """Per event, the runs where it happened and the runs where it was defined."""
-    hits: dict[str, int] = {}
-    defined: dict[str, int] = {}
-    records = list(records)
-    names = set(_OUTCOMES)
+    counts = EventCounts()
     for record in records:
-        names.add(record.outcome)
-    props = sorted({name for record in records for name in record.properties})
-    for name in sorted(names, key=_order):
-        hits[name] = sum(1 for r in records if r.status == name or r.outcome == name)
-        defined[name] = len(records)
-    for name in props:
-        values = [r.properties[name].holds for r in records if name in r.properties]
-        known = [v for v in values if v is not None]
-        hits[name] = sum(known)
-        defined[name] = len(known)
-    return hits, defined
+        counts.add(record)
+    return counts.counts()
 
 
 def _order(name: str) -> tuple[int, str]:
@@ -80,7 +113,12 @@ def _order(name: str) -> tuple[int, str]:
 
 def estimates(records: list[RunRecord], confidence: float) -> dict[str, dict[str, Any]]:
     """``P(event)`` with its Clopper–Pearson interval for every outcome and property."""
-    hits, defined = event_counts(records)
+    return estimates_of(*event_counts(records), confidence)
+
+
+def estimates_of(hits: dict[str, int], defined: dict[str, int],
+                 confidence: float) -> dict[str, dict[str, Any]]:
+    """:func:`estimates` from the counts of :class:`EventCounts`."""
     result = {}
     for name, k in hits.items():
         n = defined[name]
@@ -90,12 +128,19 @@ def estimates(records: list[RunRecord], confidence: float) -> dict[str, dict[str
     return result
 
 
-def precise_enough(records: list[RunRecord], epsilon: float, confidence: float) -> bool:
-    """Every estimate's interval half-width is at most ``epsilon``."""
-    if not records:
+def precise_enough(records: list[RunRecord] | EventCounts, epsilon: float,
+                   confidence: float) -> bool:
+    """Every estimate's interval half-width is at most ``epsilon`` (on ``records``, or on
+    runs already counted)."""
+    counts = records if isinstance(records, EventCounts) else None
+    if counts is None:
+        counts = EventCounts()
+        for record in records:  # type: ignore[union-attr]
+            counts.add(record)
+    if not counts.runs:
         return False
     return all((e["high"] - e["low"]) / 2 <= epsilon
-               for e in estimates(records, confidence).values() if e["runs"])
+               for e in estimates_of(*counts.counts(), confidence).values() if e["runs"])
 
 
 @dataclass(frozen=True)
@@ -190,16 +235,16 @@ def summarize(records: list[RunRecord], closest: int = 5) -> dict[str, Any]:
     robustness = {}
     worst = {}
     for name in props:
-        scored = [(r.properties[name].robustness, r.index) for r in records
-                  if name in r.properties and r.properties[name].robustness is not None]
+        scored = [(value, r.index) for r in records if name in r.properties
+                  if (value := r.properties[name].robustness) is not None]
         robustness[name] = _describe([value for value, _ in scored])
         worst[name] = [{"run": index, "robustness": value}
                        for value, index in sorted(scored)[:closest]]
     metrics = sorted({name for r in records for name in r.metrics})
     return {"completion_time_s": _describe(done),
             "robustness": robustness,
-            "metrics": {name: _describe([r.metrics[name] for r in records
-                                         if r.metrics.get(name) is not None])
+            "metrics": {name: _describe([value for r in records
+                                         if (value := r.metrics.get(name)) is not None])
                         for name in metrics},
             "closest_to_violation": worst}
 

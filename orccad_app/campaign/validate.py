@@ -49,17 +49,17 @@ def check_spec(compiled: CompiledMission, spec: CampaignSpec, until_s: float) ->
             setting = RunSetting(0, 0, until_s, sets=(f"{entry.target}={value!r}",))
             _located(spec, entry.key, lambda s=setting: compiled.plan(s))
     timings = [(t, _ends(t.dist)) for t in spec.timings]
-    for entry, ends in timings:
+    for timing, ends in timings:
         for value in ends:
-            setting = RunSetting(0, 0, until_s, timings=(f"{entry.target}={value!r}",))
-            _located(spec, entry.key, lambda s=setting: compiled.plan(s))
+            setting = RunSetting(0, 0, until_s, timings=(f"{timing.target}={value!r}",))
+            _located(spec, timing.key, lambda s=setting: compiled.plan(s))
     for low_high in (0, -1):  # every timing at its low, then high end, together
         together = tuple(f"{t.target}={ends[low_high]!r}" for t, ends in timings)
         if together:
             _located(spec, timings[0][0].key,
                      lambda s=RunSetting(0, 0, until_s, timings=together): compiled.plan(s))
-    for entry in spec.injections:
-        _check_injection(compiled, spec, entry, until_s)
+    for inject in spec.injections:
+        _check_injection(compiled, spec, inject, until_s)
     _check_signals(compiled, spec, until_s)
 
 

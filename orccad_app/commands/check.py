@@ -246,7 +246,8 @@ def _write_promela(source, mission, report, path: str) -> None:
     from orccad_app.verify.checker import applicable
     from orccad_app.verify.promela import to_promela
 
-    text = to_promela(report.model.automaton, tracked=report.model.tracked,
+    text = to_promela(report.model.automaton, report.model.composition.roles,
+                      tracked=report.model.tracked,
                       properties=[p for p in applicable(source.program.properties, mission)
                                   if p not in report.signal_properties],
                       assumptions=applicable(source.program.assumptions, mission))

@@ -34,6 +34,7 @@ from typing import Any, ClassVar
 
 
 from orccad_app.control.context import ModuleContext
+from orccad_app.control.c_implementation import CImplementation
 from orccad_app.control.errors import ControlError, InvalidParameter
 from orccad_app.control.params import ParamSpec, close_matches, resolve_params
 from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
@@ -65,6 +66,10 @@ class ModuleKind(ABC):
     #: compute (``tracking_error``: ``{e}`` or ``{q, qd}``). Empty: the required inputs,
     #: and for an observer whose inputs are all optional, any one of them.
     input_alternatives: ClassVar[tuple[frozenset[str], ...]] = ()
+    #: The kind's C for ``orccad sil`` and ``orccad codegen --module-tasks``
+    #: (:class:`~orccad_app.control.c_implementation.CImplementation`); ``None``: the kind
+    #: exists only in Python and a mission running it in C is refused.
+    c_implementation: ClassVar[CImplementation | None] = None
 
     @property
     def is_observer(self) -> bool:

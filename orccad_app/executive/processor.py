@@ -29,7 +29,6 @@ if TYPE_CHECKING:
 
 __all__ = ["Processor", "ProcessorStats"]
 
-_DISPATCH = EventClass.DISPATCH
 _FINISH = EventClass.FINISH
 
 
@@ -108,7 +107,7 @@ class Processor:
         """Ask for a scheduling decision at the current instant."""
         if not self._dispatch_pending and self._ready:
             self._dispatch_pending = True
-            self._kernel.schedule(self._kernel.now, _DISPATCH, self._dispatch)
+            self._kernel.defer(self._dispatch)  # class DISPATCH, now (Kernel.defer)
 
     # -- scheduling --------------------------------------------------------------------------
 

@@ -134,7 +134,8 @@ class MissionChecker:
         self.condition_kinds[expr] = kind
         if kind is ConditionKind.SIGNAL:
             for leaf in leaves:
-                self.name_kinds[leaf] = NameKind.SIGNAL
+                if isinstance(leaf, ast.Name):
+                    self.name_kinds[leaf] = NameKind.SIGNAL
         else:
             if counted:
                 self.error("a counted trigger needs a signal ('await 3 S')", expr.loc)

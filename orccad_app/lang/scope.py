@@ -140,21 +140,25 @@ def classify_condition(expr: ast.Expr, scope: dict[str, NameKind] | Scope) -> Co
     """Whether ``expr`` tests signal presence or computes a value.
 
     ``scope`` maps visible names to their :class:`NameKind` (or is a :class:`Scope`). A
-    condition whose identifiers are all signals and whose operators are only ``not``,
-    ``and``, ``or`` is :attr:`ConditionKind.SIGNAL`; one naming no signal is
+    condition whose identifiers are all signals (or ``pre(S)``) and whose operators are only
+    ``not``, ``and``, ``or`` is :attr:`ConditionKind.SIGNAL`; one naming no signal is
     :attr:`ConditionKind.DATA`. Raises :class:`OrccadError` for a mix of both (``S and
     x > 2``) and for a signal used inside a value (``S + 1``).
     """
     kinds = scope.kinds() if isinstance(scope, Scope) else scope
     signals = [n for n in _names_in(expr) if kinds.get(n.name) is NameKind.SIGNAL]
-    if not signals:
-        return ConditionKind.DATA
     leaves = signal_leaves(expr) or ()
+    if not signals:
+        if leaves and all(isinstance(leaf, ast.PreSignal) for leaf in leaves):
+            return ConditionKind.SIGNAL  # pre(S), not pre(A) and pre(B)...: presence tests
+        return ConditionKind.DATA
     buried = [n for n in signals if not any(leaf is n for leaf in leaves)]
     if buried:
         raise OrccadError(f"signal '{buried[0].name}' used as a value; write "
                           f"?{buried[0].name} for its last value", buried[0].loc)
     for leaf in leaves:
+        if isinstance(leaf, ast.PreSignal):  # pre(S): S's presence in the previous instant
+            continue
         if not (isinstance(leaf, ast.Name) and kinds.get(leaf.name) is NameKind.SIGNAL):
             raise OrccadError(f"condition mixes the presence of signal '{signals[0].name}' "
                               "with a value; test them in nested statements", leaf.loc)

@@ -41,6 +41,7 @@ from orccad_app.robottask.run_arguments import RunArgument
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 from orccad_app.robottask.updates import UpdateForm
 from orccad_app.tcs.graph import TCS
+from orccad_app.tcs.port import PortRef
 
 __all__ = ["SiteModules", "ParamUpdate", "PlantSpec", "MissionPlan", "plan_mission",
            "plan_composition"]
@@ -83,6 +84,8 @@ class SiteModules:
     :param start_signal: the automaton output that (re)starts the task (``X.start``).
     :param good_end_signal: the automaton output of its good end (``X.good_end``).
     :param error_unit: the unit of its task error (``rad``, ``m`` for a Cartesian position).
+    :param event_ports: automaton input ``X.E`` -> the observer port that raises it (TCS
+        module, port).
     """
 
     site: RunSite
@@ -95,6 +98,7 @@ class SiteModules:
     start_signal: str | None = None
     good_end_signal: str | None = None
     error_unit: str = "rad"
+    event_ports: dict[str, PortRef] = field(default_factory=dict)
 
     @property
     def number(self) -> int:
@@ -243,11 +247,12 @@ def _param_updates(instance: RobotTaskInstance, names: dict[str, str]) -> dict[s
 def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, str],
                   inputs: set[str], roles: SignalRoles) -> SiteModules:
     task = site.task
-    events = {}
-    for event, (module, port) in instance.events.items():
+    events, event_ports = {}, {}
+    for event, ref in instance.events.items():
         name = f"{task}.{event}"
         if name in inputs:
-            events[f"{names[module]}.{port}"] = name
+            port = event_ports[name] = PortRef(names[ref.module], ref.port)
+            events[str(port)] = name
     adjustments = _param_updates(instance, names)
     error = next((names[n] for n, spec in instance.modules.items()
                   if any(p.name == "e" and p.direction == "out" for p in spec.instance.ports)),
@@ -256,7 +261,7 @@ def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, s
     return SiteModules(site, instance, tuple(names.values()),
                        tuple(names[m] for m in instance.measuring), events, adjustments, error,
                        roles.signal(RoleKind.START, task), roles.signal(RoleKind.GOOD_END, task),
-                       unit)
+                       unit, event_ports)
 
 
 def _error_unit(instance: RobotTaskInstance) -> str:

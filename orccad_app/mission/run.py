@@ -226,8 +226,8 @@ class MissionRun:
             key = (site.automaton_processor, site.reaction_ns)
             if key not in servers:
                 servers[key] = self.sim.reaction_server(*key, self._react_to)
-            for signal in site.events:
-                observer = self.sim.tasks[signal.rsplit(".", 1)[0]].task
+            for signal, name in site.events.items():
+                observer = self.sim.tasks[site.event_ports[name].module].task
                 self.sim.signal_routes.add(signal, observer.processor, servers[key])
 
     def _react_to(self, signals: list[tuple[str, Any]]) -> None:

@@ -12,7 +12,7 @@ The entry point for commands and campaigns::
   formula translation: ``true`` / ``false`` when the mission ended (the run then stutters
   forever), else the LTL3 verdict (``undecided`` when the finite run cannot decide);
   ``robustness`` is ``None``.
-- **Signal properties** (STL) are evaluated by rtamt on the run's samples
+- **Signal properties** (STL) are evaluated on the run's samples (linear in the run)
   (:mod:`orccad_app.verify.stl`): ``robustness`` is the robustness at time 0 in the unit of
   the signals (``unit`` when they share one), ``verdict`` is ``true`` when it is > 0,
   ``false`` when < 0, ``undecided`` when exactly 0 (on the boundary). ``±inf`` when no
@@ -29,6 +29,8 @@ import math
 from dataclasses import dataclass
 from enum import Enum
 from typing import Any
+
+import numpy as np
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
@@ -206,12 +208,14 @@ class PropertyMonitor:
     def _signal_result(self, signal: _Signal) -> PropertyResult:
         recorder = self.recorder
         count = recorder.complete_samples()
-        samples: dict[str, list[float]] = {}
+        samples: dict[str, Any] = {}
+        stacked: dict[tuple[str, str], np.ndarray] = {}  # each port: one row per sample
         for name, component in signal.stl.ports.items():
-            values = recorder.port_values[(component.robot, component.port)][:count]
-            index = component.index
-            samples[name] = [float(v) if index is None and v.ndim == 0 else
-                             float(v.reshape(-1)[index or 0]) for v in values]
+            port = (component.robot, component.port)
+            if port not in stacked and count:
+                stacked[port] = np.stack([np.asarray(v, dtype=float).reshape(-1) for v in
+                                          recorder.port_values[port][:count]])
+            samples[name] = stacked[port][:, component.index or 0] if count else []
         for name, key in signal.stl.events.items():
             samples[name] = [math.inf if key in events or key == ("true",) else -math.inf
                              for events in recorder.sample_events[:count]]
@@ -220,7 +224,7 @@ class PropertyMonitor:
                                   None, signal.unit, 0)
         value: float | None = None
         reason = None
-        if any(math.isnan(v) for name in signal.stl.ports for v in samples[name]):
+        if any(np.isnan(samples[name]).any() for name in signal.stl.ports):
             reason = "a sampled value is not a number (a diverged plant)"
         else:
             try:

@@ -3,12 +3,12 @@
 :class:`PropertyRecorder` observes a mission run (the mission hook ``on_reaction``, called at
 every reaction of the automaton, the periodic ticks included) and keeps:
 
-- **instants** (LTL): one letter per reaction, the set of the monitored atoms true in it
-  (the table of :mod:`orccad_app.verify.letters`): ``S`` when input ``S`` is present or output
-  ``S`` emitted, ``started(X)`` / ``ended(X)`` / ``raised(E)`` when ``X.start`` /
-  ``X.good_end`` / ``E.raised`` is emitted, ``active(X)`` when the state after the reaction is
-  inside an instance of X, ``done`` / ``failed`` / ``aborted`` in the reaction where the
-  mission's status becomes so;
+- **instants** (LTL): one letter per reaction, the set of the monitored atoms true in it, as
+  :mod:`orccad_app.robottask.atoms` defines them (the model checker reads the same
+  definitions): a signal is present when the reaction has it as an input or emits it;
+  ``active(X)`` reads the reactor's state after the reaction; ``done`` / ``failed`` /
+  ``aborted`` are true in the reaction where the mission's status becomes so
+  (:func:`run_instant`);
 - **samples** (signal properties), one per period ``period_ns`` (the mission's tick), sample
   ``k`` standing for ``[k·P, (k+1)·P)``: the monitored ports' true values at ``k·P``
   (:meth:`~orccad_app.executive.plant.MujocoPlant.observe`: no noise, no sensor fault) and the
@@ -18,17 +18,27 @@ every reaction of the automaton, the periodic ticks included) and keeps:
 
 from __future__ import annotations
 
-from typing import Any, Iterable
+from collections.abc import Callable, Collection, Iterable
+from typing import Any
 
 import numpy as np
 
 from orccad_app.mission.observer import MissionObserver
 from orccad_app.mission.run import MissionRun
+from orccad_app.robottask.atoms import Atoms, InstantView
 from orccad_app.robottask.labels import RtLabel
 
-__all__ = ["PropertyRecorder"]
+__all__ = ["PropertyRecorder", "run_instant"]
 
-_STATUSES = ("done", "failed", "aborted")
+
+def run_instant(present: Collection[str], status: str, previous: str,
+                labels: Callable[[], Iterable[object]]) -> InstantView:
+    """What the atoms read of one reaction of a run: the signals ``present`` (its inputs and
+    outputs), the mission's ``status`` after it (``previous`` before it: a status atom is
+    true where the status becomes so) and the reactor's state ``labels`` after it."""
+    return InstantView(present,
+                       lambda: {label.task for label in labels() if isinstance(label, RtLabel)},
+                       status if status != previous else None)
 
 
 class PropertyRecorder(MissionObserver):
@@ -53,7 +63,7 @@ class PropertyRecorder(MissionObserver):
                              if site.error_module
                              and site.instance.robot_name in self._task_errors}
         self._errors = {robot: np.zeros(dim) for robot, dim in self._task_errors.items()}
-        self._keys = sorted(set(keys))
+        self._atoms = Atoms(mission_run.plan.roles, keys)
         self._ports = sorted(set(ports))
         self._status = "running"
         self._letters: dict[tuple, frozenset] = {}
@@ -101,30 +111,9 @@ class PropertyRecorder(MissionObserver):
                 values.append(plants[robot].observe(port))
 
     def _letter(self, present: set[str], status: str) -> frozenset:
-        labels = None
-        true = []
-        for key in self._keys:
-            kind = key[0]
-            if kind == "sig":
-                hit = key[1] in present
-            elif kind == "started":
-                hit = f"{key[1]}.start" in present
-            elif kind == "ended":
-                hit = f"{key[1]}.good_end" in present
-            elif kind == "raised":
-                hit = f"{key[1]}.raised" in present
-            elif kind == "active":
-                if labels is None:
-                    labels = self._run.reactor.labels
-                hit = any(isinstance(label, RtLabel) and label.task == key[1]
-                          for label in labels)
-            elif kind == "status":
-                hit = status == key[1] and self._status != key[1]
-            else:  # ("true",)
-                hit = True
-            if hit:
-                true.append(key)
-        return frozenset(true)
+        reactor = self._run.reactor
+        return self._atoms.letter(run_instant(present, status, self._status,
+                                              lambda: reactor.labels))
 
     @property
     def ended(self) -> bool:

@@ -85,7 +85,8 @@ class _Walk:
 
     __slots__ = ("prep", "active", "oracle", "env", "must", "can", "unknown", "unknown_at",
                  "events", "next", "tested", "values", "unready", "blocked", "fresh",
-                 "occurrences", "active_set", "deferred_vars", "old_reads", "deferred_keys")
+                 "occurrences", "active_set", "deferred_vars", "old_reads", "deferred_keys",
+                 "frozen", "before")
 
     def __init__(self, prep: Prepared, active: tuple[int, ...], oracle: Oracle, env: dict,
                  values: _Values):
@@ -105,6 +106,8 @@ class _Walk:
         self.unready: set = set()     # keys with an emission not sure or not ready yet
         self.blocked: list = []       # (signal key, location) of reads that had to wait
         self.fresh: set = set()       # local signals entered in surface mode (sure)
+        self.frozen: list = []        # (index, lo, hi) of each suspend frozen in the instant
+        self.before: list = []        # (key, loc) of the reads waiting earlier in sequence
         self.occurrences: dict = {}
         self.deferred_vars: set = set()  # variables whose assignment waits for a value
         self.old_reads: set = set()      # locals whose old incarnation has a read waiting
@@ -263,6 +266,8 @@ class _Walk:
         self.can.add(key)
         if sure:
             self.must.add(key)
+            if self.before:
+                self._constructive(key, stmt)
         if stmt.value is None:
             return True
         if not sure or key in self.deferred_keys:
@@ -277,8 +282,28 @@ class _Walk:
                                  key, self.read_keys(stmt.value, scope), stmt.loc))
         return True
 
+    def _constructive(self, key, stmt: ir.Emit) -> None:
+        """Esterel v5 rejects a value read before, in sequence, an emission of its signal in
+        the same instant: the read waits for every emission, which waits for the read."""
+        for waiting, loc in self.before:
+            if waiting == key:
+                name = stmt.signal.name
+                raise OrccadError(
+                    f"non-constructive program: ?{name} is read here before an emission of "
+                    f"{name} that follows it in the same instant (line {stmt.loc.line}); "
+                    f"emit {name} first, or read pre(?{name}) for its previous value", loc)
+
     def _seq(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        saved = len(self.before)
+        try:
+            return self._seq_children(node, depth, sure, scope)
+        finally:
+            del self.before[saved:]
+
+    def _seq_children(self, node: KNode, depth: bool, sure: bool, scope: dict):
+        """:meth:`_seq`; the reads that wait in a child precede the next children."""
         children = node.children
+        before, blocked = self.before, self.blocked
         start = 0
         codes = 0
         must: int | None = 0
@@ -288,7 +313,10 @@ class _Walk:
             # children share their ``lo`` with the next child)
             start = bisect_right(node.child_los, first) - 1
             child = children[start]
+            mark = len(blocked)
             must, child_codes = _GO[child.kind](self, child, True, sure, scope)
+            if len(blocked) > mark:
+                before.extend(blocked[mark:])
             codes = child_codes & ~1
             if not child_codes & 1:
                 return (must if sure else None), codes
@@ -296,7 +324,10 @@ class _Walk:
             start += 1
         for index in range(start, len(children)):  # no slice: a mission's top sequence is long
             child = children[index]
+            mark = len(blocked)
             must, child_codes = _GO[child.kind](self, child, False, sure, scope)
+            if len(blocked) > mark:
+                before.extend(blocked[mark:])
             codes |= child_codes & ~1
             if not child_codes & 1:
                 return (must if sure else None), codes
@@ -319,10 +350,13 @@ class _Walk:
 
     def _loop(self, node: KNode, depth: bool, sure: bool, scope: dict):
         body = node.children[0]
+        mark, saved = len(self.blocked), len(self.before)
         must, codes = _GO[body.kind](self, body, depth, sure, scope)
         if not (depth and codes & 1):
             return must, codes
+        self.before.extend(self.blocked[mark:])  # the first pass precedes the second
         again_must, again = _GO[body.kind](self, body, False, sure and must == 0, scope)
+        del self.before[saved:]
         if must == 0:
             result = again_must
         else:
@@ -370,6 +404,7 @@ class _Walk:
             if sure:
                 lo, hi = bisect_left(self.active, node.lo), bisect_left(self.active, node.hi)
                 self.next.extend(self.active[lo:hi])
+                self.frozen.append((node.index, node.lo, node.hi))
             return 1, 2
         _, codes = _GO[body.kind](self, body, True, False, scope)
         return None, codes | 2
@@ -430,11 +465,25 @@ def react(prep: Prepared, state: tuple[int, ...] | None, oracle: Oracle) -> Outc
             present = oracle.input(decl)
         elif decl.kind == ir.LOCAL:
             present = (decl, decl not in walk.fresh) in walk.must
+            if _suspended(prep, walk, decl):  # its previous instant is its last one running
+                present = prep.pre_base + k in walk.active_set
         else:
             present = decl in walk.must
         if present:
             state_out.append(prep.pre_base + k)
     return Outcome(events, emitted, must, tuple(state_out))
+
+
+def _suspended(prep: Prepared, walk: _Walk, decl: ir.SignalDecl) -> bool:
+    """The declaration of the local ``decl`` is alive inside a suspend frozen in this instant
+    (Esterel v5: ``pre(S)`` of a local refers to the previous instant its scope ran)."""
+    for index, lo, hi in prep.local_nodes.get(decl, ()):
+        if lo == hi or bisect_left(walk.active, hi) == bisect_left(walk.active, lo):
+            continue  # no pause inside: not alive across instants
+        for frozen_index, frozen_lo, frozen_hi in walk.frozen:
+            if frozen_index < index and frozen_lo <= lo and hi <= frozen_hi:
+                return True
+    return False
 
 
 def _non_causal(walk: _Walk):

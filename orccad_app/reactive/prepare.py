@@ -77,6 +77,9 @@ class Prepared:
     #: number ``pre_base + k`` for each ``pre_signals[k]`` present in the previous instant
     pre_signals: list = field(default_factory=list)
     pre_base: int = 0
+    #: each local signal's declaration nodes (``signal S { … }``): (node index, lo, hi) —
+    #: ``pre(S)`` of a local skips the instants its declaration is suspended
+    local_nodes: dict = field(default_factory=dict)
     #: expressions made by the engine (combinations, faults), made once so that equal events
     #: of two runs are the same objects
     made: dict = field(default_factory=dict)
@@ -136,6 +139,10 @@ class _Builder:
         inner = level + 1 if node.kind == TRAP else level
         looped = in_loop or node.kind == LOOP
         node.children = tuple(self.build(child, inner, looped) for child in _children(stmt))
+        if node.kind == LOCAL:
+            for decl in stmt.signals:
+                self.out.local_nodes.setdefault(decl, []).append(
+                    (node.index, node.lo, len(self.out.pauses)))
         if node.kind == TRAP:
             del self.trap_level[stmt.trap]
         node.hi = len(self.out.pauses)

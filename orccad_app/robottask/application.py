@@ -240,7 +240,8 @@ class ApplicationLowerer(Lowerer):
                    ) -> tuple[tuple[RunArgument, ...], list[ir.Stmt]]:
         """The run-time arguments of a run site, and the emissions of their values in the
         instant the task starts (the outputs ``X.arg.P``)."""
-        arguments, emits = [], []
+        arguments: list[RunArgument] = []
+        emits: list[ir.Stmt] = []
         for param, arg in runtime_arguments(task, s):
             key = (task.name, param.name)
             decl = self.arg_signals.get(key)

@@ -28,6 +28,7 @@ from orccad_app.robottask.updates import UpdateForm, compute, update_form
 from orccad_app.robottask.values import call_form, task_arguments
 from orccad_app.robottask.wiring import Endpoint, wire
 from orccad_app.tcs.phasing import Activation
+from orccad_app.tcs.port import PortRef
 
 __all__ = ["ModuleOrigin", "ModuleSpec", "Adjustment", "RobotTaskInstance", "TaskInstances",
            "instantiate", "check_tasks",
@@ -101,7 +102,7 @@ class RobotTaskInstance:
     context: ModuleContext
     modules: dict[str, ModuleSpec] = field(default_factory=dict)
     connections: list = field(default_factory=list)
-    events: dict[str, tuple[str, str]] = field(default_factory=dict)  # signal -> module.port
+    events: dict[str, PortRef] = field(default_factory=dict)  # event -> its observer's port
     adjustments: dict[str, Adjustment] = field(default_factory=dict)
     measuring: tuple[str, ...] = ()  # modules active from phase 2 (measurement pre-conditions)
     #: what :func:`instantiate` was given, to bind the run-time arguments again at each start
@@ -133,13 +134,14 @@ def _context(task: ast.RobotTask, params: dict, robots: Mapping[str, ast.Robot],
             robot_type = robot_type.configure(robot_args)
     except OrccadError as error:
         raise _located(error, robot.loc) from None
-    tf = None if task.task_function is None else call_form(task.task_function, params)
+    function = task.task_function
+    tf = None if function is None else call_form(function, params)
     law = None if task.law is None else call_form(task.law, params)
-    if tf is not None:
+    if function is not None and tf is not None:
         try:
             resolve(host, "task function", tf)
         except OrccadError as error:
-            raise _located(error, task.task_function.loc) from None
+            raise _located(error, function.loc) from None
     try:
         return module_context(host, robot_type, tf, law, task.duration_ns and
                               task.duration_ns / 1e9, task.robot)
@@ -232,17 +234,17 @@ def _conditions(inst: RobotTaskInstance, host) -> None:
     for pre in task.preconditions:
         if isinstance(pre, ast.MeasurePrecondition):
             module = _observer(pre.observer, pre.loc, inst, host)
-            inst.events[pre.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+            inst.events[pre.observer.func] = PortRef(module, inst.modules[module].kind.event_ports[0])
             measuring.append(module)
     for exc in task.exceptions:
         module = _observer(exc.source, exc.loc, inst, host)
-        inst.events[exc.name] = (module, inst.modules[module].kind.event_ports[0])
+        inst.events[exc.name] = PortRef(module, inst.modules[module].kind.event_ports[0])
         if exc.adjust is not None:
             inst.adjustments[exc.name] = _adjustment(exc, inst)
     for post in task.postconditions:
         if isinstance(post, ast.MeasurePostcondition):
             module = _observer(post.observer, post.loc, inst, host)
-            inst.events[post.observer.func] = (module, inst.modules[module].kind.event_ports[0])
+            inst.events[post.observer.func] = PortRef(module, inst.modules[module].kind.event_ports[0])
     inst.measuring = tuple(measuring)
 
 
@@ -252,6 +254,7 @@ def _adjustment(exc: ast.ExceptionDecl, inst: RobotTaskInstance) -> Adjustment:
     finiteness); a computed one has the parameter's type at the nominal values (its range is
     checked when it is applied)."""
     adjust = exc.adjust
+    assert adjust is not None, "a type-1 exception without its update was refused by the parser"
     target = adjust.target
     module = inst.modules.get(target.component)
     if module is None:
@@ -377,9 +380,9 @@ def check_tasks(program: ast.Program, host) -> TaskInstances:
     defaults: dict[str, RobotTaskInstance] = {}
     by_run: dict[SourceLocation, RobotTaskInstance] = {}
     same: dict[tuple, RobotTaskInstance] = {}
-    for task in program.robottasks:
-        if all(p.default is not None for p in task.params):
-            defaults[task.name] = instantiate(task, robots, host)
+    for declared in program.robottasks:
+        if all(p.default is not None for p in declared.params):
+            defaults[declared.name] = instantiate(declared, robots, host)
     for mission in program.missions + program.imported_missions:
         for run in runs(mission):
             task = tasks.get(run.task)

@@ -10,6 +10,7 @@ synchronization pre/post-conditions).
 from __future__ import annotations
 
 import enum
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 __all__ = ["RoleKind", "SignalRole", "SignalRoles", "RaisedBy"]
@@ -93,6 +94,25 @@ class SignalRoles:
     def get(self, signal: str) -> SignalRole | None:
         """The role of ``signal``; ``None`` for the mission's own signals."""
         return self.by_signal.get(signal)
+
+    def is_own(self, signal: str) -> bool:
+        """Whether ``signal`` is one of the mission's own (declared, or a synchronization
+        condition) rather than one the lowering added."""
+        return signal not in self.by_signal
+
+    def own(self, signals: Iterable[str]) -> list[str]:
+        """The mission's own among ``signals``, in their order."""
+        return [signal for signal in signals if signal not in self.by_signal]
+
+    def of_kind(self, kind: RoleKind) -> dict[str, SignalRole]:
+        """Signal -> role, for the signals of role ``kind``."""
+        return {signal: role for signal, role in self.by_signal.items() if role.kind is kind}
+
+    def raised_exceptions(self) -> list[str]:
+        """The exceptions the mission can raise (type 2 or 3: an ``E.raised`` signal), by
+        name."""
+        return sorted(role.name for role in self.by_signal.values()
+                      if role.kind is RoleKind.RAISED and role.name is not None)
 
     def signal(self, kind: RoleKind, task: str) -> str | None:
         """The signal of role ``kind`` of ``task`` (e.g. its ``START``), if it has one."""

@@ -108,15 +108,16 @@ def task_arguments(task: ast.RobotTask, args: tuple[ast.Arg, ...] = (),
     """
     bound: dict[str, Any] = {}
     given: dict[str, ast.Arg] = {}
-    for index, arg in enumerate(args):
-        if arg.name is None:
+    for index, written in enumerate(args):
+        if written.name is None:
             if index >= len(task.params):
-                raise OrccadError(f"too many arguments for Robot-Task '{task.name}'", arg.loc)
-            given[task.params[index].name] = arg
+                raise OrccadError(f"too many arguments for Robot-Task '{task.name}'",
+                                  written.loc)
+            given[task.params[index].name] = written
         else:
-            given[arg.name] = arg
+            given[written.name] = written
     for param in task.params:
-        arg = given.pop(param.name, None)
+        arg: ast.Arg | None = given.pop(param.name, None)
         if arg is not None and not is_constant(arg.value):
             if actual is not None and param.name in actual:
                 bound[param.name] = actual[param.name]

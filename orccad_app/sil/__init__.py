@@ -7,7 +7,8 @@
 - :mod:`.controller`: the controller process — started, spoken to over a Unix socket,
   watched by its heartbeat, always killed and reaped;
 - :mod:`.remote`: the Module-Task proxy the executive drives;
-- :mod:`.lockstep`: ``orccad sil --lockstep``.
+- :mod:`.lockstep`: ``orccad sil --lockstep``; :mod:`.realtime`: ``orccad sil --realtime``;
+- :mod:`.runs`: the run factory through which ``orccad sil`` runs in the run façade.
 
 The C runtime library is ``orccad_app/sil/c`` (C99, no allocation, no recursion).
 See docs/deploy.md.

@@ -2,10 +2,10 @@
 
 No network and no build system: the C compiler (``$CC``, else ``cc``) compiles the generated
 table and the runtime library (``orccad_app/sil/c``) with ``-std=c99 -Wall -Wextra -Werror
--pedantic``. The executable is cached under ``$ORCCAD_CACHE_DIR`` (default
-``~/.cache/orccad``) by a hash of its sources, flags and compiler, so that a mission is compiled
-once; a missing compiler or a failing compilation is an :class:`BuildError` with the compiler's
-message.
+-pedantic`` (and ``$ORCCAD_SIL_CFLAGS``, e.g. ``-fsanitize=thread -g``). The executable is
+cached under ``$ORCCAD_CACHE_DIR`` (default ``~/.cache/orccad``) by a hash of its sources,
+flags and compiler, so that a mission is compiled once; a missing compiler or a failing
+compilation is an :class:`BuildError` with the compiler's message.
 """
 
 from __future__ import annotations
@@ -19,7 +19,8 @@ from pathlib import Path
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["BuildError", "C_DIR", "CFLAGS", "library_sources", "build_executable", "compiler"]
+__all__ = ["BuildError", "C_DIR", "CFLAGS", "library_sources", "build_executable", "compiler",
+           "extra_flags"]
 
 C_DIR = Path(__file__).parent / "c"
 """The runtime library's sources."""
@@ -33,7 +34,9 @@ class BuildError(OrccadError):
 
 def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
     """The runtime library's C files for the controller whose ``main`` is in ``main``."""
-    return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", C_DIR / main]
+    ports = [C_DIR / "orccad_port.c"] if main == "orccad_rt.c" else []
+    return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", *ports, C_DIR / "orccad_wire.c",
+            C_DIR / main]
 
 
 def compiler() -> str:
@@ -48,6 +51,12 @@ def compiler() -> str:
                      f"gcc, e.g. apt-get install -y gcc, or set CC)")
 
 
+def extra_flags() -> tuple[str, ...]:
+    """The compiler flags added by ``$ORCCAD_SIL_CFLAGS`` (e.g. ``-fsanitize=thread -g`` to run
+    the controller under ThreadSanitizer), whitespace-separated."""
+    return tuple(os.environ.get("ORCCAD_SIL_CFLAGS", "").split())
+
+
 def _cache_dir() -> Path:
     root = os.environ.get("ORCCAD_CACHE_DIR")
     return Path(root) if root else Path.home() / ".cache" / "orccad"
@@ -58,8 +67,9 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     """Compile ``sources`` (with ``orccad_mt.h`` on the include path) into one executable,
     cached by content; return its path."""
     cc = compiler()
+    flags = (*CFLAGS, *extra_flags())
     digest = hashlib.sha256()
-    for part in (cc, *CFLAGS, *libraries):
+    for part in (cc, *flags, *libraries):
         digest.update(part.encode() + b"\0")
     for path in [*sources, *sorted(C_DIR.glob("*.h"))]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
@@ -70,7 +80,7 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     target_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target_dir) as work:
         partial = Path(work) / name
-        command = [cc, *CFLAGS, "-I", str(C_DIR), *map(str, sources), "-o", str(partial),
+        command = [cc, *flags, "-I", str(C_DIR), *map(str, sources), "-o", str(partial),
                    *libraries]
         try:
             done = subprocess.run(command, capture_output=True, text=True,

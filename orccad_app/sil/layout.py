@@ -8,7 +8,8 @@ one vector of doubles whose offsets the C kind reads (the layouts are listed at 
 goes into the vector too: the C code never reads the robot file.
 
 :func:`c_layout` refuses, with the module kind's name and the reason, a kind that has no C
-implementation (:class:`NoCImplementation`): a plugin's kind unknown to the runtime, a law
+implementation (:class:`NoCImplementation`): a plugin's kind whose plugin gives no C
+(``ModuleKind.c_implementation``: then its C file is compiled in, :data:`CKind.PLUGIN`), a law
 other than PID or computed torque, a model other than Pinocchio's (exact or perturbed), a task
 function other than joint tracking, a vector longer than the runtime's slots.
 """
@@ -56,6 +57,8 @@ class CKind(IntEnum):
     AUV_AUTOPILOT = 30
     AUV_GUIDANCE = 31
     AUV_OBSERVER = 32
+    PLUGIN = 100
+    """A plugin kind's C (``ORC_PLUGIN_BASE``: the table numbers each plugin kind from it)."""
 
 
 class NoCImplementation(OrccadError):
@@ -79,6 +82,9 @@ class CLayout:
     inputs: tuple[CPort, ...]
     outputs: tuple[CPort, ...]
     params: tuple[float, ...]
+    plugin: Any = None
+    """For :attr:`CKind.PLUGIN`: the kind's
+    :class:`~orccad_app.control.c_implementation.CImplementation`."""
 
     @property
     def input_doubles(self) -> int:
@@ -330,10 +336,32 @@ def c_layout(instance: Any) -> CLayout:
     elif name in _MODULES:
         kind, params = _MODULES[name](instance)
     else:
-        raise NoCImplementation(f"module kind {name!r} has no C implementation: it exists only "
-                                f"in Python, so it cannot run in the controller process")
+        plugin = getattr(instance.kind, "c_implementation", None)
+        if plugin is None:
+            raise NoCImplementation(f"module kind {name!r} has no C implementation: it exists "
+                                    f"only in Python, so it cannot run in the controller process "
+                                    f"(its plugin may provide C: ModuleKind.c_implementation, "
+                                    f"docs/deploy.md)")
+        return CLayout(CKind.PLUGIN, _ports(instance, "in"), _ports(instance, "out"),
+                       _plugin_params(name, plugin, instance), plugin)
     if len(params) > MAX_PARAMS:
         raise NoCImplementation(f"module kind {name!r}: {len(params)} parameters, the C "
                                 f"runtime holds {MAX_PARAMS}")
     return CLayout(kind, _ports(instance, "in"), _ports(instance, "out"),
                    tuple(float(v) for v in params))
+
+
+def _plugin_params(name: str, plugin: Any, instance: Any) -> tuple[float, ...]:
+    """The parameter vector a plugin kind's C reads: finite numbers, within the runtime's."""
+    try:
+        params = tuple(_floats(plugin.params(instance)))
+    except (TypeError, ValueError) as error:
+        raise NoCImplementation(f"module kind {name!r}: its C implementation's parameters "
+                                f"are not numbers ({error})") from None
+    if len(params) > MAX_PARAMS:
+        raise NoCImplementation(f"module kind {name!r}: {len(params)} parameters, the C "
+                                f"runtime holds {MAX_PARAMS}")
+    if not all(np.isfinite(params)):
+        raise NoCImplementation(f"module kind {name!r}: its C implementation's parameters "
+                                f"must be finite")
+    return params

@@ -15,9 +15,11 @@ the task errors of the report).
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
-Only ``asyn/asyn`` connections run in real time, and type-1 ramps (stepped at the executive's
-releases) do not: a mission with another protocol or a ramp is refused with what and why (the
-lockstep mode runs both, in the executive). Robot ports are exchanged every ``exchange_ns``
+Every connection runs its protocol on the controller's threads (``orccad_port.c``: the 8 of
+RR-1801 as the executive runs them on one processor: the threads share memory, there is no
+bus). A type-1 ramp is stepped by this process at the Module-Task's release grid on the wall
+clock (a parameter write between two jobs: a job may still see the previous step when the
+plant server is late). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
 at most that long — a delay the simulated run does not have, so the tracking errors differ a
 little (docs/deploy.md).
@@ -36,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun
@@ -100,22 +102,6 @@ class ModuleTiming:
     predicted_s: float | None
 
 
-def _refuse_unsupported(plan: MissionPlan) -> None:
-    """Refuse what the real-time mode does not run, naming it and why."""
-    for site in plan.sites:
-        for exception, update in site.adjustments.items():
-            if update.form is not None and update.form.ramp is not None:
-                raise OrccadError(f"orccad sil --realtime: the ramp of {site.task}.{exception} "
-                                  f"is stepped at the executive's releases, which the real-time "
-                                  f"mode does not have (use --lockstep)", update.loc)
-    for connection in plan.tcs.connections:
-        if connection.protocol.value != "asyn/asyn":
-            raise OrccadError(f"orccad sil --realtime runs asyn/asyn connections only: "
-                              f"{connection.producer} -> {connection.consumer} is "
-                              f"{connection.protocol.value} (use --lockstep, which runs every "
-                              f"protocol)", connection.location)
-
-
 class _ControllerSim:
     """The executive's simulation as the mission layer sees it, with the Module-Tasks'
     activations, kills and fresh ports sent to the controller instead of run here."""
@@ -133,9 +119,11 @@ class _ControllerSim:
         return [modules] if isinstance(modules, str) else list(modules)
 
     def activate(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
+        """One request for all ``modules``: their first releases are one instant."""
         at = self._sim.kernel.now if at_ns is None else at_ns
-        for name in self._names(modules):
-            self._controller.request(Op.ACTIVATE, self._table.index(name), at / 1e9)
+        indices = [float(self._table.index(name)) for name in self._names(modules)]
+        if indices:
+            self._controller.request(Op.ACTIVATE, 0, at / 1e9, indices)
 
     def kill(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
         for name in self._names(modules):
@@ -156,7 +144,7 @@ class RealtimeRun(MissionRun):
         self._table, self._controller, self._shared = table, controller, shared
         self.sim = _ControllerSim(self.sim, controller, table)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
-        self._ports = [(k, port, *port.name.rsplit(".", 1))
+        self._ports = [(k, port, port.robot, port.port)
                        for k, port in enumerate(table.robot_ports)]
         self._seen_actuators = [0] * len(table.robot_ports)
         self._events = [0] * len(table.entries)
@@ -175,6 +163,11 @@ class RealtimeRun(MissionRun):
         # before the automaton activates anything (a trajectory's clock then starts with the
         # plant's), and at every exchange the events are read before the instant's tick
         self.kernel.schedule(0, _EXCHANGE, self._exchange)
+
+    @property
+    def shared_memory_path(self) -> str:
+        """The shared memory's file (removed as soon as the controller has mapped it)."""
+        return self._shared.path
 
     def _exchange(self, _: object) -> None:
         now = self.kernel.now
@@ -215,7 +208,27 @@ class RealtimeRun(MissionRun):
                     hook(now, name, port, value)
         if now >= self._next_ping:
             self._next_ping = now + _HEARTBEAT_NS
-            self._controller.request(Op.PING)
+            cycle = self._controller.request(Op.PING)
+            if cycle:
+                raise self._deadlock(now, cycle)
+
+    def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
+        """The controller's jobs waiting on each other (the PING's answer: per job, its
+        Module-Task, the connection and whether it reads), as the executive words it."""
+        table = self._table
+        waits, ports = [], []
+        for at in range(0, len(cycle), 3):
+            module, reading = table.entries[int(cycle[at])].name, bool(cycle[at + 2])
+            connection = table.connections[int(cycle[at + 1])]
+            slot = connection.dst_slot if reading else connection.src_slot
+            entry = table.entries[connection.dst_module if reading else connection.src_module]
+            port = (entry.layout.inputs if reading else entry.layout.outputs)[slot].name
+            other = table.entries[connection.src_module if reading else connection.dst_module]
+            ports.append(f"{module}.{port}")
+            waits.append(f"{module}.{port} ({'read' if reading else 'write'}, "
+                         f"{connection.protocol}) waits for {other.name}")
+        return DeadlockError(f"deadlock on the controller's threads at t = {now} ns: "
+                             + "; ".join(waits), tuple(ports), now)
 
     def run(self) -> Any:
         """The run, with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
@@ -278,7 +291,6 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
              ) -> Iterator[tuple[ModuleTable, ControllerProcess, SharedMemory]]:
     """While in the block, the real-time controller of ``plan`` runs (its threads idle until
     activated); ended, reaped and its shared memory removed when the block ends."""
-    _refuse_unsupported(plan)
     table = module_table(plan)
     shared = SharedMemory(len(table.robot_ports), len(table.entries))
     try:

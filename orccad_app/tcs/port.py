@@ -20,7 +20,7 @@ from typing import Any
 from orccad_app.control.ports import PortDirection
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["PortDirection", "Port", "EVENT", "NUMERIC_TYPES", "split_port_ref"]
+__all__ = ["PortDirection", "Port", "PortRef", "EVENT", "NUMERIC_TYPES"]
 
 EVENT = "event"
 """Type name of event ports: a value that is not ``None``/``False`` is a signal occurrence."""
@@ -76,9 +76,24 @@ class Port:
         return np.zeros(self.dim, dtype=float if self.type == "float" else int)
 
 
-def split_port_ref(ref: str) -> tuple[str, str]:
-    """Split ``"module.port"`` into ``("module", "port")``; raise on a malformed reference."""
-    module, dot, port = ref.rpartition(".")
-    if not dot or not module or not port:
-        raise OrccadError(f"bad port reference {ref!r}: expected 'module.port'")
-    return module, port
+@dataclass(frozen=True, order=True, slots=True)
+class PortRef:
+    """One end of a connection, or an observer's event port: port ``port`` of module
+    ``module`` (a TCS module name may hold dots, ``Task.module``; a port name does not).
+    ``str()`` is the TCS's name of the port, ``module.port``."""
+
+    module: str
+    port: str
+
+    def __str__(self) -> str:
+        return f"{self.module}.{self.port}"
+
+    @classmethod
+    def parse(cls, ref: str) -> PortRef:
+        """The reference named ``"module.port"`` (its last dot splits); raise on a malformed
+        one. Only where a reference enters the TCS as text (the plan language, the API)."""
+        module, dot, port = ref.rpartition(".")
+        if not dot or not module or not port:
+            raise OrccadError(f"bad port reference {ref!r}: expected 'module.port'")
+        return cls(module, port)
+

@@ -54,6 +54,7 @@ from orccad_app.trace.state_topics import (PHASE_SCHEMA, STATE_SCHEMA, VERDICT_S
 
 if TYPE_CHECKING:  # the scene needs MuJoCo: imported when a run's robot is traced
     from orccad_app.trace.scene import RobotScene, Transform
+    from orccad_app.robottask.signals import SignalRoles
 
 __all__ = ["TopicWriter", "McapTraceWriter", "LOG_SCHEMA", "EVENT_FIELDS", "port_schema"]
 
@@ -230,7 +231,17 @@ class TopicWriter:
         self._last_ns = 0
         self._closed = False
         self._tf_dropped = False
+        self._roles: SignalRoles | None = None
         self._log_channel = self._channel("/log", "foxglove.Log", LOG_SCHEMA)
+
+    def signal_roles(self, roles: SignalRoles) -> None:
+        """The roles of the mission's generated signals: ``/log`` says an observer event once
+        while it holds and leaves generated outputs (``X.start``…) out. (Without them every
+        signal is taken for one of the mission's own.)"""
+        self._roles = roles
+
+    def _is_own(self, signal: str) -> bool:
+        return self._roles is None or self._roles.is_own(signal)
 
     # -- the sink ---------------------------------------------------------------------------
 
@@ -433,11 +444,12 @@ class TopicWriter:
 
     def _reaction(self, time_ns: int, m: dict[str, Any]) -> None:
         inputs = set(m["inputs"])
+        own = self._is_own
         for name in sorted(inputs):  # an observer event (X.E) while it holds: once
-            if "." not in name or name not in self._inputs:
+            if own(name) or name not in self._inputs:
                 self.log(time_ns, INFO, "mission", f"input {name}")
         self._inputs = inputs
-        outputs = {name for name in m["outputs"] if "." not in name}
+        outputs = {name for name in m["outputs"] if own(name)}
         for name in sorted(outputs - self._present):  # a sustained output once
             self.log(time_ns, INFO, "mission", f"output {name}")
         self._present = outputs

@@ -20,7 +20,12 @@ JSON keys (docs/design.md, *Command line*):
 - ``exceptions``: ``time_s``, ``name``, ``type`` (1, 2, 3), ``task``; type 1 also ``update``:
   ``module``, ``param``, ``old``, ``new`` and ``ramp`` (``start``, ``end``, ``duration_s``, or
   ``null``);
-- ``outputs``: the mission's output signals, ``time_s``, ``name``, ``value``;
+- ``outputs``: the mission's output signals, in order of emission: an output emitted at most
+  three times as one entry per emission, ``time_s``, ``name``, ``value``; one emitted more
+  often (a sustained output, a heartbeat) as one entry at its first emission, ``time_s``,
+  ``until_s`` (its last), ``name``, ``count`` and ``values`` (``{"min", "max"}`` of its
+  numeric values, ``null`` for a pure signal) — as the text report shows them (the trace
+  keeps every emission);
 - ``injections``: what was raised from outside, in time order: ``time_s``, ``name``,
   ``value``, ``kind`` (``input`` or ``fault``), ``by`` (``--inject`` or ``user``), ``applied``
   (``false`` when the run ended before its time); an input held in the console at every tick
@@ -121,11 +126,34 @@ def _injections(result: RunResult, injections: Iterable[InjectionRecord]) -> lis
             for i in ordered]
 
 
+def _outputs(result: RunResult) -> list[dict[str, Any]]:
+    """The ``outputs`` entries (see the module docstring): the emissions of an output emitted
+    more than :data:`_LISTED_OUTPUTS` times grouped into one entry at its first."""
+    emitted: dict[str, list[tuple[float, Any]]] = {}
+    for t, name, value in result.outputs:
+        emitted.setdefault(name, []).append((t / 1e9, plain_value(value)))
+    entries: list[dict[str, Any]] = []
+    seen: dict[str, int] = {}
+    for _, name, _ in result.outputs:
+        times = emitted[name]
+        index = seen[name] = seen.get(name, -1) + 1
+        if len(times) <= _LISTED_OUTPUTS:
+            time_s, value = times[index]
+            entries.append({"time_s": time_s, "name": name, "value": value})
+        elif index == 0:
+            numbers = [v for _, v in times if isinstance(v, (int, float))]
+            entries.append({"time_s": times[0][0], "until_s": times[-1][0], "name": name,
+                            "count": len(times),
+                            "values": {"min": min(numbers), "max": max(numbers)}
+                            if numbers else None})
+    return entries
+
+
 def report_dict(result: RunResult,
                 injections: Iterable[InjectionRecord] = ()) -> dict[str, Any]:
     """The JSON report of ``result`` and what was ``injections`` (see the module docstring)."""
     bus = result.stats.bus
-    report = {
+    report: dict[str, Any] = {
         "mission": result.mission, "status": result.status, "reason": result.reason,
         "seed": result.seed, "sim_time_s": result.sim_time_ns / 1e9,
         "wall_time_s": result.wall_time_s,
@@ -140,8 +168,7 @@ def report_dict(result: RunResult,
                              "response_time_max_s": stats.response_max_ns / 1e9}
                       for name, stats in result.stats.reactions.items() if stats.released},
         "exceptions": [record.as_dict() for record in result.exceptions],
-        "outputs": [{"time_s": t / 1e9, "name": name, "value": plain_value(value)}
-                    for t, name, value in result.outputs],
+        "outputs": _outputs(result),
         "injections": _injections(result, injections),
     }
     if result.lateness_s is not None:
@@ -207,15 +234,16 @@ def _output_lines(report: dict[str, Any]) -> list[str]:
         groups.setdefault(output["name"], []).append(output)
     lines = ["Outputs:"]
     for name, emitted in groups.items():
-        if len(emitted) <= _LISTED_OUTPUTS:
+        if "count" not in emitted[0]:
             shown = ", ".join(f"{name}{_value_text(o['value'])} {o['time_s']:.3f} s"
                               for o in emitted)
             lines.append(f"  {shown}")
             continue
-        values = [o["value"] for o in emitted if isinstance(o["value"], (int, float))]
-        span = f", values {min(values):g}–{max(values):g}" if values else ""
-        lines.append(f"  {name} ×{len(emitted)}, {emitted[0]['time_s']:.3f}–"
-                     f"{emitted[-1]['time_s']:.3f} s{span}")
+        group = emitted[0]
+        values = group["values"]
+        span = f", values {values['min']:g}–{values['max']:g}" if values else ""
+        lines.append(f"  {name} ×{group['count']}, {group['time_s']:.3f}–"
+                     f"{group['until_s']:.3f} s{span}")
     return lines
 
 

@@ -68,6 +68,7 @@ class RunTopicsRecorder(TraceRecorder):
 
         super().__init__(writer)
         self.topics = writer
+        writer.signal_roles(mission_run.plan.roles)
         self._run = mission_run
         self._plants = [(plant, robot_scene(name, plant.model))
                         for name, plant in mission_run.sim.plants.items()]

@@ -72,5 +72,5 @@ def sensor_ports(plan: Any) -> dict[tuple[str, str], str]:
     """``(module, port)`` of every input of ``plan``'s TCS fed by a robot sensor -> the sensor
     (``("TrackPID.ctrl", "q") -> "arm.q"``)."""
     robots = {resource.name for resource in plan.tcs.resources}
-    return {tuple(c.consumer.rsplit(".", 1)): c.producer for c in plan.tcs.connections
-            if c.producer.rsplit(".", 1)[0] in robots}
+    return {(c.target.module, c.target.port): c.producer for c in plan.tcs.connections
+            if c.source.module in robots}

@@ -7,7 +7,8 @@ the CLI (:mod:`orccad_app.tui.session`) and from an executive observer
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 from textual.app import App
 from textual.binding import Binding
@@ -21,6 +22,10 @@ from orccad_app.tui.screens.campaign import CampaignScreen
 from orccad_app.tui.screens.report import ReportScreen
 from orccad_app.tui.screens.run import RunScreen
 from orccad_app.tui.session import LiveSession, ScriptedInputs, mission_files
+
+if TYPE_CHECKING:
+    from orccad_app.campaign.setting import RunSetting
+    from orccad_app.tui.screens import ScreenHost
 
 __all__ = ["OrccadApp"]
 
@@ -43,7 +48,7 @@ class OrccadApp(App):
                         tooltip="save an SVG screenshot")]
     COMMANDS = App.COMMANDS | {OrccadCommands}
 
-    def __init__(self, paths: list[str] = (), *, selected: str | None = None,
+    def __init__(self, paths: Sequence[str] = (), *, selected: str | None = None,
                  mission: str | None = None, speed: float | None = 1.0, seed: int = 0,
                  run_now: bool = False, campaign: dict[str, Any] | None = None) -> None:
         super().__init__()
@@ -73,7 +78,7 @@ class OrccadApp(App):
         self.push_screen(CampaignScreen(path, spec, db, **options))
 
     def start_run(self, path: str, mission: str | None, script: ScriptedInputs | None = None,
-                  *, setting: Any = None, by: str = "") -> None:
+                  *, setting: RunSetting | None = None, by: str = "") -> None:
         """Plan ``mission`` of ``path`` (as ``orccad run`` does) and show its live run
         (``script``: a counterexample's inputs injected at its instants' times; ``setting``:
         a campaign run's :class:`~orccad_app.campaign.setting.RunSetting`, raised ``by``)."""
@@ -115,3 +120,8 @@ class OrccadApp(App):
 
     def action_screenshot_svg(self) -> None:
         self.notify(f"saved {self.save_screenshot()}")
+
+
+if TYPE_CHECKING:
+    def _hosts_the_screens(app: OrccadApp) -> ScreenHost:
+        return app  # mypy checks that the application is what the screens ask for

@@ -213,9 +213,8 @@ def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
             limit = len(records)
     summary = summarize(records, closest=CLOSEST)
     by_index = {r.index: r for r in records}
-    histograms = {name: histogram([r.properties[name].robustness for r in records
-                                   if name in r.properties
-                                   and r.properties[name].robustness is not None])
+    histograms = {name: histogram([value for r in records if name in r.properties
+                                   if (value := r.properties[name].robustness) is not None])
                   for name in summary["robustness"]}
     candidates = [Candidate(w["run"], name, w["robustness"], by_index[w["run"]].outcome,
                             by_index[w["run"]].setting)
@@ -270,17 +269,15 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     if not names:
         return FalsifySnapshot(study, prop, 0, budget, None, None)
     loaded = optuna.load_study(study_name=names[-1], storage=storage)
-    done = [t for t in loaded.get_trials(deepcopy=False)
+    done = [(t, float(t.value)) for t in loaded.get_trials(deepcopy=False)
             if t.value is not None and "values" in t.user_attrs]
-    history = [float(t.value) for t in done]
-    defined = [t for t in done if t.value < UNDEFINED]
-    ranked = sorted(defined, key=lambda t: (t.value, t.number))[:CLOSEST]
-    candidates = [Candidate(t.number, prop, float(t.value), "violated" if t.value < 0
-                            else "holds",
+    history = [value for _, value in done]
+    defined = [(t, value) for t, value in done if value < UNDEFINED]
+    ranked = sorted(defined, key=lambda scored: (scored[1], scored[0].number))[:CLOSEST]
+    candidates = [Candidate(t.number, prop, value, "violated" if value < 0 else "holds",
                             build_setting(spec, t.number, run_seed, until_s,
-                                          t.user_attrs["values"])) for t in ranked]
-    first = next((t.number for t in done if t.value < 0), None)
+                                          t.user_attrs["values"])) for t, value in ranked]
+    first = next((t.number for t, value in done if value < 0), None)
     return FalsifySnapshot(study, prop, len(done), max(budget, len(done)),
-                           min(float(t.value) for t in defined) if defined else None, first,
-                           history, candidates,
-                           histogram([float(t.value) for t in defined]))
+                           min(value for _, value in defined) if defined else None, first,
+                           history, candidates, histogram([value for _, value in defined]))

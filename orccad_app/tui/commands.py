@@ -24,7 +24,8 @@ def commands_for(app, screen) -> list[tuple[str, Callable[[], None], str]]:
         found += [("Run the mission", screen.action_run, "r: run it live"),
                   ("Check the mission's properties", screen.action_check, "c: orccad check"),
                   ("Edit the mission", screen.action_edit, "with live diagnostics")]
-        for outcome in [] if screen.report is None else failed_outcomes(screen.report):
+        outcomes = failed_outcomes(screen.report) if screen.report is not None else []
+        for outcome in outcomes:
             found += [(f"Replay the counterexample to {outcome.name}",
                        partial(screen.action_replay, outcome), "step by step, where it waits"),
                       (f"Run the counterexample to {outcome.name} against the plant",

@@ -226,13 +226,13 @@ class LiveObserver(Observer):
         self.sample_ns, self.flush_s = sample_ns, flush_s
         self._sensors = sensor_ports(run.plan)
         self._site_task = {site.number: site.task for site in run.plan.sites}
-        self._outputs = {s.name for s in run.plan.automaton.outputs if "." not in s.name}
+        self._outputs = set(run.plan.roles.own(s.name for s in run.plan.automaton.outputs))
         self.inputs = UserInputs(run, self._log_entry)
         """The user's inputs, holds and faults (:mod:`orccad_app.tui.user_inputs`)."""
         self._abort: str | None = None
         self._present: set[str] = set()
         self._next_sample: dict[str, int] = {}
-        self._samples: dict[str, list[float]] = {}
+        self._samples: dict[str, list[tuple[float, float]]] = {}
         self._log: list[LogEntry] = []
         self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}

@@ -16,12 +16,16 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
 from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace, SeenStates
 from orccad_app.tui.run_process import can_fork, run_forked
+
+if TYPE_CHECKING:
+    from orccad_app.verify.checker import MissionReport, PropertyOutcome
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
            "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
@@ -115,7 +119,8 @@ def mission_files(paths: list[str]) -> list[str]:
 def _diagnostic(severity: str, error: Any, path: str | None = None) -> FileDiagnostic:
     loc = getattr(error, "location", None) or getattr(error, "loc", None)
     message = getattr(error, "message", str(error))
-    if loc is not None and path is not None and getattr(loc, "line", 0) and \
+    line = getattr(loc, "line", None) or 0
+    if loc is not None and path is not None and line and \
             Path(loc.file).resolve() != Path(path).resolve():  # in an imported file
         return FileDiagnostic(severity, 0, 0, f"{loc}: {message}")
     return FileDiagnostic(severity, getattr(loc, "line", 0) or 0, getattr(loc, "col", 0) or 0,
@@ -129,6 +134,7 @@ SUMMARY_MAX_STATES = 2000
 
 def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     from orccad_app.pipeline import compose_mission
+    from orccad_app.reactive.automaton import Automaton
     from orccad_app.reactive.compiler import StateBudgetExceeded
     from orccad_app.reactive.export import to_summary
 
@@ -137,13 +143,14 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     except StateBudgetExceeded:
         composition = compose_mission(source, mission, lazy=True)
         tasks = ", ".join(dict.fromkeys(site.task for site in composition.sites)) or "-"
-        inputs = [s.name for s in composition.automaton.inputs if "." not in s.name]
+        inputs = composition.roles.own(s.name for s in composition.automaton.inputs)
         return (f"mission {mission.name}: more than {SUMMARY_MAX_STATES} states (a run builds "
                 f"the states it reaches; orccad check explores them all)\n"
                 f"  Robot-Tasks: {tasks}\n"), inputs
     automaton, sites = composition.automaton, composition.sites
+    assert isinstance(automaton, Automaton)  # compiled whole (lazy=False)
     tasks = ", ".join(dict.fromkeys(site.task for site in sites)) or "-"
-    inputs = [s.name for s in automaton.inputs if "." not in s.name]
+    inputs = composition.roles.own(s.name for s in automaton.inputs)
     head = (f"mission {mission.name}: {automaton.state_count} states, "
             f"{automaton.transition_count} transitions\n  Robot-Tasks: {tasks}\n")
     return head + to_summary(automaton), inputs
@@ -232,7 +239,7 @@ ScriptedInputs = InputScript
 :meth:`InputScript.of` a failed property's outcome."""
 
 
-def failed_outcomes(report: Any) -> list[Any]:
+def failed_outcomes(report: MissionReport) -> list[PropertyOutcome]:
     """The outcomes of a check report that failed with a counterexample."""
     return [o for o in report.outcomes if not o.holds and o.script is not None]
 
@@ -282,9 +289,10 @@ class LiveSession:
         """The run, planned (:class:`~orccad_app.session.RunSession`)."""
         self.run = self.session.run
         plan = self.session.plan
-        self.inputs = [s for s in plan.automaton.inputs if "." not in s.name]
+        self.inputs = [s for s in plan.automaton.inputs if plan.roles.is_own(s.name)]
         """The mission's declared inputs (``SignalDecl``)."""
-        self.events = [s.name for s in plan.automaton.inputs if "." in s.name]
+        events = plan.roles.of_kind(RoleKind.EVENT)
+        self.events = [s.name for s in plan.automaton.inputs if s.name in events]
         """Observer events ``X.E`` (what an observer of task ``X`` raises for ``E``)."""
         self.script = script
         """The counterexample run against the plant, or ``None``."""
@@ -350,7 +358,7 @@ class LiveSession:
         return "\n".join(lines)
 
     def export(self, path: str, *, overwrite: bool = False,
-               progress: Callable[[float], None] | None = None) -> str:
+               progress: Callable[[float], object] | None = None) -> str:
         """Write the trace (``.csv`` or ``.mcap``) to ``path`` and return it: atomically (a
         temporary file renamed once complete), never over an existing file unless
         ``overwrite`` (``FileExistsError``)."""
@@ -374,7 +382,7 @@ class LiveSession:
         write_atomically(path, write)
         return path
 
-    def _replay_trace(self, path: str, progress: Callable[[float], None] | None) -> None:
+    def _replay_trace(self, path: str, progress: Callable[[float], object] | None) -> None:
         """Run the finished run again with a trace recorder: the same options (plan, seed,
         horizon, injections), the user's inputs as ``--inject`` at the instants they took
         effect (the same run, :mod:`orccad_app.tui.user_inputs`), ended at the same reaction
@@ -405,7 +413,7 @@ class _Replaying:
     count of reactions then; ``None``: not aborted) and reports its progress."""
 
     def __init__(self, run: Any, abort_at: int | None, end_ns: int,
-                 progress: Callable[[float], None] | None) -> None:
+                 progress: Callable[[float], object] | None) -> None:
         self.run, self.abort_at, self.end_ns, self.progress = run, abort_at, end_ns, progress
         self.reactions = 0
 

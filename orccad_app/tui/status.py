@@ -221,7 +221,7 @@ def tcs_rows(session: Any, tasks: list[tuple[str, int, int]], loads: dict[str, f
                if any(site.number == number for _, number, _ in tasks) for module in site.modules}
     modules = sorted(session.run.plan.tcs.module_tasks,
                      key=lambda m: (m.name not in running, m.name))
-    rows = [(m.name, m.processor, f"{m.period_ns / 1e6:g}", f"{m.wcet_ns / 1e6:g}",
+    rows: list[tuple[str, ...]] = [(m.name, m.processor, f"{m.period_ns / 1e6:g}", f"{m.wcet_ns / 1e6:g}",
              str(m.priority), "yes" if m.name in running else "", str(misses.get(m.name, 0)))
             for m in modules]
     rows += [(f"{name} load", name, "", "", "", f"{load:.1%}", "")

@@ -33,9 +33,13 @@ class Periodic:
 
     def widened(self, pre_len: int, period: int) -> "Periodic":
         """The same sequence written with a longer prefix and a multiple of the period."""
-        pre = tuple(self.at(i) for i in range(pre_len))
-        loop = tuple(self.at(pre_len + i) for i in range(period))
-        return Periodic(pre, loop)
+        total = pre_len + period
+        values = self.pre[:total]  # as at(i) for i < total, by slices of pre and loop
+        missing = total - len(values)
+        if missing > 0:
+            loop = self.loop
+            values += (loop * (missing // len(loop) + 1))[:missing]
+        return Periodic(values[:pre_len], values[pre_len:total])
 
 
 def _align(a: Periodic, b: Periodic) -> tuple[Periodic, Periodic]:

@@ -1,20 +1,11 @@
 """The meaning of atoms in one instant (one step of the model): the instant's *letter*.
 
-An instant is one step. Its letter is the set of atoms true in it:
-
-==================  ===========================================================================
-``S`` (a signal)    an input present (tested true by the step's guard, or chosen, see below)
-                    or an output emitted in the instant
-``started(X)``      ``X.start`` is emitted (an instance of Robot-Task X starts)
-``ended(X)``        ``X.good_end`` is emitted (its good end)
-``raised(E)``       ``E.raised`` is emitted (exception E is raised, type 2 or 3)
-``active(X)``       the state *after* the instant is inside an instance of X
-                    (it has an ``RtLabel(X, site)``): true from the instant X starts,
-                    false from the instant it ends, raises or is killed
-``done``            the mission terminates normally in the instant
-``failed``          an uncaught type-2 exception ends the mission in the instant
-``aborted``         a type-3 exception aborts the mission in the instant
-==================  ===========================================================================
+An instant is one step. Its letter is the set of atoms true in it, as
+:mod:`orccad_app.robottask.atoms` defines them (the run monitor reads the same definitions):
+a signal is present when the step's guard tests it true (or it is chosen, see below) or the
+step emits it; ``active(X)`` reads the state after the step; ``done`` / ``failed`` /
+``aborted`` are the step's status (the end of an ``on fatal`` block is no ``done``:
+:data:`~orccad_app.verify.model.ENDED`).
 
 So ``run A; run B`` satisfies ``always not (active(A) and active(B))`` (in the instant A
 ends and B starts, only B is active after it) and ``always (started(B) -> once ended(A))``
@@ -29,6 +20,7 @@ from __future__ import annotations
 
 from itertools import product
 
+from orccad_app.robottask.atoms import Atoms, InstantView
 from orccad_app.verify.model import Model, Step
 
 __all__ = ["Alphabet"]
@@ -39,7 +31,8 @@ class Alphabet:
 
     def __init__(self, model: Model, keys):
         self.model = model
-        self.keys: list[tuple] = sorted(set(keys))
+        self.atoms = Atoms(model.composition.roles, keys)
+        self.keys: list[tuple] = self.atoms.keys
         self.bit = {key: i for i, key in enumerate(self.keys)}
         inputs = {s.name for s in model.automaton.inputs}
         self.inputs = [name for kind, name in self.keys if kind == "sig" and name in inputs]
@@ -68,25 +61,15 @@ class Alphabet:
         return found
 
     def _base(self, step: Step, guard: dict) -> int:
+        present = step.emitted | {name for name, on in guard.items() if on}
+        instant = InstantView(present, lambda: self._active(step), step.status)
         mask = 0
-        active = self.model.active_tasks(step.target) if self.model.states else frozenset()
-        for key, bit in self.bit.items():
-            kind, name = key
-            if kind == "sig":
-                true = name in step.emitted or guard.get(name, False)
-            elif kind == "started":
-                true = f"{name}.start" in step.emitted
-            elif kind == "ended":
-                true = f"{name}.good_end" in step.emitted
-            elif kind == "raised":
-                true = f"{name}.raised" in step.emitted
-            elif kind == "active":
-                true = name in active
-            else:
-                true = step.status == name
-            if true:
-                mask |= 1 << bit
+        for key in self.atoms.letter(instant):
+            mask |= 1 << self.bit[key]
         return mask
+
+    def _active(self, step: Step) -> frozenset[str]:
+        return self.model.active_tasks(step.target) if self.model.states else frozenset()
 
     def letter_set(self, mask: int) -> frozenset:
         """The atoms true in a letter."""

@@ -28,7 +28,9 @@ from orccad_app.lang import ast
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, Action, Automaton,
                                           DataBranch, InputTest, Leaf, Node)
+from orccad_app.robottask.atoms import Atoms
 from orccad_app.robottask.labels import RtLabel
+from orccad_app.robottask.signals import SignalRoles
 from orccad_app.verify import data
 from orccad_app.verify.formula import F, from_ast, is_past
 
@@ -171,8 +173,9 @@ class _Writer:
 class _Formulas:
     """Atoms and past monitors of the exported properties."""
 
-    def __init__(self, writer: _Writer):
+    def __init__(self, writer: _Writer, roles: SignalRoles | None):
         self.writer = writer
+        self.meaning = Atoms(roles, ()) if roles is not None else None
         self.atoms: dict[tuple, str] = {}
         self.past: dict[F, str] = {}
         self.code: list[str] = []
@@ -194,9 +197,10 @@ class _Formulas:
             return f"status == {_STATUS[name]}"
         if kind == "active":
             return _ident("a_", name) if name in w.tasks else "0"
-        signal = {"started": f"{name}.start", "ended": f"{name}.good_end",
-                  "raised": f"{name}.raised"}[kind]
-        return w.outputs.get(signal, "0")
+        if self.meaning is None:
+            raise ValueError(f"to_promela: the atom {kind}({name}) needs the signal roles")
+        signal = self.meaning.signal(key)  # started / ended / raised: by the signal's role
+        return w.outputs.get(signal, "0") if signal is not None else "0"
 
     def text(self, f: F) -> str:
         """The formula in SPIN's syntax; past subformulas become monitor variables."""
@@ -232,14 +236,17 @@ class _Formulas:
         return name
 
 
-def to_promela(automaton: Automaton, *, tracked: tuple[ir.VarDecl, ...] | None = None,
+def to_promela(automaton: Automaton, roles: SignalRoles | None = None, *,
+               tracked: tuple[ir.VarDecl, ...] | None = None,
                properties: Iterable[ast.Property] = (),
                assumptions: Iterable[ast.Assumption] = ()) -> str:
-    """The Promela model of ``automaton`` with an ``ltl`` claim per property."""
+    """The Promela model of ``automaton`` with an ``ltl`` claim per property (``roles``, the
+    roles of its generated signals, are needed when the properties have atoms
+    ``started`` / ``ended`` / ``raised``)."""
     if tracked is None:
         tracked = data.tracked_variables(automaton)
     writer = _Writer(automaton, tracked)
-    formulas = _Formulas(writer)
+    formulas = _Formulas(writer, roles)
     assumed = [from_ast(a.formula) for a in assumptions]
     claims = []
     for prop in properties:

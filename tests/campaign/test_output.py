@@ -6,7 +6,7 @@ import json
 
 from orccad_app.campaign.adapter import PropertyResult, RunRecord
 from orccad_app.campaign.output import Progress, format_result, result_dict
-from orccad_app.campaign.runner import CampaignResult
+from orccad_app.campaign.runner import CampaignResult, PrefixCounts
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.campaign.stats import estimates, summarize
 
@@ -42,8 +42,10 @@ def test_the_summary_names_probabilities_distributions_and_replays():
 
 def test_the_progress_bar_shows_the_running_estimate():
     progress = Progress(0.95)
-    result = _result()
-    progress(2, 3, result.records[:2])
+    prefix = PrefixCounts()
+    for record in _result().records[:2]:
+        prefix.add(record)
+    progress(2, 3, prefix)
     task = progress.bar.tasks[0]
     assert (task.completed, task.total) == (2, 3)
     assert task.fields["estimate"].startswith("P(done) = 0.500 [")

@@ -93,3 +93,37 @@ def test_a_worker_frees_each_run():
                           timeout=300, cwd=ROOT)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "freed 3"
+
+
+def test_the_parent_keeps_no_finished_run_in_memory(tmp_path):
+    """The campaign folds each run into counts and keeps it on disk only: while 60 runs
+    (finished out of order) go by, at most the few waiting for an earlier run are alive in
+    the parent; the statistics, read back from the database, are those of every run."""
+    import gc
+    import weakref
+
+    from tests.campaign.conftest import AUV, LEAK_SPEC
+    from tests.campaign.test_sequential_order import ScriptedBackend
+
+    returned: list[weakref.ref] = []
+
+    class Tracked(ScriptedBackend):
+        def result(self, future, job):
+            record = super().result(future, job)
+            returned.append(weakref.ref(record))
+            return record
+
+    order = [{i ^ 1} for i in range(60)]  # 1, 0, 3, 2, …: each pair out of order
+    alive = []
+
+    def progress(done, limit, prefix):
+        gc.collect()
+        alive.append(sum(ref() is not None for ref in returned))
+
+    spec = parse_spec(LEAK_SPEC, "leak.campaign.toml")
+    campaign = Campaign(AUV, spec, CampaignOptions(runs=60, db=str(tmp_path / "m.db")))
+    result = campaign.run(progress, Tracked(order, lambda i: "aborted" if i % 5 == 0
+                                              else "done", workers=2))
+    assert len(returned) == 60 and max(alive) <= 4, alive
+    assert [r.index for r in result.records] == list(range(60))
+    assert result.estimates["done"]["count"] == 48

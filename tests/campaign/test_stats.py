@@ -42,6 +42,40 @@ def test_estimates_cover_every_outcome_and_named_exception():
     assert found["failed(BatteryLow)"]["p"] == 0.25
 
 
+def test_counts_folded_run_by_run_are_the_counts_over_every_run():
+    """EventCounts (what a campaign keeps instead of its runs) gives, prefix after prefix,
+    every outcome's and property's counts as a count over all the runs, in the same order."""
+    import random
+
+    from orccad_app.campaign.adapter import PropertyResult
+    from orccad_app.campaign.stats import EventCounts
+
+    draw = random.Random(5)
+    counts = EventCounts()
+    records = []
+    for index in range(40):
+        status, reason = draw.choice([("done", None), ("aborted", "Leak"), ("failed", None),
+                                      ("failed", "Low"), ("timeout", None)])
+        record = _record(index, status, reason)
+        for name in draw.sample(["b_prop", "a_prop"], draw.randint(0, 2)):
+            record.properties[name] = PropertyResult(draw.choice([True, False, None]), 0.0)
+        records.append(record)
+        counts.add(record)
+        hits, defined = counts.counts()
+        statuses = ["done", "failed", "aborted", "recovering", "timeout", "crashed"]
+        labels = set(statuses) | {r.outcome for r in records}
+        props = sorted({name for r in records for name in r.properties})
+        by_status = sorted(labels, key=lambda n: (statuses.index(n.split("(")[0]), n))
+        assert list(hits) == by_status + props
+        for name in labels:
+            assert hits[name] == sum(r.status == name or r.outcome == name for r in records)
+            assert defined[name] == len(records)
+        for name in props:
+            known = [r.properties[name].holds for r in records if name in r.properties
+                     and r.properties[name].holds is not None]
+            assert (hits[name], defined[name]) == (sum(known), len(known))
+
+
 def _decide(hypothesis: str, outcomes: list[str]) -> Sprt:
     test = Sprt(Hypothesis.parse(hypothesis), 0.05, 0.05, 0.05)
     for index, status in enumerate(outcomes):

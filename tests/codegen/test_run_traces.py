@@ -5,7 +5,6 @@ through the generated C and through ``Reactor.step``: the same records, state by
 from __future__ import annotations
 
 import csv
-import gzip
 import io
 import json
 import re
@@ -16,7 +15,8 @@ from orccad_app.pipeline import load
 from tests.codegen.cbuild import build, run_trace
 from tests.codegen.conftest import generated
 from tests.codegen.differential import first_difference, python_records
-from tests.golden.cases import CASES, DATA, ROOT
+from tests.golden.cases import CASES, ROOT
+from tests.golden.regenerate import trace_bytes
 
 TRACED = [case for case in CASES if case.trace]
 
@@ -42,8 +42,7 @@ def _injected(argv: tuple[str, ...]) -> dict[str, str]:
 def script_of(case) -> str:
     """The reactions of the case's trace as an input script."""
     values = _injected(case.argv)
-    with gzip.open(DATA / f"{case.name}.csv.gz", "rt") as stream:
-        rows = list(csv.DictReader(io.StringIO(stream.read())))
+    rows = list(csv.DictReader(io.StringIO(trace_bytes(case.name).decode())))
     lines = []
     for row in rows:
         if row["event"] != "reaction":

@@ -23,6 +23,48 @@ def test_events_run_by_time_then_class_then_insertion():
     assert kernel.now == 10 and kernel.events_processed == 5
 
 
+def test_a_deferred_event_runs_where_a_dispatch_event_of_its_instant_would():
+    """Kernel.defer is schedule(now, DISPATCH) without the heap: after every other event of
+    the instant (even one scheduled later, of an earlier class), before the next instant, in
+    call order among deferred events, each taking a sequence number."""
+    kernel = Kernel()
+    order = []
+
+    def at_5(_):
+        seq = kernel._seq
+        kernel.defer(order.append, "deferred first")
+        assert kernel._seq == seq + 1
+        kernel.schedule(5, EventClass.RELEASE, order.append, "release@5 scheduled after")
+        kernel.defer(lambda _: (order.append("deferred second"),
+                                kernel.schedule(5, EventClass.FINISH, order.append,
+                                                "finish@5 from a deferred one")))
+        kernel.defer(order.append, "deferred third")
+
+    kernel.schedule(5, EventClass.CONTROL, at_5)
+    kernel.schedule(6, EventClass.FINISH, order.append, "finish@6")
+    kernel.run(10)
+    assert order == ["release@5 scheduled after", "deferred first", "deferred second",
+                     "finish@5 from a deferred one", "deferred third", "finish@6"]
+    assert kernel.events_processed == 7
+
+
+def test_a_deferred_event_survives_a_stop_and_counts_in_peek_and_run_instant():
+    kernel = Kernel()
+    order = []
+
+    def at_2(_):
+        kernel.defer(order.append, "deferred@2")
+        kernel.stop()
+
+    kernel.schedule(2, EventClass.CONTROL, at_2)
+    kernel.schedule(4, EventClass.RELEASE, order.append, "release@4")
+    kernel.run(10)
+    assert order == [] and kernel.now == 2 and kernel.peek_ns() == 2
+    assert kernel.run_instant() == 2 and order == ["deferred@2"] and kernel.now == 2
+    kernel.run(10)
+    assert order == ["deferred@2", "release@4"] and kernel.now == 10
+
+
 def test_cancelled_events_do_not_run_and_until_is_exclusive():
     kernel = Kernel()
     seen = []

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import gzip
 import json
 
-from tests.golden.cases import DATA
+from tests.golden.regenerate import trace_bytes
 from tests.golden.compare import REL_TOL, compare_json, compare_trace
 
 
@@ -38,7 +37,7 @@ def test_structure_names_statuses_and_integers_are_exact() -> None:
 
 
 def _trace() -> bytes:
-    return gzip.decompress((DATA / "run-auv_survey-trace.csv.gz").read_bytes())
+    return trace_bytes("run-auv_survey-trace")
 
 
 def test_a_trace_with_last_digit_differences_passes_and_reordered_events_fail() -> None:

@@ -95,3 +95,12 @@ def test_every_shipped_mission_has_a_compile_and_a_run_reference() -> None:
     assert not missing, "no golden case for: " + "; ".join(missing)
     names = [case.name for case in CASES]
     assert len(set(names)) == len(names), "two golden cases share a reference file"
+
+
+def test_the_golden_data_stays_under_a_megabyte() -> None:
+    """The references are read by people and cloned by everyone: a run report groups a
+    sustained output, a compile reference keeps its states as a digest, traces are xz."""
+    from tests.golden.cases import DATA
+
+    total = sum(path.stat().st_size for path in DATA.iterdir() if path.is_file())
+    assert total < 1_000_000, f"tests/golden/data holds {total} bytes"

@@ -11,7 +11,9 @@ import math
 import pytest
 
 from orccad_app.cli import main
+from orccad_app.verify import stl_tree as t
 from orccad_app.verify.stl import Component, StlFormula, UndefinedRobustness, robustness
+from orccad_app.verify.stl_tree import Direction
 
 from tests.properties.test_run_properties import PID, ROOT
 
@@ -49,36 +51,47 @@ def test_a_comparison_of_constants_is_refused_at_load(tmp_path, capsys):
     assert "a comparison of constants reads no signal" in err and "constants.orc:" in err
 
 
+Q0 = {"s0": Component("arm", "q", 0)}
+
+
+def _below(bound: float, window=None) -> t.Node:
+    margin = t.Margin("<", t.Var("s0"), t.Const(bound))
+    return margin if window is None else t.Window(window[0], Direction.FUTURE, margin,
+                                                  *window[1:])
+
+
 def test_robustness_raises_for_nan_and_overflow():
-    stl = StlFormula("(s0 - s0) > 0", {"s0": Component("arm", "q", 0)}, {}, 1_000_000)
+    stl = StlFormula(t.Margin(">", t.Arith("-", t.Var("s0"), t.Var("s0")), t.Const(0.0)),
+                     Q0, {}, 1_000_000)
     with pytest.raises(UndefinedRobustness, match="not a number"):
         robustness(stl, {"s0": [math.inf, 1.0]})
 
 
 def test_a_window_past_the_run_stays_vacuously_true_not_an_overflow():
-    stl = StlFormula("(always[5s:6s](s0 < 1.0))", {"s0": Component("arm", "q", 0)}, {},
-                     1_000_000_000, ("s0", "1.0"))
+    stl = StlFormula(_below(1.0, ("always", 5 * 10**9, 6 * 10**9)), Q0, {}, 1_000_000_000)
     assert robustness(stl, {"s0": [0.0, 0.0, 0.0]}) == math.inf
 
 
-@pytest.mark.parametrize("text, expected", [
-    ("(next(s0 > 0))", math.inf),                       # no next sample: +inf (weak next)
-    ("(eventually[1000000ns:2000000ns](s0 > 0))", -math.inf),  # no sample in the window
-    ("(always(s0 > 0.5))", 0.5),
-    ("(prev(s0 > 0))", math.inf),
+ABOVE_0 = t.Margin(">", t.Var("s0"), t.Const(0.0))
+
+
+@pytest.mark.parametrize("tree, expected", [
+    (t.Shift(Direction.FUTURE, ABOVE_0), math.inf),      # no next sample: +inf (weak next)
+    (t.Window("eventually", Direction.FUTURE, ABOVE_0, 1_000_000, 2_000_000),
+     -math.inf),                                          # no sample in the window
+    (t.Window("always", Direction.FUTURE, t.Margin(">", t.Var("s0"), t.Const(0.5))), 0.5),
+    (t.Shift(Direction.PAST, ABOVE_0), math.inf),
 ])
-def test_a_one_sample_run_reads_its_only_sample_once(text, expected):
+def test_a_one_sample_run_reads_its_only_sample_once(tree, expected):
     # it was read twice: next and windows one period later saw a sample the run did not have
-    stl = StlFormula(text, {"s0": Component("arm", "q", 0)}, {}, 1_000_000, ("s0",))
+    stl = StlFormula(tree, Q0, {}, 1_000_000)
     assert robustness(stl, {"s0": [1.0]}) == expected
 
 
 def test_a_window_as_long_as_the_one_year_bound_is_judged_on_the_recorded_part():
     # rtamt's buffers followed the bound: MemoryError, an internal error that lost the report
     year_ns = 365 * 24 * 3600 * 10**9
-    stl = StlFormula(f"(always[0ns:{year_ns}ns](s0 < 10.0))", {"s0": Component("arm", "q", 0)},
-                     {}, 1_000_000, ("s0", "10.0"))
+    stl = StlFormula(_below(10.0, ("always", 0, year_ns)), Q0, {}, 1_000_000)
     assert robustness(stl, {"s0": [1.0, 2.0, 3.0]}) == 7.0
-    later = StlFormula(f"(eventually[{year_ns // 2}ns:{year_ns}ns](s0 < 10.0))",
-                       {"s0": Component("arm", "q", 0)}, {}, 1_000_000, ("s0", "10.0"))
+    later = StlFormula(_below(10.0, ("eventually", year_ns // 2, year_ns)), Q0, {}, 1_000_000)
     assert robustness(later, {"s0": [1.0, 2.0, 3.0]}) == -math.inf

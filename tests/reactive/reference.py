@@ -48,7 +48,8 @@ one is a run-time error), or its value before the instant when S is not emitted.
 executed under an assumption on those end-of-instant values (none at first) and re-executed
 with the values the run emitted until they agree; a read of a value not known yet abandons the
 run (the emissions it made are learned). Each local signal incarnation has its own value.
-``pre(S)`` and ``pre(?S)`` read the status and value of the previous instant, kept per key.
+``pre(S)`` and ``pre(?S)`` read the status and value of the previous instant, kept per key
+(for a local, of the previous instant its scope ran: suspended instants do not count).
 Variables and the clock are evaluated in program order. As in Esterel, where ``abort``/``suspend`` decide their condition once per
 instant, a data test *object* (the expansion of ``abort`` shares one between the suspension and
 the watcher) is evaluated once per instant, at its first use.
@@ -218,6 +219,7 @@ class _Run:
         self.final_values = final_values or {}  # assumed end-of-instant values, by key
         self.emissions: dict = {}                 # key -> (decl, [values emitted])
         self.scope: dict = {}
+        self.ran: set = set()                     # local keys whose scope ran this instant
 
     # ------------------------------------------------------------------ statements
     def react(self, term, scope: dict, traps: tuple) -> tuple[int, Any]:
@@ -325,6 +327,7 @@ class _Run:
 
     def _scoped(self, term: Scoped, scope, traps):
         inner = {**scope, **dict(term.bindings)}
+        self.ran.update(key for _, key in term.bindings)
         code, residual = self.react(term.body, inner, traps)
         return code, (Scoped(term.bindings, residual) if code == 1 else _NOTHING)
 
@@ -597,8 +600,11 @@ class ReferenceReactor:
         if code > 1:
             raise ReferenceError_(f"exit escaped the program (code {code})")
         run.memory.values.update(run.combined())
+        # a local whose scope did not run (suspended) keeps its status: Esterel v5's pre(S)
+        # of a local is its status in the last instant its declaration ran
+        kept = {k for k in self.memory.was_present if type(k) is tuple and k not in run.ran}
         run.memory.was_present = frozenset(run.emitted) | frozenset(
-            s for s in self.program.inputs if s.name in inputs)
+            s for s in self.program.inputs if s.name in inputs) | kept
         self.term, self.memory, self.done = residual, run.memory, code == 0
         emitted = [s for s in self.program.outputs if s in run.emitted]
         values = {s.name: run.memory.values.get(s) for s in emitted if s.valued}

@@ -7,6 +7,7 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.pipeline import load
+from orccad_app.tcs.port import PortRef
 
 ARM_PID = open("missions/arm_pid.orc", encoding="utf-8").read()
 
@@ -63,6 +64,6 @@ def test_implicit_observers_are_wired_and_timed_by_their_kind():
     assert tracking.implicit and tracking.timing == tracking.kind.default_timing
     wired = {str(c) for c in instance.connections if c.implicit}
     assert "ctrl.e -> tracking_error.e" in wired and "arm.q -> tracking_error.q" in wired
-    assert instance.events["TrackingLost"] == ("tracking_error", "event")
+    assert instance.events["TrackingLost"] == PortRef("tracking_error", "event")
     assert instance.adjustments["Saturated"].value == 200.0
     assert instance.modules["ctrl"].priority == 1 and instance.modules["jl"].priority == 3

@@ -16,7 +16,7 @@ import pytest
 from orccad_app.sil.layout import NoCImplementation
 from orccad_app.sil.lockstep import lockstep
 
-from tests.sil.helpers import MISSIONS, mission_run, plan_of, report
+from tests.sil.helpers import MISSIONS, executive_report, sil_report
 
 #: (file, mission) of every shipped mission that runs a robot and has C for all its kinds
 RUNNABLE = [("arm_pid.orc", None), ("arm_recovery.orc", None), ("arm_retune.orc", None),
@@ -51,22 +51,12 @@ def test_every_shipped_mission_with_a_robot_is_listed():
 
 @pytest.mark.parametrize("file,mission", RUNNABLE)
 def test_lockstep_ends_as_the_executive(file, mission):
-    expected = report(mission_run(plan_of(file, mission)).run())
-    plan = plan_of(file, mission)
-    with lockstep(plan, file) as controller:
-        got = report(mission_run(plan).run())
-        assert controller.alive
-    assert not controller.alive
-    assert got == expected
+    assert sil_report(file, mission) == executive_report(file, mission)
 
 
 @pytest.mark.parametrize("file,mission", CLOSE)
 def test_lockstep_with_computed_torque_ends_as_the_executive(file, mission):
-    expected = report(mission_run(plan_of(file, mission)).run())
-    plan = plan_of(file, mission)
-    with lockstep(plan, file):
-        got = report(mission_run(plan).run())
-    _close(got, expected)
+    _close(sil_report(file, mission), executive_report(file, mission))
 
 
 #: a mission with a kind that exists only in Python (the at_goal observer)
@@ -120,35 +110,59 @@ def test_an_injected_exception_reaches_the_controllers_run():
     executive's (same outcome and instant)."""
     from orccad_app.mission.injection import parse_injection
 
-    inject = [parse_injection("TrackPID.TrackingLost@1.0")]
-    expected = report(mission_run(plan_of("arm_pid.orc"), injections=inject).run())
-    plan = plan_of("arm_pid.orc")
-    with lockstep(plan, "arm_pid.orc"):
-        got = report(mission_run(plan, injections=inject).run())
-    assert got["status"] == "failed" and got == expected
+    inject = (parse_injection("TrackPID.TrackingLost@1.0"),)
+    expected = executive_report("arm_pid.orc", injections=inject)
+    assert expected["status"] == "failed"
+    assert sil_report("arm_pid.orc", injections=inject) == expected
 
 
-def test_lockstep_with_noise_and_a_changed_timing_ends_as_the_executive():
-    """--set and --timing: noisy encoders drawn from the seed, a longer execution time."""
-    from orccad_app.mission.overrides import PlanOverrides, plan_with_overrides
-    from orccad_app.pipeline import load, select_mission
+def test_lockstep_with_the_executives_timing_options_ends_as_the_executive(tmp_path):
+    """--set, --timing, --seed, --scheduler edf, --context-switch-us, --bus-us and
+    --inject-from: noisy encoders drawn from the seed, a longer execution time, EDF, overheads
+    and a bus delay are the executive's timing model, which lockstep keeps; an input script's
+    exception ends both runs at the same instant."""
+    from orccad_app.mission.overrides import PlanOverrides
+    from orccad_app.session import InputScript
 
-    def plan():
-        source = load(str(MISSIONS / "arm_pid.orc"))
-        overrides = PlanOverrides.from_arguments(["arm.noise_std=1e-3"],
-                                                 ["TrackPID.ctrl.wcet_ms=0.5"])
-        return plan_with_overrides(source, select_mission(source, None), overrides)
+    script = tmp_path / "ce.in"
+    script.write_text("@1.7 TrackPID.TrackingLost\n")
+    options = dict(overrides=PlanOverrides.from_arguments(["arm.noise_std=1e-3"],
+                                                          ["TrackPID.ctrl.wcet_ms=0.5"]),
+                   seed=7, until_s=2.0, scheduler="edf", context_switch_ns=5_000,
+                   bus_transfer_ns=20_000, script=InputScript.from_file(str(script)))
+    expected = executive_report("arm_recovery.orc", **options)
+    assert expected["robot_tasks"][1]["outcome"] == "TrackingLost"
+    assert expected["injections"][0]["by"] == f"--inject-from {script}"
+    assert sil_report("arm_recovery.orc", **options) == expected
 
-    def run(planned):
-        from orccad_app.executive.bus import Bus
-        from orccad_app.executive.processor import Processor
-        from orccad_app.mission.run import MissionRun
 
-        return report(MissionRun(planned, seed=7, bus=Bus(), until_ns=4_000_000_000,
-                                 processors=[Processor(n) for n in planned.processor_names]
-                                 ).run())
+def _command(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "orccad_app", *args], capture_output=True,
+                          text=True, timeout=120)
 
-    expected = run(plan())
-    planned = plan()
-    with lockstep(planned, "arm_pid.orc"):
-        assert run(planned) == expected
+
+@pytest.mark.parametrize("suffix", ["csv", "mcap"])
+def test_the_command_writes_the_trace_and_json_of_orccad_run(tmp_path, suffix):
+    """`orccad sil --lockstep` goes through the run façade: its trace is `orccad run`'s byte
+    for byte, its --json report is `orccad run`'s plus the controller's section."""
+    import json
+
+    mission = str(MISSIONS / "arm_pid.orc")
+    common = ["--until", "0.3", "--inject", "TrackPID.TrackingLost@0.2", "--json"]
+    sil = _command("sil", mission, "--lockstep", *common, "--trace", str(tmp_path / f"sil.{suffix}"))
+    run = _command("run", mission, *common, "--trace", str(tmp_path / f"run.{suffix}"))
+    assert sil.returncode == run.returncode == 1, sil.stderr
+    got, expected = json.loads(sil.stdout), json.loads(run.stdout)
+    assert got.pop("controller")["mode"] == "lockstep"
+    got.pop("wall_time_s"), expected.pop("wall_time_s")
+    assert got == expected and got["status"] == "failed"
+    assert (tmp_path / f"sil.{suffix}").read_bytes() == (tmp_path / f"run.{suffix}").read_bytes()
+
+
+@pytest.mark.parametrize("flag,words", [(["--scheduler", "edf"], "fixed priorities"),
+                                        (["--bus-us", "5"], "own memory"),
+                                        (["--context-switch-us", "5"], "own context switches")])
+def test_what_real_time_does_not_model_is_refused_with_the_reason(flag, words):
+    done = _command("sil", str(MISSIONS / "arm_pid.orc"), "--realtime", *flag)
+    assert done.returncode == 2 and words in done.stderr and "--lockstep" in done.stderr
+    assert "Traceback" not in done.stderr

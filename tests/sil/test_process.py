@@ -15,10 +15,9 @@ from pathlib import Path
 import pytest
 from mcap.reader import make_reader
 
-from orccad_app.sil.lockstep import lockstep
-from orccad_app.trace import TraceRecorder, open_trace, sensor_ports
+from orccad_app.sil.runs import ControllerRuns, SilMode
 
-from tests.sil.helpers import MISSIONS, mission_run, plan_of
+from tests.sil.helpers import MISSIONS, session_of
 
 
 def _controllers_of(parent: int) -> list[int]:
@@ -47,32 +46,27 @@ def _gone(pid: int) -> bool:
 
 
 class _SignalAt:
-    """Sends ``signum`` to the controller at the first release at or after ``at_ns``."""
+    """Sends ``signum`` to the controller of ``runs`` at the first release at or after
+    ``at_ns``."""
 
-    def __init__(self, controller, signum: int, at_ns: int) -> None:
-        self.controller, self.signum, self.at_ns, self.sent = controller, signum, at_ns, False
+    def __init__(self, runs: ControllerRuns, signum: int, at_ns: int) -> None:
+        self.runs, self.signum, self.at_ns, self.sent = runs, signum, at_ns, False
 
     def on_release(self, now: int, name: str, index: int) -> None:
         if now >= self.at_ns and not self.sent:
             self.sent = True
-            os.kill(self.controller.pid, self.signum)
+            os.kill(self.runs.controller.pid, self.signum)
 
 
 @pytest.mark.parametrize("signum,words", [(signal.SIGKILL, "crashed: killed by SIGKILL"),
                                           (signal.SIGSTOP, "hung: no answer")])
 def test_a_crashed_or_hung_controller_fails_the_run_with_its_reason(tmp_path, signum, words):
-    plan = plan_of("arm_pid.orc")
     trace = tmp_path / "run.mcap"
-    with lockstep(plan, "arm_pid.orc", heartbeat_s=0.5) as controller:
-        pid = controller.pid
-        writer = open_trace(str(trace), {"mission": "ArmPID"}, sensor_ports(plan))
-        run = mission_run(plan, observers=[_SignalAt(controller, signum, 10**9)])
-        run.add_observer(TraceRecorder(writer))
-        try:
-            result = run.run()
-        finally:
-            writer.close()
-        assert _gone(pid)  # killed and reaped at once, not at the end of the block
+    with ControllerRuns(SilMode.LOCKSTEP, "arm_pid.orc", heartbeat_s=0.5) as runs:
+        session = session_of("arm_pid.orc", runs=runs, trace=str(trace),
+                             observers=(_SignalAt(runs, signum, 10**9),))
+        result = session.execute().result
+        assert _gone(runs.controller.pid)  # killed and reaped at once, not at the end
     assert result.status == "failed"
     assert words in result.reason
     assert 1.0 <= result.sim_time_ns / 1e9 < 1.01

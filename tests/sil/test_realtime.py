@@ -5,6 +5,7 @@ and leaves no process; without SCHED_FIFO a warning says why."""
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -12,30 +13,25 @@ import sys
 
 import pytest
 
-from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.injection import parse_injection
-from orccad_app.sil.realtime import RealtimeRun, realtime
+from orccad_app.sil.runs import ControllerRuns, SilMode
 
-from tests.sil.helpers import MISSIONS, plan_of
+from tests.sil.helpers import MISSIONS, session_of
 from tests.sil.test_process import _controllers_of, _gone
 
 
-def _run(plan, table, controller, shared, **options) -> RealtimeRun:
-    from orccad_app.executive.bus import Bus
-    from orccad_app.executive.processor import Processor
-
-    until_ns = int(plan.run_horizon_s(60.0) * 1e9)
-    return RealtimeRun(plan, table, controller, shared, until_ns=until_ns, bus=Bus(),
-                       processors=[Processor(name) for name in plan.processor_names], **options)
+def _realtime(file: str, mission: str | None = None, **options):
+    """The result and timings of a real-time SIL run of shipped ``file``, and its
+    controller runs."""
+    with ControllerRuns(SilMode.REALTIME, file) as runs:
+        result = session_of(file, mission, runs, **options).execute().result
+        timings = {t.name: t for t in runs.timings()}
+    return result, timings, runs
 
 
 def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
-    plan = plan_of("arm_recovery.orc")
-    inject = [parse_injection("TrackPID.TrackingLost@2.5")]
-    with realtime(plan, "arm_recovery.orc") as (table, controller, shared):
-        run = _run(plan, table, controller, shared, injections=inject)
-        result = run.run()
-        timings = {t.name: t for t in run.timings()}
+    inject = (parse_injection("TrackPID.TrackingLost@2.5"),)
+    result, timings, runs = _realtime("arm_recovery.orc", injections=inject)
     assert result.status == "done", result.reason
     assert [(r.name, r.outcome) for r in result.robot_tasks] == [
         ("Home", "good_end"), ("TrackPID", "TrackingLost"), ("Home", "good_end"),
@@ -48,42 +44,117 @@ def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     assert ctrl.predicted_s == pytest.approx(0.0003)
     assert timings["Park.ctrl"].released == 0  # never started
     assert _controllers_of(os.getpid()) == []
-    assert not os.path.exists(shared.path)  # removed once mapped: nothing left in /dev/shm
+    assert not os.path.exists(runs.run.shared_memory_path)  # removed once mapped: none left
 
 
 def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
-    plan = plan_of("arm_pid.orc")
-
     class Kill:
         sent = False
 
         def on_reaction(self, now, inputs, outputs, status):
             if now >= 500_000_000 and not self.sent:
                 self.sent = True
-                os.kill(controller.pid, signal.SIGKILL)
+                os.kill(runs.controller.pid, signal.SIGKILL)
 
-    with realtime(plan, "arm_pid.orc") as (table, controller, shared):
-        result = _run(plan, table, controller, shared, observers=[Kill()]).run()
-        assert _gone(controller.pid)
+    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
+        result = session_of("arm_pid.orc", runs=runs, observers=(Kill(),)).execute().result
+        assert _gone(runs.controller.pid)
     assert result.status == "failed"
     assert "killed by SIGKILL" in result.reason
     assert _controllers_of(os.getpid()) == []
 
 
-def test_what_the_real_time_mode_does_not_run_is_refused_with_the_reason():
-    with pytest.raises(OrccadError, match="ramp"):
-        with realtime(plan_of("arm_retune.orc"), "arm_retune.orc"):
-            pass
+def _arm_pid_with(tmp_path, qd: str, qd_dot: str) -> str:
+    """arm_pid for 1 s, the trajectory's two connections to the law over ``qd`` and
+    ``qd_dot`` (protocols); the file's path."""
+    text = (MISSIONS / "arm_pid.orc").read_text().replace("duration 4 s", "duration 1 s")
+    text = text.replace("traj.qd     -> ctrl.qd     : asyn/asyn", f"traj.qd -> ctrl.qd : {qd}")
+    text = text.replace("traj.qd_dot -> ctrl.qd_dot : asyn/asyn",
+                        f"traj.qd_dot -> ctrl.qd_dot : {qd_dot}")
+    assert qd in text and qd_dot in text
+    path = tmp_path / "arm_protocols.orc"
+    path.write_text(text)
+    return str(path)
+
+
+def test_blocking_protocols_run_on_the_real_time_threads(tmp_path):
+    """asyn/syn (the law waits for a fresh set-point) and syn/syn (a rendez-vous) between the
+    trajectory and the law: the run ends as the executive's does, one law job per trajectory
+    job (each waits for the other)."""
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.session import RunOptions, RunSession
+
+    path = _arm_pid_with(tmp_path, "asyn/syn", "syn/syn")
+    source = load(path)
+    with ControllerRuns(SilMode.REALTIME, path) as runs:
+        result = RunSession(source, select_mission(source, None),
+                            RunOptions(run_factory=runs)).execute().result
+        timings = {t.name: t for t in runs.timings()}
+    assert result.status == "done", result.reason
+    assert result.robot_tasks[0].errors.max_abs < 0.1
+    traj, ctrl = timings["TrackPID.traj"], timings["TrackPID.ctrl"]
+    assert traj.released > 900 and abs(ctrl.released - traj.released) <= 1
+
+
+def test_a_deadlock_on_the_real_time_threads_fails_the_run_naming_its_cycle(tmp_path):
+    """synF/asyn then asyn/synF: the trajectory waits for a read of its set-point, which the
+    law made at its release, while the law waits for the trajectory's next velocity: the
+    executive's deadlock, found on the threads at the first heartbeat."""
+    done = subprocess.run([sys.executable, "-m", "orccad_app", "sil",
+                           _arm_pid_with(tmp_path, "synF/asyn", "asyn/synF"), "--realtime",
+                           "--json"], capture_output=True, text=True, timeout=120)
+    report = json.loads(done.stdout)
+    assert done.returncode == 1 and report["status"] == "failed"
+    assert report["reason"].startswith("deadlock on the controller's threads at t = ")
+    assert ("TrackPID.traj.qd (write, synF/asyn) waits for TrackPID.ctrl; TrackPID.ctrl.qd_dot "
+            "(read, asyn/synF) waits for TrackPID.traj") in report["reason"]
+    assert _controllers_of(os.getpid()) == []
+
+
+@pytest.mark.parametrize("sanitize", ["thread", "address,undefined"])
+def test_the_runtime_runs_clean_under_the_sanitizers(tmp_path, sanitize):
+    """The real-time controller built with ThreadSanitizer, or AddressSanitizer and
+    UndefinedBehaviorSanitizer (``$ORCCAD_SIL_CFLAGS``), on blocking protocols between
+    Module-Tasks (the processor's thread, the commands' thread): no report."""
+    env = {**os.environ, "ORCCAD_SIL_CFLAGS": f"-fsanitize={sanitize} -g"}
+    done = subprocess.run([sys.executable, "-m", "orccad_app", "sil",
+                           _arm_pid_with(tmp_path, "asyn/syn", "syn/syn"), "--realtime",
+                           "--until", "0.4"], capture_output=True, text=True, timeout=180,
+                          env=env)
+    if "cannot find -l" in done.stderr or "unexpected memory mapping" in done.stderr:
+        pytest.skip(f"the compiler has no {sanitize} sanitizer here: {done.stderr[-200:]}")
+    assert "Sanitizer" not in done.stderr and "runtime error" not in done.stderr, done.stderr
+    assert done.returncode == 1 and "timeout" in done.stdout  # the run itself went on
+
+
+def test_a_type_1_ramp_is_stepped_in_the_controller():
+    """arm_retune: ``Lagging`` ramps ctrl.ki from 0 to 20 over 1 s; each step at the law's
+    release grid reaches the controller as a parameter write (about one per period), the last
+    one the ramp's end."""
+    from orccad_app.sil.controller import Op
+
+    sent: list[tuple] = []
+    with ControllerRuns(SilMode.REALTIME, "arm_retune.orc") as runs:
+        session = session_of("arm_retune.orc", runs=runs, until_s=1.5)
+        request = runs.controller.request
+
+        def spy(op, module=0, t_s=0.0, values=(), offset=0):
+            if op is Op.PARAM:
+                sent.append(tuple(values))
+            return request(op, module, t_s, values, offset)
+
+        runs.controller.request = spy
+        result = session.execute().result
+    assert any(e.update is not None and e.update.ramp is not None for e in result.exceptions)
+    ki = [values for values in sent if values]  # parameter vectors sent (kp and ki steps)
+    assert len(ki) > 500  # the ramp's steps, one per 1 ms release within 1 s
+    assert len(set(ki)) > 500
 
 
 def test_a_sporadic_module_task_is_released_by_its_producers_writes():
     """arm_interrupts: the tracking-error observer on cpu1 is released by each write of the
     control law on cpu0 (another thread), never more often than every 2 ms."""
-    plan = plan_of("arm_interrupts.orc", "ArmInterrupts")
-    with realtime(plan, "arm_interrupts.orc") as (table, controller, shared):
-        run = _run(plan, table, controller, shared)
-        result = run.run()
-        timings = {t.name: t for t in run.timings()}
+    result, timings, _ = _realtime("arm_interrupts.orc", "ArmInterrupts")
     assert result.status == "done", result.reason
     assert 0 < timings["TrackWatched.watch"].released <= 4.0 / 0.002 + 1
 

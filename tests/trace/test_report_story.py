@@ -41,7 +41,12 @@ def test_json_report_lists_injections_with_their_kind():
     assert report["injections"][-1] == {"time_s": 3.0, "name": "Stop", "value": None,
                                         "kind": "input", "by": "--inject", "applied": True}
     assert report["injections"][0]["value"] == 0.8
-    assert sum(1 for o in report["outputs"] if o["name"] == "Beat") == 3501  # JSON keeps all
+    beats = [o for o in report["outputs"] if o["name"] == "Beat"]  # grouped as in the text
+    assert beats == [{"time_s": 1.5001, "until_s": 5.0, "name": "Beat", "count": 3501,
+                      "values": None}]
+    assert [o["name"] for o in report["outputs"]] == ["Started", "Beat", "Grip", "Stopping",
+                                                      "Finished"]
+    assert report["outputs"][2] == {"time_s": 2.0, "name": "Grip", "value": 0.8}
 
 
 def test_a_plant_fault_is_listed_as_such():

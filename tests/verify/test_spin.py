@@ -62,7 +62,8 @@ def spin():
 @pytest.mark.parametrize("source,mission", [pytest.param(s, m, id=m.name) for s, m in _pairs()])
 def test_spin_agrees(spin, source, mission):
     properties = applicable(source.program.properties, mission)
-    text = to_promela(_automaton(source, mission),
+    composition = _composition(source, mission)
+    text = to_promela(composition.automaton, composition.roles,
                       properties=properties,
                       assumptions=applicable(source.program.assumptions, mission))
     theirs = spin(text, [claim_name(p.name) for p in properties])
@@ -70,6 +71,6 @@ def test_spin_agrees(spin, source, mission):
     assert {p.name: theirs[claim_name(p.name)] for p in properties} == ours
 
 
-def _automaton(source, mission):
+def _composition(source, mission):
     from orccad_app.robottask.composition import compose
-    return compose(source.program, mission).automaton
+    return compose(source.program, mission)

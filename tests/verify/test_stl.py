@@ -153,24 +153,25 @@ def test_the_model_checker_refuses_a_signal_formula_rather_than_dropping_its_bou
             from_ast(parse(f"property p: {text};").properties[0].formula)
 
 
-def test_a_reused_specification_equals_a_fresh_one():
-    """The parsed rtamt specification is cached per formula (a campaign judges the same
-    properties on every run): evaluating it again on other samples, of other lengths, gives
-    exactly what a freshly parsed one gives."""
-    from orccad_app.verify import stl as stl_module
+def test_translated_formulas_give_rtamts_robustness():
+    """Formulas of the language, translated (norm, negation, iff, never, bounded until and
+    since), evaluated by the linear evaluator and by rtamt on runs of several lengths."""
+    from orccad_app.verify.stl_rtamt import rtamt_robustness
 
     texts = ["always (r.x < 30.0)", "eventually[1, 2] (r.x > 4.0)",
-             "always (norm(r.v) < 6.0)", "always[0 s, 1 s] (r.x < 10.0)"]
-    runs = [([10.0, 27.5, 12.0], [(3.0, 4.0)] * 3), ([100.0, 5.0, 8.0, 100.0, 2.0], [(5.0, 12.0)] * 5),
+             "always (norm(r.v) < 6.0)", "always[0 s, 1 s] (r.x < 10.0)",
+             "(r.x > 3.0) until[1, 3] (r.v[0] > 4.0)", "never[0, 2] (-r.x > 0.0)",
+             "always ((r.v[1] > 1.0) since[0, 2] (r.x < 20.0))",
+             "(r.x > 8.0) <-> eventually (r.v[0] < 2.0)"]
+    runs = [([10.0, 27.5, 12.0], [(3.0, 4.0)] * 3),
+            ([100.0, 5.0, 8.0, 100.0, 2.0], [(5.0, 12.0)] * 5),
             ([1.0], [(0.0, 2.5)]), ([31.0, 7.0], [(1.0, 1.0), (8.0, 0.0)])]
-    stl_module._parsed.cache_clear()
-    reused = [[_rob(text, x=x, v=v) for x, v in runs] for text in texts]
-    assert stl_module._parsed.cache_info().hits >= 8  # most evaluations reused a parse
-    fresh = []
     for text in texts:
-        row = []
+        stl = translate(parse(f"property p: {text};").properties[0].formula, PORTS, S)
         for x, v in runs:
-            stl_module._parsed.cache_clear()
-            row.append(_rob(text, x=x, v=v))
-        fresh.append(row)
-    assert reused == fresh
+            samples = {}
+            for name, component in stl.ports.items():
+                samples[name] = list(x) if component == Component("r", "x") else \
+                    [vec[component.index] for vec in v]
+            assert robustness(stl, samples) == rtamt_robustness(stl.tree, samples, S), \
+                (text, x, v)

@@ -84,3 +84,21 @@ def test_fairness_of_a_started_task_and_of_timers(tmp_path):
 def from_text(text):
     from .conftest import formula
     return formula(text)
+
+
+def test_a_widened_periodic_sequence_is_the_same_sequence():
+    """Periodic.widened (slices of the prefix and the repeated loop) writes the sequence
+    position by position as ``at`` reads it, for prefixes shorter and longer than its own."""
+    import random
+
+    from orccad_app.verify.lasso import Periodic
+
+    draw = random.Random(3)
+    for _ in range(300):
+        sequence = Periodic(tuple(draw.random() < 0.5 for _ in range(draw.randint(0, 5))),
+                            tuple(draw.random() < 0.5 for _ in range(draw.randint(1, 4))))
+        pre_len = draw.randint(0, 9)
+        period = len(sequence.loop) * draw.randint(1, 3)
+        wide = sequence.widened(pre_len, period)
+        assert wide.pre == tuple(sequence.at(i) for i in range(pre_len))
+        assert wide.loop == tuple(sequence.at(pre_len + i) for i in range(period))

@@ -19,70 +19,15 @@
 #include <unistd.h>
 
 #include "orccad_mt.h"
-
-enum { OP_HELLO = 1, OP_START = 2, OP_PARAM = 3, OP_INIT = 4, OP_COMPUTE = 5, OP_PING = 6,
-       OP_QUIT = 7 };
+#include "orccad_wire.h"
 
 #define MAX_DOUBLES (ORC_MAX_PORTS * (ORC_MAX_DIM + 1) + ORC_MAX_PARAMS)
 
-typedef struct {
-    uint32_t op, module;
-    double t_s;
-    uint32_t n, offset;
-} request_t;
-
-typedef struct {
-    uint32_t status, n;
-} reply_t;
-
 static double data_in[MAX_DOUBLES], data_out[MAX_DOUBLES];
-
-static int read_full(int fd, void *buf, size_t size)
-{
-    char *p = buf;
-    while (size > 0) {
-        ssize_t got = read(fd, p, size);
-        if (got == 0) {
-            return -1; /* the plant server closed the socket */
-        }
-        if (got < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            return -1;
-        }
-        p += got;
-        size -= (size_t)got;
-    }
-    return 0;
-}
-
-static int write_full(int fd, const void *buf, size_t size)
-{
-    const char *p = buf;
-    while (size > 0) {
-        ssize_t put = write(fd, p, size);
-        if (put < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            return -1;
-        }
-        p += put;
-        size -= (size_t)put;
-    }
-    return 0;
-}
 
 static int reply(int fd, uint32_t status, uint32_t n)
 {
-    reply_t head;
-    head.status = status;
-    head.n = n;
-    if (write_full(fd, &head, sizeof head) != 0) {
-        return -1;
-    }
-    return n ? write_full(fd, data_out, n * sizeof(double)) : 0;
+    return orc_wire_reply(fd, status, n, data_out);
 }
 
 static uint32_t compute(orc_mt *m, double t_s)
@@ -109,7 +54,7 @@ static uint32_t compute(orc_mt *m, double t_s)
 int main(int argc, char **argv)
 {
     int fd;
-    request_t req;
+    orc_request req;
     if (argc != 3 || strcmp(argv[1], "--fd") != 0) {
         fprintf(stderr, "usage: %s --fd N (started by orccad sil)\n", argv[0]);
         return 2;
@@ -118,10 +63,10 @@ int main(int argc, char **argv)
     for (;;) {
         orc_mt *m = NULL;
         uint32_t n;
-        if (read_full(fd, &req, sizeof req) != 0) {
+        if (orc_wire_read(fd, &req, sizeof req) != 0) {
             return 0; /* the plant server is gone: end quietly */
         }
-        if (req.n > MAX_DOUBLES || read_full(fd, data_in, req.n * sizeof(double)) != 0) {
+        if (req.n > MAX_DOUBLES || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {
             return 3;
         }
         if (req.op != OP_HELLO && req.op != OP_PING && req.op != OP_QUIT) {
@@ -133,10 +78,8 @@ int main(int argc, char **argv)
         }
         switch (req.op) {
         case OP_HELLO:
-            data_out[0] = (double)ORC_N_MODULES;
-            n = (uint32_t)strlen(ORC_TABLE_DIGEST);
-            memcpy(&data_out[1], ORC_TABLE_DIGEST, n < 64 ? n : 64);
-            if (reply(fd, 0, 9) != 0) {
+            orc_wire_hello(data_out);
+            if (reply(fd, 0, ORC_HELLO_DOUBLES) != 0) {
                 return 3;
             }
             break;

@@ -167,118 +167,6 @@ static const double *backward(double *st, int dim, double t_s, const double *val
 }
 
 /* ---- PID (orccad_app/control/laws/fast.py, the plain-float path) ------------------------- */
-/* inputs: qd, qd_dot, qd_ddot, q, qdot; outputs: tau, e, saturated */
-
-static void pid(orc_mt *m, double t_s)
-{
-    int dof = (int)m->p[0], j, ki_any = 0, any_sat = 0, integrate, windup, saturated = 0;
-    int anti_windup = m->p[1] != 0.0;
-    const double *kp = &m->p[2], *kv = &m->p[2 + dof], *ki = &m->p[2 + 2 * dof];
-    const double *tau_min = &m->p[2 + 3 * dof], *tau_max = &m->p[2 + 4 * dof];
-    const double *alpha = &m->p[2 + 5 * dof], *beta = &m->p[2 + 6 * dof];
-    double *integral = &m->s[2], *sat_dir = &m->s[2 + dof];
-    double *est_q = &m->s[2 + 2 * dof], *est_r = est_q + 2 + 2 * dof;
-    const double *pos, *vel, *q, *qdot;
-    double dt, tau[ORC_MAX_DIM], e[ORC_MAX_DIM], flag;
-    if (!m->in[0].present) {
-        return;
-    }
-    /* the reference's estimator sees every reference sample, even without q (as in
-     * module_kinds.py: the reference is read before q is checked) */
-    pos = m->in[0].v;
-    vel = m->in[1].present ? m->in[1].v : backward(est_r, dof, t_s, pos, 1);
-    if (!m->in[3].present) {
-        return;
-    }
-    q = m->in[3].v;
-    qdot = m->in[4].present ? m->in[4].v : backward(est_q, dof, t_s, q, 0);
-    dt = 0.0;
-    if (m->s[0] != 0.0) {
-        dt = t_s - m->s[1];
-        dt = 0.0 > dt ? 0.0 : dt;
-    }
-    m->s[0] = 1.0;
-    m->s[1] = t_s;
-    for (j = 0; j < dof; j++) {
-        ki_any |= ki[j] != 0.0;
-        any_sat |= sat_dir[j] != 0.0;
-    }
-    integrate = dt != 0.0 && ki_any;
-    windup = integrate && anti_windup && any_sat;
-    for (j = 0; j < dof; j++) {
-        double x = q[j] - pos[j], u, v, lo, hi, floor, back_emf, d;
-        e[j] = x;
-        if (integrate) {
-            d = x * dt;
-            if (windup && -ki[j] * d * sat_dir[j] > 0) {
-                d = 0.0;
-            }
-            integral[j] = integral[j] + d;
-        }
-        u = kp[j] * x + kv[j] * (qdot[j] - vel[j]);
-        if (ki_any) {
-            u = u + ki[j] * integral[j];
-        }
-        u = 0.0 - u;
-        /* the actuator constraint's bounds, numpy's tie rules (fast.py _clamp) */
-        back_emf = beta[j] == 0.0 ? 0.0 : beta[j] * qdot[j];
-        lo = -alpha[j] - back_emf;
-        if (tau_min[j] > lo) {
-            lo = tau_min[j];
-        }
-        hi = alpha[j] - back_emf;
-        if (tau_max[j] < hi) {
-            hi = tau_max[j];
-        }
-        floor = lo < tau_max[j] ? lo : tau_max[j];
-        if (!(hi > floor)) {
-            hi = floor;
-        }
-        if (!(lo < hi)) {
-            lo = hi;
-        }
-        v = u > lo ? u : lo;
-        if (!(v < hi)) {
-            v = hi;
-        }
-        tau[j] = v;
-        d = u - v;
-        sat_dir[j] = d > 0 ? 1.0 : d < 0 ? -1.0 : 0.0;
-        saturated |= v != u;
-    }
-    set_out(m, 0, tau, dof);
-    set_out(m, 1, e, dof);
-    flag = saturated ? 1.0 : 0.0;
-    set_out(m, 2, &flag, 1);
-}
-
-
-/* ---- computed torque (laws/fast.py's _model; multirate.py) ------------------------------- */
-/* the model block: [gravity[3], per joint: parent, axis[3], rotation[9], translation[3],
- * mass, lever[3], inertia[6] (xx, xy, xz, yy, yz, zz), armature] */
-#define JOINT_WORDS 27
-
-static void load_model(const double *block, int n, orc_model *model)
-{
-    int i, k;
-    model->n = n;
-    for (k = 0; k < 3; k++) {
-        model->gravity[k] = block[k];
-    }
-    for (i = 0; i < n && i < ORC_MAX_JOINTS; i++) {
-        const double *w = &block[3 + i * JOINT_WORDS];
-        orc_joint *j = &model->joints[i];
-        j->parent = (int)w[0];
-        memcpy(j->axis, &w[1], 3 * sizeof(double));
-        memcpy(j->rotation, &w[4], 9 * sizeof(double));
-        memcpy(j->translation, &w[13], 3 * sizeof(double));
-        j->mass = w[16];
-        memcpy(j->lever, &w[17], 3 * sizeof(double));
-        memcpy(j->inertia, &w[20], 6 * sizeof(double));
-        j->armature = w[26];
-    }
-}
-
 /* the actuator constraint and the clamp of fast.py's _clamp; returns 1 if saturated */
 static int clamp(int dof, const double *tau_unsat, const double *qdot, const double *bounds,
                  double *tau, double *sat_dir)
@@ -317,6 +205,94 @@ static int clamp(int dof, const double *tau_unsat, const double *qdot, const dou
     }
     return saturated;
 }
+
+/* inputs: qd, qd_dot, qd_ddot, q, qdot; outputs: tau, e, saturated */
+
+static void pid(orc_mt *m, double t_s)
+{
+    int dof = (int)m->p[0], j, ki_any = 0, any_sat = 0, integrate, windup, saturated = 0;
+    int anti_windup = m->p[1] != 0.0;
+    const double *kp = &m->p[2], *kv = &m->p[2 + dof], *ki = &m->p[2 + 2 * dof];
+    const double *tau_min = &m->p[2 + 3 * dof]; /* the bounds: tau_min, tau_max, alpha, beta */
+    double *integral = &m->s[2], *sat_dir = &m->s[2 + dof];
+    double *est_q = &m->s[2 + 2 * dof], *est_r = est_q + 2 + 2 * dof;
+    const double *pos, *vel, *q, *qdot;
+    double dt, tau[ORC_MAX_DIM], e[ORC_MAX_DIM], flag, tau_unsat[ORC_MAX_DIM] = {0.0};
+    if (!m->in[0].present) {
+        return;
+    }
+    /* the reference's estimator sees every reference sample, even without q (as in
+     * module_kinds.py: the reference is read before q is checked) */
+    pos = m->in[0].v;
+    vel = m->in[1].present ? m->in[1].v : backward(est_r, dof, t_s, pos, 1);
+    if (!m->in[3].present) {
+        return;
+    }
+    q = m->in[3].v;
+    qdot = m->in[4].present ? m->in[4].v : backward(est_q, dof, t_s, q, 0);
+    dt = 0.0;
+    if (m->s[0] != 0.0) {
+        dt = t_s - m->s[1];
+        dt = 0.0 > dt ? 0.0 : dt;
+    }
+    m->s[0] = 1.0;
+    m->s[1] = t_s;
+    for (j = 0; j < dof; j++) {
+        ki_any |= ki[j] != 0.0;
+        any_sat |= sat_dir[j] != 0.0;
+    }
+    integrate = dt != 0.0 && ki_any;
+    windup = integrate && anti_windup && any_sat;
+    for (j = 0; j < dof; j++) {
+        double x = q[j] - pos[j], u, d;
+        e[j] = x;
+        if (integrate) {
+            d = x * dt;
+            if (windup && -ki[j] * d * sat_dir[j] > 0) {
+                d = 0.0;
+            }
+            integral[j] = integral[j] + d;
+        }
+        u = kp[j] * x + kv[j] * (qdot[j] - vel[j]);
+        if (ki_any) {
+            u = u + ki[j] * integral[j];
+        }
+        tau_unsat[j] = 0.0 - u;
+    }
+    saturated = clamp(dof, tau_unsat, qdot, tau_min, tau, sat_dir);
+    set_out(m, 0, tau, dof);
+    set_out(m, 1, e, dof);
+    flag = saturated ? 1.0 : 0.0;
+    set_out(m, 2, &flag, 1);
+}
+
+
+/* ---- computed torque (laws/fast.py's _model; multirate.py) ------------------------------- */
+/* the model block: [gravity[3], per joint: parent, axis[3], rotation[9], translation[3],
+ * mass, lever[3], inertia[6] (xx, xy, xz, yy, yz, zz), armature] */
+#define JOINT_WORDS 27
+
+static void load_model(const double *block, int n, orc_model *model)
+{
+    int i, k;
+    model->n = n;
+    for (k = 0; k < 3; k++) {
+        model->gravity[k] = block[k];
+    }
+    for (i = 0; i < n && i < ORC_MAX_JOINTS; i++) {
+        const double *w = &block[3 + i * JOINT_WORDS];
+        orc_joint *j = &model->joints[i];
+        j->parent = (int)w[0];
+        memcpy(j->axis, &w[1], 3 * sizeof(double));
+        memcpy(j->rotation, &w[4], 9 * sizeof(double));
+        memcpy(j->translation, &w[13], 3 * sizeof(double));
+        j->mass = w[16];
+        memcpy(j->lever, &w[17], 3 * sizeof(double));
+        memcpy(j->inertia, &w[20], 6 * sizeof(double));
+        j->armature = w[26];
+    }
+}
+
 
 /* computed_torque: [dof, feedforward, kp[n], kv[n], tau_min, tau_max, alpha, beta (each [n]),
  * damping[n], model block]; in qd, qd_dot, qd_ddot, q, qdot; out tau, e, saturated.
@@ -794,6 +770,9 @@ void orc_mt_init(orc_mt *m)
     for (i = 0; i < ORC_MAX_STATE; i++) {
         m->s[i] = 0.0;
     }
+    if (m->kind >= ORC_PLUGIN_BASE) {
+        (void)orc_plugin_init(m);
+    }
 }
 
 int orc_mt_compute(orc_mt *m, double t_s)
@@ -817,7 +796,7 @@ int orc_mt_compute(orc_mt *m, double t_s)
     case ORC_AUV_AUTOPILOT: autopilot(m, t_s); break;
     case ORC_AUV_GUIDANCE: guidance(m); break;
     case ORC_AUV_OBSERVER: auv_observer(m, t_s); break;
-    default: return -1;
+    default: return orc_plugin_compute(m, t_s);
     }
     return 0;
 }

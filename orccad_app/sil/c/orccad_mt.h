@@ -81,7 +81,7 @@ extern const orc_mt_def ORC_MODULES[];
 extern const int ORC_N_MODULES;
 extern const char ORC_TABLE_DIGEST[];
 /* A connection of the TCS (RR-1801 §3.2.1): module -1 is the robot (its port index in
- * ORC_ROBOT_PORTS); protocol 0 is asyn/asyn (the only one the real-time runtime runs). */
+ * ORC_ROBOT_PORTS); protocol: enum orc_protocol of orccad_port.h (0: asyn/asyn). */
 typedef struct {
     int src_module, src_slot, dst_module, dst_slot, protocol;
 } orc_connection;
@@ -101,5 +101,13 @@ extern const int ORC_N_PROCESSORS;
 
 /* The generated instances' memory, one per table entry (no allocation at run time). */
 extern orc_mt ORC_INSTANCES[];
+
+/* The plugin kinds' C (ModuleKind.c_implementation; docs/deploy.md): kind ORC_PLUGIN_BASE + k
+ * is the table's k-th plugin kind, its functions PREFIX_init(orc_mt *) and
+ * PREFIX_compute(orc_mt *, double) called through these two, which the generated table
+ * defines; -1 for a kind that is not a plugin's. */
+#define ORC_PLUGIN_BASE 100
+int orc_plugin_init(orc_mt *m);
+int orc_plugin_compute(orc_mt *m, double t_s);
 
 #endif

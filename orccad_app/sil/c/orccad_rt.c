@@ -4,13 +4,18 @@
  * periodic releases by clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME), jobs in priority
  * order (1 the highest) at each release instant, read -> compute -> write. A sporadic
  * Module-Task is released by the writes on its inputs, at least its minimum inter-arrival
- * apart (deferred, coalesced); a thread with an active sporadic one wakes every 100 µs at
- * least to see an interrupt from another thread. The threads run
+ * apart (deferred, coalesced); another thread's write wakes its thread at once. The threads run
  * under SCHED_FIFO when the system permits it (priority 80 minus the processor's highest
  * Module-Task priority), else under the default policy after a warning on stderr.
  *
- * Ports: connections between Module-Tasks are asyn/asyn buffers (the last value; "none yet"
- * before the first write, and again after a reset). Robot ports go through the I/O functions
+ * Ports: each connection between Module-Tasks runs its protocol (orccad_port.h: the 8 of
+ * RR-1801, as the executive runs them on one processor). A job reads its inputs in port order
+ * at its release (the jobs released together read in priority order before any computes), is
+ * computed in priority order, then writes its outputs in port order; a read or write that its protocol blocks
+ * leaves the job waiting there while the thread runs its processor's other jobs, and the
+ * other end's operation (on any thread) releases it. A thread with a blocked job or an active
+ * sporadic Module-Task waits on the runtime's condition variable (CLOCK_MONOTONIC, absolute)
+ * rather than in clock_nanosleep, so that another thread's write wakes it at once. Robot ports go through the I/O functions
  * of orccad_io.h: over the plant server's shared memory in SIL (orccad_io_shm.c), the
  * hardware's on a robot. Each job's measured timing (release lateness, overruns, deadline
  * misses, response time) and outputs are published through them too.
@@ -40,43 +45,36 @@
 
 #include "orccad_io.h"
 #include "orccad_mt.h"
-
-enum { OP_HELLO = 1, OP_START = 2, OP_PARAM = 3, OP_INIT = 4, OP_PING = 6, OP_QUIT = 7,
-       OP_ACTIVATE = 8, OP_KILL = 9, OP_RESET = 10, OP_EPOCH = 11 };
+#include "orccad_port.h"
+#include "orccad_wire.h"
 
 #define MAX_MODULES 64
 #define MAX_CONNECTIONS 256
 #define MAX_PROCESSORS 16
 #define MAX_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
 
-typedef struct {
-    uint32_t op, module;
-    double t_s;
-    uint32_t n, offset;
-} request_t;
-
-typedef struct {
-    uint32_t status, n;
-} reply_t;
-
-/* The state of one Module-Task in the runtime. */
+/* The state of one Module-Task in the runtime, and of its current job. */
 typedef struct {
     int active;
     int64_t next_release_ns;  /* absolute, CLOCK_MONOTONIC; INT64_MAX: none due (sporadic) */
     int64_t last_release_ns;  /* sporadic: the previous release (INT64_MIN: none yet) */
     int64_t released, overruns, misses, events;
     double response_max_ns;
+    int phase;                /* JOB_IDLE, JOB_READING (its inputs), JOB_WRITING */
+    int at;                   /* the next input slot to read, or write to do */
+    int waiting;              /* blocked on that read or write (a port protocol) */
+    int64_t job_release_ns;   /* the current job's release */
 } rt_task;
 
-/* An asyn/asyn buffer of one connection. */
-typedef struct {
-    int present;
-    double v[ORC_MAX_DIM];
-} rt_buffer;
+enum { JOB_IDLE = 0, JOB_READING = 1, JOB_WRITING = 2 };
 
 static pthread_mutex_t rt_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t rt_changed; /* a port, an interrupt or a command changed (monotonic) */
 static rt_task tasks[MAX_MODULES];
-static rt_buffer buffers[MAX_CONNECTIONS];
+static orc_port ports[MAX_CONNECTIONS];
+static int input_of[MAX_MODULES][ORC_MAX_PORTS]; /* the connection into each input slot */
+static int writes[MAX_CONNECTIONS];              /* connections by producer, in port order */
+static int first_write[MAX_MODULES + 1];
 static volatile int stopping;
 static int64_t epoch_ns;
 static double data_in[MAX_DOUBLES];
@@ -88,31 +86,51 @@ static int64_t now_ns(void)
     return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
-/* ---- I/O: orccad_io.h (the SIL implementation: orccad_io_shm.c) ---------------------- */
-
-/* ---- one job ----------------------------------------------------------------------------- */
-
-static void read_inputs(int m)
+static struct timespec timespec_of(int64_t ns)
 {
-    orc_mt *mt = &ORC_INSTANCES[m];
-    int c, s;
-    for (s = 0; s < mt->n_in; s++) {
-        mt->in[s].present = 0;
+    struct timespec ts;
+    ts.tv_sec = (time_t)(ns / 1000000000LL);
+    ts.tv_nsec = (long)(ns % 1000000000LL);
+    return ts;
+}
+
+/* The wiring's indexes: each input slot's connection (-1: none), and each Module-Task's
+ * writes in the order of its output slots (as the executive writes them). */
+static void index_wiring(void)
+{
+    int m, s, c, n = 0;
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        for (s = 0; s < ORC_MAX_PORTS; s++) {
+            input_of[m][s] = -1;
+        }
     }
     for (c = 0; c < ORC_N_CONNECTIONS; c++) {
         const orc_connection *k = &ORC_CONNECTIONS[c];
-        orc_value *slot;
-        if (k->dst_module != m) {
-            continue;
-        }
-        slot = &mt->in[k->dst_slot];
-        if (k->src_module < 0) {
-            orc_io_read_sensor(k->src_slot, slot);
-        } else {
-            slot->present = buffers[c].present;
-            memcpy(slot->v, buffers[c].v, sizeof slot->v);
+        orc_port_reset(&ports[c], k->protocol);
+        if (k->dst_module >= 0) {
+            input_of[k->dst_module][k->dst_slot] = c;
         }
     }
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        first_write[m] = n;
+        for (s = 0; s < ORC_MAX_PORTS; s++) {
+            for (c = 0; c < ORC_N_CONNECTIONS; c++) {
+                if (ORC_CONNECTIONS[c].src_module == m && ORC_CONNECTIONS[c].src_slot == s) {
+                    writes[n++] = c;
+                }
+            }
+        }
+    }
+    first_write[ORC_N_MODULES] = n;
+}
+
+/* ---- one job: read (a protocol may block it), compute, write (may block) ---------------- */
+
+/* A read's value into an input slot (its dimension is the slot's own). */
+static void take(orc_value *slot, const orc_value *value)
+{
+    slot->present = value->present;
+    memcpy(slot->v, value->v, sizeof slot->v);
 }
 
 /* A write on an input of sporadic Module-Task m: released now, or deferred to its minimum
@@ -135,117 +153,250 @@ static int is_observer(int kind)
     return (kind >= ORC_OBS_JOINT_LIMITS && kind <= ORC_OBS_AT_REST) || kind == ORC_AUV_OBSERVER;
 }
 
-static void write_outputs(int m)
+/* Reads the inputs from t->at on; 0 when blocked on one. */
+static int read_inputs(int m)
 {
+    rt_task *t = &tasks[m];
     orc_mt *mt = &ORC_INSTANCES[m];
-    int c;
-    for (c = 0; c < ORC_N_CONNECTIONS; c++) {
-        const orc_connection *k = &ORC_CONNECTIONS[c];
-        const orc_value *out;
-        if (k->src_module != m || !mt->out[k->src_slot].present) {
-            continue;
-        }
-        out = &mt->out[k->src_slot];
-        if (k->dst_module < 0) {
-            orc_io_write_actuator(k->dst_slot, out);
+    orc_value value;
+    for (; t->at < mt->n_in; t->at++) {
+        int c = input_of[m][t->at];
+        orc_value *slot = &mt->in[t->at];
+        if (c < 0) {
+            slot->present = 0;
+        } else if (ORC_CONNECTIONS[c].src_module < 0) {
+            orc_io_read_sensor(ORC_CONNECTIONS[c].src_slot, slot);
         } else {
-            buffers[c].present = 1;
-            memcpy(buffers[c].v, out->v, sizeof buffers[c].v);
-            if (ORC_MODULES[k->dst_module].sporadic) {
-                interrupt(k->dst_module);
+            int done = t->waiting ? orc_port_read_done(&ports[c], &value)
+                                  : orc_port_read(&ports[c], &value);
+            t->waiting = done == ORC_PORT_BLOCKED;
+            if (t->waiting) {
+                return 0;
             }
+            take(slot, &value);
         }
     }
-    if (is_observer(ORC_MODULES[m].kind) && mt->out[0].present) {
-        tasks[m].events += 1; /* an observer's event (slot 0): counted for the plant server */
+    return 1;
+}
+
+/* Writes the outputs from t->at on; 0 when blocked on one. */
+static int write_outputs(int m)
+{
+    rt_task *t = &tasks[m];
+    orc_mt *mt = &ORC_INSTANCES[m];
+    for (; first_write[m] + t->at < first_write[m + 1]; t->at++) {
+        int c = writes[first_write[m] + t->at];
+        const orc_connection *k = &ORC_CONNECTIONS[c];
+        const orc_value *out = &mt->out[k->src_slot];
+        if (!t->waiting && !out->present) {
+            continue;
+        }
+        if (k->dst_module < 0) {
+            orc_io_write_actuator(k->dst_slot, out);
+            continue;
+        }
+        if (!t->waiting && ORC_MODULES[k->dst_module].sporadic) {
+            interrupt(k->dst_module);
+        }
+        t->waiting = (t->waiting ? orc_port_write_done(&ports[c]) : orc_port_write(&ports[c], out))
+                     == ORC_PORT_BLOCKED;
+        if (t->waiting) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static void finish_job(int m)
+{
+    rt_task *t = &tasks[m];
+    double response = (double)(now_ns() - t->job_release_ns);
+    if (is_observer(ORC_MODULES[m].kind) && ORC_INSTANCES[m].out[0].present) {
+        t->events += 1; /* an observer's event (slot 0): counted for the plant server */
+    }
+    t->phase = JOB_IDLE;
+    if (response > t->response_max_ns) {
+        t->response_max_ns = response;
+    }
+    if (response > (double)ORC_MODULES[m].period_ns) {
+        t->misses += 1;
+    }
+    orc_io_publish(m, &ORC_INSTANCES[m], t->released, t->overruns, t->misses, t->events,
+                   t->response_max_ns);
+}
+
+/* Takes the job of m as far as its ports let it; 1 when it moved. */
+static int advance(int m)
+{
+    rt_task *t = &tasks[m];
+    int at = t->at, phase = t->phase;
+    if (t->phase == JOB_READING && read_inputs(m)) {
+        orc_mt_compute(&ORC_INSTANCES[m], (double)(t->job_release_ns - epoch_ns) * 1e-9);
+        t->phase = JOB_WRITING;
+        t->at = 0;
+    }
+    if (t->phase == JOB_WRITING && write_outputs(m)) {
+        finish_job(m);
+    }
+    return t->phase != phase || t->at != at;
+}
+
+/* The releases due at `now` on `processor`: a job starts (reading), or the release is skipped
+ * and counted as an overrun while the previous job is unfinished. */
+static void release_due(int processor, int64_t now, int *released)
+{
+    int m;
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        rt_task *t = &tasks[m];
+        int64_t period = ORC_MODULES[m].period_ns, release = t->next_release_ns;
+        if (!t->active || ORC_MODULES[m].processor != processor || release > now) {
+            continue;
+        }
+        if (t->phase != JOB_IDLE) {
+            t->overruns += 1;
+        } else {
+            t->phase = JOB_READING;
+            t->at = 0;
+            t->waiting = 0;
+            t->job_release_ns = release;
+            t->released += 1;
+            released[m] = 1;
+            orc_io_lateness(m, (double)(now - release));
+        }
+        if (ORC_MODULES[m].sporadic) { /* the next release comes from an interrupt */
+            t->last_release_ns = release;
+            t->next_release_ns = INT64_MAX;
+            continue;
+        }
+        t->next_release_ns = release + period;
+        while (t->next_release_ns <= now) { /* releases missed: overruns */
+            t->overruns += 1;
+            t->next_release_ns += period;
+        }
     }
 }
 
-static void run_job(int m, int64_t release_ns, int64_t woke_ns)
+/* The jobs just released on `processor` read their inputs at once, in priority order, as
+ * the executive's jobs read at their release (before any of them computes). */
+static void read_at_release(int processor, const int *released)
 {
-    const orc_mt_def *def = &ORC_MODULES[m];
-    double response;
-    tasks[m].released += 1;
-    orc_io_lateness(m, (double)(woke_ns - release_ns));
-    read_inputs(m);
-    orc_mt_compute(&ORC_INSTANCES[m], (double)(release_ns - epoch_ns) * 1e-9);
-    write_outputs(m);
-    response = (double)(now_ns() - release_ns);
-    if (response > tasks[m].response_max_ns) {
-        tasks[m].response_max_ns = response;
+    int priority, m;
+    for (priority = 1; priority <= 99; priority++) {
+        for (m = 0; m < ORC_N_MODULES; m++) {
+            if (released[m] && ORC_MODULES[m].processor == processor
+                && ORC_MODULES[m].priority == priority) {
+                (void)read_inputs(m);
+            }
+        }
     }
-    if (response > (double)def->period_ns) {
-        tasks[m].misses += 1;
+}
+
+/* The jobs of `processor` in priority order (1 the highest), each as far as it goes; after
+ * a job moves, from the highest again (it may have released one blocked on its port). */
+static int run_jobs(int processor)
+{
+    int moved_any = 0, moved = 1;
+    while (moved && !stopping) {
+        int priority, m;
+        moved = 0;
+        for (priority = 1; priority <= 99 && !moved; priority++) {
+            for (m = 0; m < ORC_N_MODULES && !moved; m++) {
+                if (tasks[m].active && tasks[m].phase != JOB_IDLE
+                    && ORC_MODULES[m].processor == processor
+                    && ORC_MODULES[m].priority == priority) {
+                    moved = advance(m);
+                }
+            }
+        }
+        moved_any |= moved;
     }
-    orc_io_publish(m, &ORC_INSTANCES[m], tasks[m].released, tasks[m].overruns, tasks[m].misses,
-                   tasks[m].events, tasks[m].response_max_ns);
+    return moved_any;
+}
+
+/* The Module-Task whose operation alone releases m's job (-1: m's job does not wait), and
+ * the connection and direction of the wait. */
+static int waits_for(int m, int *connection, int *reading)
+{
+    const rt_task *t = &tasks[m];
+    int c;
+    if (!t->active || t->phase == JOB_IDLE || !t->waiting) {
+        return -1;
+    }
+    *reading = t->phase == JOB_READING;
+    c = *reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
+    *connection = c;
+    if (*reading ? ports[c].reader_free : ports[c].writer_free) {
+        return -1; /* released already: it goes on at its thread's next look */
+    }
+    return *reading ? ORC_CONNECTIONS[c].src_module : ORC_CONNECTIONS[c].dst_module;
+}
+
+/* A cycle of jobs waiting on each other (the executive's deadlock, docs/executive.md): its
+ * entries [module, connection, reading] into `cycle`; the number of doubles (0: none). */
+static uint32_t find_deadlock(double *cycle)
+{
+    int m;
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        int at = m, steps, c, reading;
+        for (steps = 0; steps <= ORC_N_MODULES; steps++) {
+            at = waits_for(at, &c, &reading);
+            if (at < 0 || at == m) {
+                break;
+            }
+        }
+        if (at == m) {
+            uint32_t n = 0;
+            do {
+                int next = waits_for(at, &c, &reading);
+                cycle[n++] = (double)at;
+                cycle[n++] = (double)c;
+                cycle[n++] = (double)reading;
+                at = next;
+            } while (at != m);
+            return n;
+        }
+    }
+    return 0;
 }
 
 /* ---- processor threads ------------------------------------------------------------------- */
 
-static int has_sporadic(int processor)
-{
-    int m, found = 0;
-    pthread_mutex_lock(&rt_lock);
-    for (m = 0; m < ORC_N_MODULES; m++) {
-        found |= tasks[m].active && ORC_MODULES[m].sporadic
-                 && ORC_MODULES[m].processor == processor;
-    }
-    pthread_mutex_unlock(&rt_lock);
-    return found;
-}
-
 static void *processor_thread(void *arg)
 {
     int processor = (int)(intptr_t)arg;
+    pthread_mutex_lock(&rt_lock);
     while (!stopping) {
-        int64_t next = INT64_MAX, woke;
-        int m, priority;
+        int64_t next = INT64_MAX;
+        int m, waits = 0, released[MAX_MODULES] = {0};
         struct timespec ts;
-        pthread_mutex_lock(&rt_lock);
+        release_due(processor, now_ns(), released);
+        read_at_release(processor, released);
+        if (run_jobs(processor)) {
+            pthread_cond_broadcast(&rt_changed); /* a port moved: other threads look again */
+        }
         for (m = 0; m < ORC_N_MODULES; m++) {
-            if (tasks[m].active && ORC_MODULES[m].processor == processor
-                && tasks[m].next_release_ns < next) {
+            if (!tasks[m].active || ORC_MODULES[m].processor != processor) {
+                continue;
+            }
+            if (tasks[m].next_release_ns < next) {
                 next = tasks[m].next_release_ns;
             }
+            waits |= tasks[m].phase != JOB_IDLE || ORC_MODULES[m].sporadic;
         }
-        pthread_mutex_unlock(&rt_lock);
         if (next == INT64_MAX) { /* nothing due here: look again in 200 µs */
             next = now_ns() + 200000;
         }
-        if (has_sporadic(processor) && next > now_ns() + 100000) {
-            next = now_ns() + 100000; /* an interrupt from another thread: seen in 100 µs */
-        }
-        ts.tv_sec = (time_t)(next / 1000000000LL);
-        ts.tv_nsec = (long)(next % 1000000000LL);
-        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
-        }
-        woke = now_ns();
-        pthread_mutex_lock(&rt_lock);
-        for (priority = 1; priority <= 99; priority++) { /* jobs in priority order */
-            for (m = 0; m < ORC_N_MODULES; m++) {
-                rt_task *t = &tasks[m];
-                int64_t period = ORC_MODULES[m].period_ns, release;
-                if (!t->active || ORC_MODULES[m].processor != processor
-                    || ORC_MODULES[m].priority != priority || t->next_release_ns > woke) {
-                    continue;
-                }
-                release = t->next_release_ns;
-                run_job(m, release, woke);
-                if (ORC_MODULES[m].sporadic) { /* the next release comes from an interrupt */
-                    t->last_release_ns = release;
-                    t->next_release_ns = INT64_MAX;
-                    continue;
-                }
-                t->next_release_ns = release + period;
-                while (t->next_release_ns <= now_ns()) { /* releases missed: overruns */
-                    t->overruns += 1;
-                    t->next_release_ns += period;
-                }
-            }
+        ts = timespec_of(next);
+        if (waits) { /* a blocked job or an interrupt: another thread may signal it */
+            pthread_cond_timedwait(&rt_changed, &rt_lock, &ts);
+            continue;
         }
         pthread_mutex_unlock(&rt_lock);
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
+        }
+        pthread_mutex_lock(&rt_lock);
     }
+    pthread_mutex_unlock(&rt_lock);
     return NULL;
 }
 
@@ -285,59 +436,55 @@ static int start_thread(pthread_t *thread, int processor, int *warned)
 
 /* ---- the socket: commands and heartbeat --------------------------------------------------- */
 
-static int read_full(int fd, void *buf, size_t size)
-{
-    char *p = buf;
-    while (size > 0) {
-        ssize_t got = read(fd, p, size);
-        if (got == 0 || (got < 0 && errno != EINTR)) {
-            return -1;
-        }
-        if (got > 0) {
-            p += got;
-            size -= (size_t)got;
-        }
-    }
-    return 0;
-}
-
-static int reply(int fd, uint32_t status, uint32_t n, const double *values)
-{
-    reply_t head;
-    head.status = status;
-    head.n = n;
-    if (write(fd, &head, sizeof head) != (ssize_t)sizeof head) {
-        return -1;
-    }
-    if (n && write(fd, values, n * sizeof(double)) != (ssize_t)(n * sizeof(double))) {
-        return -1;
-    }
-    return 0;
-}
-
 static void reset_ports(int m)
 {
     int c;
     for (c = 0; c < ORC_N_CONNECTIONS; c++) {
         if (ORC_CONNECTIONS[c].src_module == m || ORC_CONNECTIONS[c].dst_module == m) {
-            buffers[c].present = 0;
+            orc_port_reset(&ports[c], ORC_CONNECTIONS[c].protocol);
         }
     }
 }
 
-static uint32_t command(const request_t *req, double *answer, uint32_t *n)
+/* Module-Task m killed: its unfinished job aborted, its wait on a port forgotten. */
+static void kill_task(int m)
+{
+    rt_task *t = &tasks[m];
+    if (t->phase != JOB_IDLE && t->waiting) {
+        int reading = t->phase == JOB_READING;
+        int c = reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
+        orc_port_cancel(&ports[c], reading);
+    }
+    t->active = 0;
+    t->phase = JOB_IDLE;
+    t->waiting = 0;
+}
+
+/* Module-Task m activated: its first release at release_ns. */
+static void activate(int m, int64_t release_ns)
+{
+    orc_mt_init(&ORC_INSTANCES[m]);
+    kill_task(m);
+    tasks[m].active = 1;
+    tasks[m].next_release_ns = release_ns;
+    if (ORC_MODULES[m].sporadic) { /* released by its first interrupt */
+        tasks[m].next_release_ns = INT64_MAX;
+        tasks[m].last_release_ns = INT64_MIN;
+    }
+}
+
+static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
 {
     orc_mt *mt;
+    uint32_t i;
     *n = 0;
     if (req->op == OP_HELLO) {
-        size_t len = strlen(ORC_TABLE_DIGEST);
-        memset(answer, 0, 9 * sizeof(double));
-        answer[0] = (double)ORC_N_MODULES;
-        memcpy(&answer[1], ORC_TABLE_DIGEST, len < 64 ? len : 64);
-        *n = 9;
+        orc_wire_hello(answer);
+        *n = ORC_HELLO_DOUBLES;
         return 0;
     }
-    if (req->op == OP_PING) {
+    if (req->op == OP_PING) { /* the heartbeat, with the jobs deadlocked if any */
+        *n = find_deadlock(answer);
         return 0;
     }
     if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's) */
@@ -358,20 +505,26 @@ static uint32_t command(const request_t *req, double *answer, uint32_t *n)
     case OP_INIT:
         orc_mt_init(mt);
         return 0;
-    case OP_ACTIVATE: { /* first release at epoch + t_s, or now when that has passed (the
-                         * plant server behind the wall clock is not the threads' lateness) */
+    case OP_ACTIVATE: { /* every Module-Task in the data (or the request's one), their
+                         * first release shared, as in the executive (their jobs read before
+                         * any of them computes): at epoch + t_s, or now when that has passed
+                         * (the plant server behind the wall clock is not the threads' lateness) */
         int64_t at = epoch_ns + (int64_t)(req->t_s * 1e9 + 0.5), now = now_ns();
-        orc_mt_init(mt);
-        tasks[req->module].active = 1;
-        tasks[req->module].next_release_ns = at > now ? at : now;
-        if (ORC_MODULES[req->module].sporadic) { /* released by its first interrupt */
-            tasks[req->module].next_release_ns = INT64_MAX;
-            tasks[req->module].last_release_ns = INT64_MIN;
+        for (i = 0; i < req->n; i++) {
+            if (!(data_in[i] >= 0 && data_in[i] < ORC_N_MODULES)) {
+                return 1;
+            }
+        }
+        if (req->n == 0) {
+            activate((int)req->module, at > now ? at : now);
+        }
+        for (i = 0; i < req->n; i++) {
+            activate((int)data_in[i], at > now ? at : now);
         }
         return 0;
     }
     case OP_KILL:
-        tasks[req->module].active = 0;
+        kill_task((int)req->module);
         return 0;
     case OP_RESET:
         reset_ports((int)req->module);
@@ -384,9 +537,10 @@ static uint32_t command(const request_t *req, double *answer, uint32_t *n)
 int main(int argc, char **argv)
 {
     pthread_t threads[MAX_PROCESSORS];
+    pthread_condattr_t condattr;
     int fd, p, warned = 0, status = 0;
-    request_t req;
-    double answer[9];
+    orc_request req;
+    double answer[3 * MAX_MODULES + ORC_HELLO_DOUBLES];
     if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
         fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
                 argv[0]);
@@ -403,6 +557,11 @@ int main(int argc, char **argv)
         return 2;
     }
     epoch_ns = now_ns();
+    index_wiring();
+    pthread_condattr_init(&condattr);
+    pthread_condattr_setclock(&condattr, CLOCK_MONOTONIC);
+    pthread_cond_init(&rt_changed, &condattr);
+    pthread_condattr_destroy(&condattr);
     for (p = 0; p < ORC_N_PROCESSORS; p++) {
         if (start_thread(&threads[p], p, &warned) != 0) {
             fprintf(stderr, "orccad_rt: cannot start the thread of processor %d\n", p);
@@ -416,23 +575,27 @@ int main(int argc, char **argv)
     }
     for (;;) {
         uint32_t n, code;
-        if (read_full(fd, &req, sizeof req) != 0 || req.n > MAX_DOUBLES
-            || read_full(fd, data_in, req.n * sizeof(double)) != 0) {
+        if (orc_wire_read(fd, &req, sizeof req) != 0 || req.n > MAX_DOUBLES
+            || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {
             break; /* the plant server is gone */
         }
         if (req.op == OP_QUIT) {
-            reply(fd, 0, 0, NULL);
+            orc_wire_reply(fd, 0, 0, NULL);
             break;
         }
         pthread_mutex_lock(&rt_lock);
         code = command(&req, answer, &n);
+        pthread_cond_broadcast(&rt_changed);
         pthread_mutex_unlock(&rt_lock);
-        if (reply(fd, code, n, answer) != 0) {
+        if (orc_wire_reply(fd, code, n, answer) != 0) {
             status = 3;
             break;
         }
     }
+    pthread_mutex_lock(&rt_lock);
     stopping = 1;
+    pthread_cond_broadcast(&rt_changed);
+    pthread_mutex_unlock(&rt_lock);
     for (p = 0; p < ORC_N_PROCESSORS; p++) {
         pthread_join(threads[p], NULL);
     }

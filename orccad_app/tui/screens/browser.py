@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from textual import on, work
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -16,6 +18,10 @@ from orccad_app.tui.messages import CheckDone
 from orccad_app.tui.session import (FileView, ScriptedInputs, check_file, check_text,
                                     failed_outcomes, inspect_file)
 from orccad_app.tui.widgets.source_view import SourceView
+from orccad_app.tui.screens import orccad
+
+if TYPE_CHECKING:
+    from orccad_app.verify.checker import MissionReport
 
 __all__ = ["BrowserScreen"]
 
@@ -49,7 +55,7 @@ class BrowserScreen(Screen):
         self.files = files
         self.selected = selected or (files[0] if files else None)
         self.view: FileView | None = None
-        self.report = None
+        self.report: MissionReport | None = None
         """The last ``orccad check`` report (its counterexamples are replayed)."""
 
     def compose(self) -> ComposeResult:
@@ -158,9 +164,9 @@ class BrowserScreen(Screen):
         files.focus()
         if files.children:
             files.index = 0
-            first = files.children[0]
-            if getattr(first, "name", None):
-                self.open(first.name)
+            name = getattr(files.children[0], "name", None)
+            if name:
+                self.open(name)
 
     def action_edit(self) -> None:
         if self.selected is None:
@@ -226,7 +232,7 @@ class BrowserScreen(Screen):
     @property
     def outcome(self):
         """The failed property chosen in the Check tab (``None`` without one)."""
-        failed = [] if self.report is None else failed_outcomes(self.report)
+        failed = failed_outcomes(self.report) if self.report is not None else []
         index = self.query_one("#counterexamples", OptionList).highlighted
         return failed[index] if failed and index is not None and index < len(failed) else None
 
@@ -253,7 +259,7 @@ class BrowserScreen(Screen):
         """Run ``outcome``'s counterexample against the plant (the command palette)."""
         if self.view is None or self.report is None:
             return
-        self.app.start_run(self.view.path, self.report.composition.name,
+        orccad(self).start_run(self.view.path, self.report.composition.name,
                            ScriptedInputs.of(outcome))
 
     @on(Button.Pressed, "#run-button")
@@ -261,10 +267,10 @@ class BrowserScreen(Screen):
         if self.view is None or not self.view.ok or self.mission is None:
             self.notify("cannot run: the file has errors or no mission", severity="error")
             return
-        self.app.start_run(self.view.path, self.mission)
+        orccad(self).start_run(self.view.path, self.mission)
 
     def action_campaign(self) -> None:
         if self.selected is None:
             self.notify("choose a mission file first", severity="warning")
             return
-        self.app.open_campaign(self.selected)
+        orccad(self).open_campaign(self.selected)

@@ -24,6 +24,7 @@ from textual.widgets import Button, DataTable, Footer, Header, Input, Label, Sta
 from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.campaigns import (Bin, CampaignSnapshot, Candidate, FalsifySnapshot,
                                       SearchProcess, default_db, read_campaign, read_study)
+from orccad_app.tui.screens import orccad
 
 __all__ = ["CampaignScreen", "MODES", "REFRESH_S"]
 
@@ -272,6 +273,7 @@ class CampaignScreen(Screen):
 
     @work(thread=True, exclusive=True, group="campaign-read")
     def _load(self, mode: str, db: str, spec: str) -> None:
+        snapshot: CampaignSnapshot | FalsifySnapshot
         try:
             if mode == "falsify":
                 snapshot = read_study(db, spec, self.prop or self._field("prop"),
@@ -289,6 +291,9 @@ class CampaignScreen(Screen):
         """The falsification's run horizon, as ``orccad falsify`` sets it [s]."""
         if self._until_s is None:
             from orccad_app.campaign.adapter import CompiledMission
+
+            if self.file is None:
+                raise OrccadError("the mission file is unknown")
             from orccad_app.campaign.spec import load_spec
 
             loaded = load_spec(spec)
@@ -329,13 +334,13 @@ class CampaignScreen(Screen):
             histograms = {snapshot.prop: snapshot.histogram}
         self.query_one("#campaign-histogram", Static).update(histogram_text(histograms))
         table = self.query_one("#candidates", DataTable)
-        row = table.cursor_row
+        cursor = table.cursor_row
         table.clear()
         self.candidates = [] if snapshot is None else list(snapshot.candidates)
         for candidate in self.candidates:
             table.add_row(*candidate_row(candidate))
         if self.candidates:
-            table.move_cursor(row=min(max(row, 0), len(self.candidates) - 1))
+            table.move_cursor(row=min(max(cursor, 0), len(self.candidates) - 1))
 
     # -- replaying -----------------------------------------------------------------------
 
@@ -355,7 +360,7 @@ class CampaignScreen(Screen):
         mission = self.snapshot.mission if isinstance(self.snapshot, CampaignSnapshot) \
             else None
         what = "trial" if self.mode == "falsify" else "campaign run"
-        self.app.start_run(self.file, mission or None, setting=candidate.setting,
+        orccad(self).start_run(self.file, mission or None, setting=candidate.setting,
                            by=f"{what} {candidate.run}")
 
 

@@ -110,6 +110,8 @@ class EditorScreen(Screen[bool]):
 
     def on_mount(self) -> None:
         theme = TextAreaTheme.get_builtin_theme("monokai")
+        if theme is None:  # Textual ships it; without it the editor keeps its default theme
+            return
         styles = dict(theme.syntax_styles)
         styles["orc.error"] = Style(bgcolor="#5f0000")
         editor = self.query_one(OrcTextArea)
@@ -190,7 +192,10 @@ class EditorScreen(Screen[bool]):
     def action_save(self) -> None:
         text = self.query_one(OrcTextArea).text
         try:
-            write_atomically(self.path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+            def write(tmp: Path) -> None:
+                tmp.write_text(text, encoding="utf-8")
+
+            write_atomically(self.path, write)
         except OSError as error:
             self.notify(f"cannot save {self.path}: {error.strerror}", severity="error")
             return

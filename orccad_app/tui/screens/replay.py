@@ -20,6 +20,7 @@ from textual.widgets.option_list import Option
 from orccad_app.tui.session import ScriptedInputs
 from orccad_app.tui.status import elsewhere
 from orccad_app.tui.widgets.source_view import SourceView
+from orccad_app.tui.screens import orccad
 
 __all__ = ["ReplayScreen"]
 
@@ -133,4 +134,4 @@ class ReplayScreen(Screen):
 
     def action_run(self) -> None:
         """The counterexample's inputs against the plant: the run screen."""
-        self.app.start_run(self.path, self.replay.mission, ScriptedInputs.of(self.outcome))
+        orccad(self).start_run(self.path, self.replay.mission, ScriptedInputs.of(self.outcome))

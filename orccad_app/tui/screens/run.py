@@ -25,6 +25,7 @@ from orccad_app.tui.widgets.inputs import InputBar
 from orccad_app.tui.widgets.plots import BUSY_PLOT_FRAMES, REDRAW_S, Marker, Plots
 from orccad_app.tui.widgets.source_view import SourceView
 from orccad_app.tui.widgets.tables import LoadTable, TaskTable, TcsTable
+from orccad_app.tui.screens import orccad
 
 __all__ = ["RunScreen", "SPEEDS"]
 
@@ -180,7 +181,7 @@ class RunScreen(Screen):
             f"{result.sim_time_ns / 1e9:.3f} s in {result.wall_time_s:.2f} s wall "
             f"({self.session.pace.paused_s:.1f} s paused)\npress v for the report, "
             f"esc for the browser")
-        self.app.show_report(self.session, message.report)
+        orccad(self).show_report(self.session, message.report)
 
     @on(RunFailed)
     def _failed(self, message: RunFailed) -> None:
@@ -276,7 +277,7 @@ class RunScreen(Screen):
 
     def action_report(self) -> None:
         if self.finished and self.report_text:
-            self.app.show_report(self.session, self.report_text)
+            orccad(self).show_report(self.session, self.report_text)
 
     def action_back(self) -> None:
         if not self.finished:

@@ -11,6 +11,7 @@ parse is refused with what is expected, never replaced by a default.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 from textual import on
@@ -40,7 +41,8 @@ class InputBar(Horizontal):
     InputBar Label { padding: 0 1; }
     """
 
-    def __init__(self, inputs: list, events: list[str] = (), faults: dict[str, str] = None,
+    def __init__(self, inputs: list, events: Sequence[str] = (),
+                 faults: dict[str, str] | None = None,
                  **kwargs) -> None:
         super().__init__(**kwargs)
         self.inputs = list(inputs)

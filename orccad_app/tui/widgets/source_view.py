@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
-from rich.console import Group
+from collections.abc import Sequence
+
+from rich.console import Group, RenderableType
 from rich.syntax import Syntax
 from rich.text import Text
+from textual.widget import Widget
 from textual.widgets import Static
 
 from orccad_app.tui.widgets.orc_lexer import OrcLexer
@@ -24,7 +27,7 @@ class SourceView(Static):
 
     def show(self, view) -> None:
         """Render ``view`` (a ``FileView``)."""
-        parts = []
+        parts: list[RenderableType] = []
         for diagnostic in view.diagnostics:
             parts.append(Text(f"{view.path}:{diagnostic.format()}",
                               style=_STYLE.get(diagnostic.severity, "")))
@@ -42,7 +45,7 @@ class SourceView(Static):
         self.update(Group(*parts))
 
     def show_run(self, path: str, text: str, lines: list[int],
-                 sites: list[int] = (), elsewhere: list[str] = ()) -> None:
+                 sites: Sequence[int] = (), elsewhere: Sequence[str] = ()) -> None:
         """The mission's source with the lines it waits at highlighted (reversed) and the
         ``run`` statements of the running Robot-Tasks (green), scrolled into view;
         ``elsewhere`` (``homing.orc:26``) says where it waits in other files."""
@@ -63,5 +66,6 @@ class SourceView(Static):
         self.update(Group(caption, Text(""), syntax))
         self.sites = list(sites)
         self.waiting = lines
-        if lines and self.parent is not None:
-            self.parent.scroll_to(y=max(0, lines[0] - 4), animate=False)
+        parent = self.parent
+        if lines and isinstance(parent, Widget):
+            parent.scroll_to(y=max(0, lines[0] - 4), animate=False)

@@ -47,7 +47,8 @@ class LoadTable(_Rows):
         self.add_columns("cpu / module", "load", "miss")
 
     def show(self, loads: dict[str, float], misses: dict[str, int]) -> None:
-        rows = [(processor, f"{load:.1%}", "") for processor, load in sorted(loads.items())]
+        rows: list[tuple[str, ...]] = [(processor, f"{load:.1%}", "")
+                                       for processor, load in sorted(loads.items())]
         rows += [(f"  {module}", "", str(count)) for module, count in sorted(misses.items())]
         self.set_rows(rows + ([] if misses else [("deadline misses", "", "0")]))
 

@@ -3,5 +3,5 @@
 mission await3 {
     input I;
     output O;
-    loop { await 3 (pre(I)); emit O; }
+    loop { await 3 pre(I); emit O; }
 }

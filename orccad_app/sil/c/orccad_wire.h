@@ -1,0 +1,46 @@
+/* orccad_wire.h: the frames between the plant server (orccad_app/sil/controller.py) and a
+ * controller process, over the socket it inherits (file descriptor after --fd). Part of the
+ * ORCCAD runtime library; C99 + POSIX read/write, no allocation.
+ *
+ * A request is an orc_request then `n` doubles; a reply an orc_reply then `n` doubles; a
+ * port value is [present, v0 ... v(dim-1)]. */
+#ifndef ORCCAD_WIRE_H
+#define ORCCAD_WIRE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+enum orc_op {
+    OP_HELLO = 1,    /* answer: the number of Module-Tasks, then the table's digest (8 doubles) */
+    OP_START = 2,    /* a fresh Module-Task: nominal parameters */
+    OP_PARAM = 3,    /* parameters [offset, offset + n) replaced (a type-1 update) */
+    OP_INIT = 4,     /* an activation's reset of the Module-Task's state */
+    OP_COMPUTE = 5,  /* lockstep: one job, its inputs in, its outputs out */
+    OP_PING = 6,     /* the heartbeat (real time: answered with the jobs deadlocked, if any) */
+    OP_QUIT = 7,     /* end */
+    OP_ACTIVATE = 8, /* real time: first release at t_s (the Module-Tasks in the data) */
+    OP_KILL = 9,     /* real time: deactivated, the unfinished job aborted */
+    OP_RESET = 10,   /* real time: the Module-Task's ports back to "before any write" */
+    OP_EPOCH = 11    /* real time: t = 0 is now (the I/O side's epoch) */
+};
+
+typedef struct {
+    uint32_t op, module;
+    double t_s;
+    uint32_t n, offset;
+} orc_request;
+
+typedef struct {
+    uint32_t status, n;
+} orc_reply;
+
+#define ORC_HELLO_DOUBLES 9
+
+/* 0, or -1 when the socket is closed or fails (the plant server is gone). */
+int orc_wire_read(int fd, void *buf, size_t size);
+/* A reply of `n` doubles; 0, or -1 when the socket fails. */
+int orc_wire_reply(int fd, uint32_t status, uint32_t n, const double *values);
+/* HELLO's answer into `answer` (ORC_HELLO_DOUBLES doubles). */
+void orc_wire_hello(double *answer);
+
+#endif

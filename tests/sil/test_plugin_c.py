@@ -1,0 +1,110 @@
+"""A plugin kind's C (ModuleKind.c_implementation, docs/deploy.md): the test plugin's
+``low_pass`` filter (docs/plugins.md's) between the arm's encoders and the PID law runs in
+the controller from the plugin's own C file, and the lockstep run ends as the executive's;
+without C the same kind is refused with its name and the reason."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from orccad_app.pipeline import load, select_mission
+from orccad_app.plugin_api import (REQUIRED, CImplementation, ModuleInstance, ModuleKind,
+                                   ParamSpec, PortSpec, PluginHost, Timing, hookimpl)
+from orccad_app.session import RunOptions, RunSession
+from orccad_app.sil.layout import NoCImplementation
+from orccad_app.sil.runs import ControllerRuns, SilMode
+
+from tests.sil.helpers import MISSIONS, report
+
+LOW_PASS_C = Path(__file__).parent / "c" / "low_pass.c"
+
+
+class _LowPassInstance(ModuleInstance):
+    def init(self) -> None:
+        super().init()
+        self._y: np.ndarray | None = None
+        self._t = 0.0
+
+    def compute(self, t_s: float, inputs: dict) -> dict:
+        u = inputs.get("u")
+        if u is None:
+            return {}
+        u = np.asarray(u, dtype=float)
+        if self._y is None:
+            self._y = u
+        else:
+            alpha = 1.0 - math.exp(-2.0 * math.pi * self.params["cutoff"] * (t_s - self._t))
+            self._y = self._y + alpha * (u - self._y)
+        self._t = t_s
+        return {"y": self._y.copy()}
+
+
+class LowPass(ModuleKind):
+    """First-order low-pass filter of a vector (docs/plugins.md's), with its C."""
+
+    name = "low_pass"
+    summary = "first-order low-pass filter of a vector"
+    ports = (PortSpec("u", "in", "vector", None, True, "signal"),
+             PortSpec("y", "out", "vector", None, True, "filtered signal"))
+    params = (ParamSpec("cutoff", "float", REQUIRED, "cut-off frequency [Hz]", 0.0, True),)
+    default_timing = Timing.from_ms(1.0, 0.05)
+    c_implementation = CImplementation(LOW_PASS_C, "low_pass",
+                                       lambda instance: [instance.params["cutoff"]])
+
+    def _instantiate(self, values, context):
+        dim = context.robot.dof if context.robot is not None else None
+        return _LowPassInstance(self, values, tuple(p.with_dim(dim) for p in self.ports))
+
+
+class PythonOnlyLowPass(LowPass):
+    c_implementation = None
+
+
+class _Plugin:
+    def __init__(self, kind: ModuleKind) -> None:
+        self.kind = kind
+
+    @hookimpl
+    def orccad_register_module_kinds(self, register) -> None:
+        register(self.kind)
+
+
+def _mission(tmp_path) -> Path:
+    """arm_pid for 1 s, the law reading the encoders through the plugin's filter."""
+    text = (MISSIONS / "arm_pid.orc").read_text().replace("duration 4 s", "duration 1 s")
+    text = text.replace("    connect arm.q       -> ctrl.q      : asyn/asyn;\n",
+                        "    module filt : low_pass(cutoff = 150.0) period 1 ms wcet 0.05 ms "
+                        "on cpu0 priority 1;\n"
+                        "    connect arm.q -> filt.u : asyn/asyn;\n"
+                        "    connect filt.y -> ctrl.q : asyn/asyn;\n")
+    assert "filt.y -> ctrl.q" in text
+    path = tmp_path / "arm_filtered.orc"
+    path.write_text(text)
+    return path
+
+
+def _session(path: Path, kind: ModuleKind, runs: ControllerRuns | None = None) -> RunSession:
+    source = load(str(path), PluginHost.load([("sil_test_low_pass", _Plugin(kind))]))
+    return RunSession(source, select_mission(source, None), RunOptions(run_factory=runs))
+
+
+def test_a_plugin_kinds_c_runs_in_the_controller_as_its_python_does(tmp_path):
+    path = _mission(tmp_path)
+    expected = report(_session(path, LowPass()).execute())
+    with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:
+        got = report(_session(path, LowPass(), runs).execute())
+    assert expected["status"] == "done"
+    assert got == expected
+
+
+def test_a_plugin_kind_without_c_is_refused_with_its_name_and_the_reason(tmp_path):
+    path = _mission(tmp_path)
+    with pytest.raises(NoCImplementation, match="low_pass") as refused:
+        with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:
+            _session(path, PythonOnlyLowPass(), runs)
+    assert "exists only in Python" in refused.value.message
+    assert "c_implementation" in refused.value.message

@@ -1,0 +1,57 @@
+"""Seams stay typed: names are looked up, not parsed back (issue 24).
+
+- the mission's own signals are told from the ones the Robot-Task lowering adds by
+  :class:`~orccad_app.robottask.signals.SignalRoles`, never by a dot in the name;
+- a port's module is a field of :class:`~orccad_app.tcs.port.PortRef`, never the text before
+  a name's last dot;
+- ``orccad run`` is argument handling and rendering around the run façade: short functions.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "orccad_app"
+
+#: Tests of a dot in a name, or a name cut at its last dot.
+NAME_PARSING = re.compile(r"""["']\.["'] (?:not )?in |\.rsplit\(["']\.["']|"""
+                          r"""\.endswith\(["']\.(?:raised|start|good_end|adjust)["']\)""")
+
+ALLOWED = {
+    "orccad_app/robottask/signals.py": "SignalRoles itself",
+    "orccad_app/campaign/spec.py": "checks the user's ROBOT.FAULT=VALUE@TIME text, not a signal",
+}
+"""Files that may match :data:`NAME_PARSING`, and why."""
+
+NOT_YET: set[str] = set()
+"""Owned by the software-in-the-loop work, which moves to the façade's types on its own."""
+
+
+def test_no_signal_name_is_told_by_a_dot_outside_signal_roles():
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(ROOT).as_posix()
+        if relative in ALLOWED or any(relative.startswith(p) for p in NOT_YET):
+            continue
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            if NAME_PARSING.search(line):
+                found.append(f"{relative}:{number}: {line.strip()}")
+    assert not found, "names parsed instead of looked up:\n" + "\n".join(found)
+
+
+def test_the_pattern_finds_what_it_is_meant_to():
+    for line in ('if "." not in s.name', "x = name.rsplit('.', 1)[0]",
+                 'if s.name.endswith(".raised")', "if '.' in name:"):
+        assert NAME_PARSING.search(line), line
+    assert not NAME_PARSING.search('path.endswith(".toml")')
+
+
+def test_the_run_command_is_argument_handling_and_rendering():
+    tree = ast.parse((PACKAGE / "commands" / "run.py").read_text(encoding="utf-8"))
+    lengths = {node.name: node.end_lineno - node.lineno + 1 for node in ast.walk(tree)
+               if isinstance(node, ast.FunctionDef) and node.end_lineno is not None}
+    longest = max(lengths, key=lengths.__getitem__)
+    assert lengths[longest] < 40, f"commands/run.py: {longest} has {lengths[longest]} lines"
