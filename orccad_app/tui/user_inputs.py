@@ -97,7 +97,7 @@ class UserInputs:
     def check_fault(self, name: str, value: Any) -> None:
         """Raise :class:`OrccadError` unless ``ROBOT.FAULT`` is a fault of a robot of the run
         and ``value`` within its declared range."""
-        robot, fault = name.split(".", 1) if "." in name else (name, "")
+        robot, fault = name.split(".", 1)
         plant = self.run.sim.plants.get(robot)
         if plant is None or plant.extension is None:
             raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
