@@ -22,7 +22,7 @@ SLOW = frozenset({
     "tests/tui/test_tui_app.py::test_the_log_filter_keeps_matching_lines",
     "tests/tui/test_tui_app.py::test_a_key_raises_a_declared_input_during_the_run_and_the_mission_recovers",
     "tests/lang/test_parser.py::test_grammar_sentences_parse_or_fail_cleanly",
-    "tests/executive/test_mission_run.py::test_type1_exception_retunes_the_running_module",
+    "tests/mission/test_mission_run.py::test_type1_exception_retunes_the_running_module",
     "tests/verify/test_counterexample.py::test_check_exits_1_and_its_script_replays_to_the_violation",
     "tests/tui/test_tui_live.py::test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused",
 })

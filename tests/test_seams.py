@@ -55,3 +55,33 @@ def test_the_run_command_is_argument_handling_and_rendering():
                if isinstance(node, ast.FunctionDef) and node.end_lineno is not None}
     longest = max(lengths, key=lengths.__getitem__)
     assert lengths[longest] < 40, f"commands/run.py: {longest} has {lengths[longest]} lines"
+
+
+def test_the_run_vocabulary_is_typed_and_reads_as_its_words():
+    import json
+
+    from orccad_app.campaign.adapter import RUN_STATUSES
+    from orccad_app.mission.result import STATUSES, MissionStatus
+    from orccad_app.robottask.labels import Phase
+
+    assert STATUSES == tuple(MissionStatus)
+    assert json.dumps([MissionStatus.RECOVERING]) == '["recovering"]'  # reports unchanged
+    assert f"{MissionStatus.DONE}" == "done"
+    assert RUN_STATUSES == (*STATUSES, "crashed")
+    assert Phase.IDLE == 0 and [p.word for p in Phase] == ["idle", "waiting", "measuring",
+                                                            "running"]
+
+
+def test_observers_do_not_reach_into_the_simulation():
+    """Trace, TUI, campaign, properties and ROS 2 read a run through MissionRun (its plants,
+    faults, processor loads, missed jobs), never through ``MissionRun.sim``."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(ROOT).as_posix()
+        if relative.startswith(("orccad_app/mission/", "orccad_app/executive/",
+                                "orccad_app/sil/")):
+            continue
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            if re.search(r"(?<!self)\.sim\b", line):
+                found.append(f"{relative}:{number}: {line.strip()}")
+    assert not found, "\n".join(found)

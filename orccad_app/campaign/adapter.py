@@ -20,9 +20,20 @@ from typing import Any
 from orccad_app.campaign.metrics import SignalExtrema, check_results, run_metrics
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
+from orccad_app.mission.result import STATUSES, MissionStatus
 
 __all__ = ["CompiledMission", "RunRecord", "PropertyResult", "execute", "outcome_label",
-           "compiled_for"]
+           "compiled_for", "CRASHED", "RUN_STATUSES", "BY_EXCEPTION"]
+
+CRASHED = "crashed"
+"""The status of a campaign run whose worker failed (an internal error, not the mission's)."""
+
+RUN_STATUSES: tuple[str, ...] = (*STATUSES, CRASHED)
+"""Every status a campaign run can have: the mission's (:class:`MissionStatus`), or
+:data:`CRASHED`."""
+
+BY_EXCEPTION = (MissionStatus.FAILED, MissionStatus.ABORTED, MissionStatus.RECOVERING)
+"""The statuses an exception may cause (its name is then the reason)."""
 
 
 @dataclass(frozen=True)
@@ -58,7 +69,7 @@ def outcome_label(status: str, reason: str | None) -> str:
     """``done``, ``timeout``, ``failed(E)`` / ``aborted(F)`` / ``recovering(F)`` (the
     exception, when the reason is one), else ``failed`` / ``aborted`` / ``recovering``;
     ``crashed`` for an internal error."""
-    if status in ("failed", "aborted", "recovering") and reason and reason.isidentifier():
+    if status in BY_EXCEPTION and reason and reason.isidentifier():
         return f"{status}({reason})"
     return status
 
@@ -129,7 +140,7 @@ def execute(compiled: CompiledMission, setting: RunSetting, signals: tuple[str, 
     anything else propagates (a crash)."""
     extrema = SignalExtrema(signals)
     session = compiled.session(setting, observers=(extrema, *observers), trace=trace)
-    extrema.bind(session.run.sim)
+    extrema.bind(session.run)
     report = session.execute()
     result = report.result
     if result.interrupted:

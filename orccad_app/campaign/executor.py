@@ -29,7 +29,7 @@ import traceback
 from dataclasses import dataclass
 from typing import Any, Iterable
 
-from orccad_app.campaign.adapter import RunRecord, compiled_for, execute
+from orccad_app.campaign.adapter import CRASHED, RunRecord, compiled_for, execute
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
 
@@ -51,7 +51,7 @@ class Job:
 
 def crashed(job: Job, error: str) -> RunRecord:
     """The record of a run that could not complete (``error``: what happened)."""
-    return RunRecord(job.setting, "crashed", error, "crashed", 0.0, 0.0, attempts=job.attempt,
+    return RunRecord(job.setting, CRASHED, error, CRASHED, 0.0, 0.0, attempts=job.attempt,
                      error=error)
 
 

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.executive.observer import Observer
+from orccad_app.mission.run import MissionRun
 
 __all__ = ["SignalExtrema", "run_metrics", "check_results"]
 
@@ -43,20 +44,20 @@ class SignalExtrema(Observer):
         self._kernel: Any = None
         self._last = -1
 
-    def bind(self, sim: Any) -> None:
-        """Resolve the signals against ``sim``'s plants (an unknown one is bad input)."""
+    def bind(self, run: MissionRun) -> None:
+        """Resolve the signals against the plants of ``run`` (an unknown one is bad input)."""
         from orccad_app.diagnostics import OrccadError
 
-        self._kernel = sim.kernel
+        self._kernel = run.kernel
         for signal in self.signals:
             match = _SIGNAL.match(signal)
             if match is None:  # the spec's parser matched the same pattern
                 raise OrccadError(f"metric signal {signal!r}: expected ROBOT.PORT[INDEX]")
             robot, port, index = match.groups()
-            plant = sim.plants.get(robot)
+            plant = run.plants.get(robot)
             if plant is None:
                 raise OrccadError(f"signal {signal}: no robot '{robot}' in the mission "
-                                  f"(robots: {', '.join(sim.plants)})")
+                                  f"(robots: {', '.join(run.plants)})")
             sensors = [p.name for p in plant.resource.outputs]
             if port not in sensors:
                 raise OrccadError(f"signal {signal}: robot '{robot}' has no sensor port "

@@ -23,7 +23,8 @@ from collections import deque
 from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
-from orccad_app.campaign.adapter import CompiledMission, RunRecord
+from orccad_app.campaign.adapter import (BY_EXCEPTION, CRASHED, RUN_STATUSES, CompiledMission,
+                                          RunRecord)
 from orccad_app.campaign.executor import Job, make_backend
 from orccad_app.campaign.setting import RunSetting, draw_setting, replay_command
 from orccad_app.campaign.spec import MAX_RUNS, CampaignSpec
@@ -97,10 +98,8 @@ class Campaign:
         """What a ``--hypothesis`` may name: the outcomes (with the mission's exceptions), its
         properties and the spec's checks."""
         exceptions = self.compiled.composition.roles.raised_exceptions()
-        statuses = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
-        return [*statuses, *(f"{status}({name})" for status in ("failed", "aborted",
-                                                                 "recovering")
-                             for name in exceptions),
+        return [*RUN_STATUSES, *(f"{status}({name})" for status in BY_EXCEPTION
+                                 for name in exceptions),
                 *self.compiled.property_names(), *(check.name for check in self.spec.checks)]
 
     def _check_event(self, event: str) -> None:
@@ -187,11 +186,11 @@ class Campaign:
             for future in backend.wait(flying):
                 job = flying.pop(future)
                 record = backend.result(future, job)
-                if record.status == "crashed" and job.attempt == 1:
+                if record.status == CRASHED and job.attempt == 1:
                     retry = replace(job, attempt=2)
                     flying[backend.submit(retry)] = retry
                     continue
-                if job.attempt == 2 and record.status != "crashed":
+                if job.attempt == 2 and record.status != CRASHED:
                     record.error = "retried once after a crash"
                 finished.append((record, self.replay(record.setting)))
             self.store.add_many(finished)  # the runs that came back together: one commit

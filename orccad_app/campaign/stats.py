@@ -26,7 +26,7 @@ import statistics
 from dataclasses import dataclass
 from typing import Any, Iterable
 
-from orccad_app.campaign.adapter import RunRecord
+from orccad_app.campaign.adapter import RUN_STATUSES, RunRecord
 from orccad_app.diagnostics import OrccadError
 
 __all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "EventCounts",
@@ -34,7 +34,7 @@ __all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "EventCount
            "influence"]
 
 _HYPOTHESIS = re.compile(r"^\s*P\(\s*(.+?)\s*\)\s*(>=|<=)\s*([0-9.eE+-]+)\s*$")
-_OUTCOMES = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
+_OUTCOMES = RUN_STATUSES
 
 
 def clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:

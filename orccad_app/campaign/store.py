@@ -31,7 +31,7 @@ import sqlite3
 from pathlib import Path
 from typing import Any, Iterator
 
-from orccad_app.campaign.adapter import PropertyResult, RunRecord
+from orccad_app.campaign.adapter import RUN_STATUSES, PropertyResult, RunRecord
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
 
@@ -63,7 +63,7 @@ COLUMNS = {
 }
 """The columns of each table, in order (checked when a database is opened)."""
 
-_STATUSES = ("done", "failed", "aborted", "recovering", "timeout", "crashed")
+_STATUSES = RUN_STATUSES
 
 
 class CampaignStore:

@@ -81,7 +81,7 @@ def _check_injection(compiled: CompiledMission, spec: CampaignSpec, entry: Any,
 def _check_signals(compiled: CompiledMission, spec: CampaignSpec, until_s: float) -> None:
     extrema = SignalExtrema(spec.signals)
     session = compiled.session(RunSetting(0, 0, until_s))
-    _located(spec, ("signals",), lambda: extrema.bind(session.run.sim))
+    _located(spec, ("signals",), lambda: extrema.bind(session.run))
     tasks = {site.task for site in session.plan.sites}
     taken = set(compiled.property_names())
     for check in spec.checks:

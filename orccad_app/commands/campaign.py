@@ -127,6 +127,7 @@ def default_db(spec_path: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    from orccad_app.campaign.adapter import CRASHED
     from orccad_app.campaign.output import Progress, format_result, result_dict
     from orccad_app.campaign.runner import Campaign, CampaignOptions
     from orccad_app.campaign.spec import load_spec
@@ -156,7 +157,7 @@ def run(args: argparse.Namespace) -> int:
         why = "terminated (SIGTERM)" if terminated else "interrupted"
         print(f"orccad: {why}; continue with --resume", file=sys.stderr)
         return 130
-    if any(r.status == "crashed" for r in result.records):
+    if any(r.status == CRASHED for r in result.records):
         print("orccad: some runs crashed twice (status 'crashed' in the database)",
               file=sys.stderr)
         return 3

@@ -226,6 +226,7 @@ def render(args: argparse.Namespace, report: Any, extra: dict[str, Any] | None =
     """Print the report (text or JSON; ``extra`` keys added to the JSON object, ``lines``
     after the text) and what went wrong; the exit status."""
     from orccad_app.jsonout import dumps
+    from orccad_app.mission.result import MissionStatus
 
     result = report.result
     if args.json:
@@ -239,10 +240,10 @@ def render(args: argparse.Namespace, report: Any, extra: dict[str, Any] | None =
     if result.interrupted:
         print("orccad: interrupted", file=sys.stderr)
         return 130
-    if result.status == "recovering" and not args.json:
+    if result.status is MissionStatus.RECOVERING and not args.json:
         print(f"orccad: mission aborted by {result.reason}, its 'on fatal' recovery cut by the "
               f"horizon (status recovering)", file=sys.stderr)
-    elif result.status != "done" and not args.json:
+    elif result.status is not MissionStatus.DONE and not args.json:
         print(f"orccad: mission {result.status}: {result.reason}", file=sys.stderr)
     violated = report.violated
     if violated and not args.json:

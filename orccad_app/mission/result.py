@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -14,18 +15,30 @@ from orccad_app.jsonout import plain
 _dot = np.dot
 
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
-           "ErrorSamples", "STATUSES", "RECOVERING"]
+           "ErrorSamples", "MissionStatus", "STATUSES", "RECOVERING"]
 
-RECOVERING = "recovering"
-"""The status of a run cut by its horizon while the ``on fatal`` recovery that followed a type-3
-exception was still running (the reason names the exception)."""
 
-STATUSES = ("done", "failed", "aborted", RECOVERING, "timeout")
-"""Final statuses: the mission ended normally; by an uncaught type-2 exception (or a run-time
-failure: deadlock, diverging plant, failing module); by a type-3 exception, its ``on fatal``
-recovery (if any) finished (or by Ctrl-C); by a type-3 exception with the recovery still
-running at ``--until`` (``recovering``: where the recovery would end is unknown); or was still
-running at ``--until``."""
+class MissionStatus(enum.StrEnum):
+    """How a mission run ended (its value is the word of reports and traces)."""
+
+    DONE = "done"
+    """The mission ended normally."""
+    FAILED = "failed"
+    """An uncaught type-2 exception, or a run-time failure (deadlock, diverging plant,
+    failing module)."""
+    ABORTED = "aborted"
+    """A type-3 exception, its ``on fatal`` recovery (if any) finished; or Ctrl-C, SIGTERM."""
+    RECOVERING = "recovering"
+    """A type-3 exception with the ``on fatal`` recovery still running at the horizon (the
+    reason names the exception; where the recovery would end is unknown)."""
+    TIMEOUT = "timeout"
+    """Still running at the horizon."""
+
+
+RECOVERING = MissionStatus.RECOVERING
+
+STATUSES = tuple(MissionStatus)
+"""Every final status, in :class:`MissionStatus`'s order."""
 
 
 class ErrorSamples:
@@ -194,7 +207,7 @@ class RunResult:
     """
 
     mission: str
-    status: str
+    status: MissionStatus
     reason: str | None
     sim_time_ns: int
     wall_time_s: float
@@ -210,7 +223,7 @@ class RunResult:
     @property
     def exit_status(self) -> int:
         """0 when ``done``, else 1."""
-        return 0 if self.status == "done" else 1
+        return 0 if self.status is MissionStatus.DONE else 1
 
     def rms_error(self, task: str | None = None) -> float | None:
         """RMS tracking error over the runs of ``task`` (default: every run) [rad]."""

@@ -65,7 +65,7 @@ from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.result import RECOVERING, ExceptionRecord, RobotTaskRecord, RunResult
+from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError, plain_arguments
@@ -255,6 +255,44 @@ class MissionRun:
             raise OrccadError(f"{name}: not an input of mission '{self.plan.name}'")
         self._post(name, value)
 
+    # -- what observers read and do (they never reach into the executive's Simulation) ----
+
+    @property
+    def plants(self) -> dict[str, MujocoPlant]:
+        """Robot name -> its plant (read its true state: ``observe``, ``qpos``…)."""
+        return self.sim.plants
+
+    def faults(self) -> dict[str, str]:
+        """Every plant fault ``ROBOT.FAULT`` the run can apply -> its description."""
+        found: dict[str, str] = {}
+        for robot, plant in self.sim.plants.items():
+            extension = plant.extension
+            faults = getattr(extension, "faults", None) or {}
+            found.update({f"{robot}.{fault}": text for fault, text in faults.items()})
+        return found
+
+    def check_fault(self, robot: str, fault: str, value: Any) -> None:
+        """Refuse (:class:`OrccadError`) a fault the robot's plant does not have, or a value
+        out of its declared range, before it is due."""
+        plant = self.sim.plants.get(robot)
+        if plant is None or plant.extension is None:
+            raise OrccadError(f"fault {robot}.{fault}: robot '{robot}' has no faults")
+        plant.extension.check_fault(fault, value)
+
+    def apply_fault(self, robot: str, fault: str, value: Any) -> None:
+        """Apply a plant fault now (from an observer's callback)."""
+        self.sim.plants[robot].inject(fault, value)
+
+    def processor_busy_ns(self) -> dict[str, int]:
+        """Processor -> its busy time so far [ns] (context switches included)."""
+        return {name: processor.stats.busy_ns for name, processor in self.sim.processors.items()}
+
+    def missed_jobs(self) -> dict[str, int]:
+        """Module-Task -> its jobs so far that finished after their deadline or whose release
+        was skipped (an overrun)."""
+        return {name: runtime.stats.late + runtime.stats.overruns
+                for name, runtime in self.sim.tasks.items()}
+
     @property
     def stopping(self) -> bool:
         """:meth:`abort` was called: the run ends after the current event."""
@@ -343,7 +381,7 @@ class MissionRun:
 
     def _running_site(self, task: str) -> SiteModules | None:
         for site in self.plan.sites:
-            if site.task == task and self._phase.get(site.number, 0) > 0:
+            if site.task == task and self._phase.get(site.number, Phase.IDLE) is not Phase.IDLE:
                 return site
         return None
 
@@ -375,7 +413,8 @@ class MissionRun:
         for the mission's own ``Timeout``)."""
         raisers = {r.task: r.type for r in self._roles.raisers.get(exception, ())}
         for site in self.plan.sites:
-            if self._phase.get(site.number, 0) > 0 and site.task in raisers:
+            if self._phase.get(site.number, Phase.IDLE) is not Phase.IDLE and \
+                    site.task in raisers:
                 return raisers[site.task], site.task
         return 2, None
 
@@ -388,8 +427,8 @@ class MissionRun:
                       phases: dict[int, Phase], values: dict[str, Any]) -> None:
         for site in self.plan.sites:
             number = site.number
-            old = self._phase.get(number, 0)
-            new = phases.get(number, 0)
+            old = self._phase.get(number, Phase.IDLE)
+            new = phases.get(number, Phase.IDLE)
             restart = old > 0 and new > 0 and site.start_signal in emitted
             if old > 0 and (new == 0 or restart):
                 self._end_task(now, site, _outcome(site, emitted, raised))
@@ -437,21 +476,22 @@ class MissionRun:
     def run(self) -> RunResult:
         """Run until the mission ends, ``until_ns``, a run-time failure or Ctrl-C."""
         wall_start = time.perf_counter()
-        status, reason = None, None
+        status: MissionStatus | None = None
+        reason: str | None = None
         try:  # aborted before it started (Ctrl-C while waiting for Foxglove): no event runs
             until_ns = self.kernel.now if self._stopped_by is not None else self.until_ns
             self.sim.run(until_ns, realtime=self.realtime)
         except _RUN_FAILURES as error:
-            status, reason = "failed", error.message
+            status, reason = MissionStatus.FAILED, error.message
         except _LOCATED_FAILURES as error:
             where = f"{error.location}: " if error.location is not None else ""
-            status, reason = "failed", where + error.message
+            status, reason = MissionStatus.FAILED, where + error.message
         except KeyboardInterrupt as interrupt:
-            status = "aborted"
+            status = MissionStatus.ABORTED
             reason = _TERMINATED if isinstance(interrupt, Terminated) else _INTERRUPTED
         wall = time.perf_counter() - wall_start
         if status is None and self._stopped_by is not None and not self.reactor.finished:
-            status, reason = "aborted", self._stopped_by
+            status, reason = MissionStatus.ABORTED, self._stopped_by
         if status is None:
             status, reason = self._final_status()
         stats = self.sim.stats()
@@ -460,15 +500,16 @@ class MissionRun:
                          self.sim.lateness_s if self.realtime else None, self.seed,
                          interrupted=reason in (_INTERRUPTED, _TERMINATED))
 
-    def _final_status(self) -> tuple[str, str | None]:
+    def _final_status(self) -> tuple[MissionStatus, str | None]:
         reactor = self.reactor
-        if reactor.finished:
-            return reactor.status, reactor.reason
-        if reactor.status == "aborted":  # the 'on fatal' recovery was cut by the horizon
-            return RECOVERING, reactor.reason
-        if reactor.status == "failed":
-            return reactor.status, reactor.reason
-        return "timeout", f"the mission was still running at {self.until_ns / 1e9:g} s"
+        if reactor.finished:  # the automaton's own word: done, failed or aborted
+            return MissionStatus(reactor.status), reactor.reason
+        if reactor.status == MissionStatus.ABORTED:  # the 'on fatal' recovery was cut by the
+            return MissionStatus.RECOVERING, reactor.reason  # horizon
+        if reactor.status == MissionStatus.FAILED:
+            return MissionStatus.FAILED, reactor.reason
+        return (MissionStatus.TIMEOUT,
+                f"the mission was still running at {self.until_ns / 1e9:g} s")
 
 
 MAX_RUN_EVENTS = 50_000_000

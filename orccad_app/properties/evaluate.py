@@ -161,7 +161,7 @@ class PropertyMonitor:
         robot_types = _robot_types(plan)
         ports = port_signals(prop.formula, robot_types)
         for robot, _ in ports:
-            if robot not in mission_run.sim.plants:  # pragma: no cover - one plant per robot
+            if robot not in mission_run.plants:  # pragma: no cover - one plant per robot
                 raise OrccadError(f"property '{prop.name}': robot '{robot}' has no plant in "
                                   f"mission '{self.mission.name}'", prop.loc)
         errors = {p.robot: p.dim for p in ports.values() if p.task_error}

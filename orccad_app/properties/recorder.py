@@ -103,7 +103,7 @@ class PropertyRecorder(MissionObserver):
 
     def _new_sample(self) -> None:
         self.sample_events.append(set())
-        plants = self._run.sim.plants
+        plants = self._run.plants
         for (robot, port), values in self.port_values.items():
             if port == "e" and robot in self._task_errors:
                 values.append(self._errors[robot])

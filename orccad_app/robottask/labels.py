@@ -18,10 +18,12 @@ __all__ = ["Phase", "RtLabel", "PhaseLabel"]
 class Phase(enum.IntEnum):
     """The phases of a Robot-Task's behaviour automaton (RR-1801 §3.4.3), in order.
 
-    A running instance is in exactly one phase; an instance that is not running has none
-    (the mission run then says phase ``0``).
+    A running instance is in exactly one of the three phases; one that is not running is
+    :attr:`IDLE` (``0`` in traces and topics).
     """
 
+    IDLE = 0
+    """Not running (not started yet, or ended, raised or killed)."""
     SYNCHRONIZING = 1
     """Waiting for the synchronization pre-conditions (mission signals); no module runs."""
     MEASURING = 2
@@ -29,6 +31,15 @@ class Phase(enum.IntEnum):
     serving them) run."""
     ACTIVE = 3
     """The control scheme runs: every module; exceptions and post-conditions are watched."""
+
+    @property
+    def word(self) -> str:
+        """One word for people: ``idle``, ``waiting``, ``measuring``, ``running``."""
+        return _PHASE_WORDS[self]
+
+
+_PHASE_WORDS = {Phase.IDLE: "idle", Phase.SYNCHRONIZING: "waiting",
+                Phase.MEASURING: "measuring", Phase.ACTIVE: "running"}
 
 
 @dataclass(frozen=True, order=True)

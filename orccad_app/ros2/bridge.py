@@ -252,9 +252,9 @@ class MissionBridge(MissionObserver):
             {s.name: s.type for s in plan.automaton.outputs if roles.get(s.name) is None},
             domain_id)
         self._robots = {name: (plant, robot_scene(name, plant.model).joints)
-                        for name, plant in mission_run.sim.plants.items()}
+                        for name, plant in mission_run.plants.items()}
         self._actuators = {name: _joint_actuators(plant.model)
-                           for name, plant in mission_run.sim.plants.items()}
+                           for name, plant in mission_run.plants.items()}
         self._sensed = {key: sensor.split(".", 1)[0]
                         for key, sensor in sensor_ports(plan).items()}
         self._published_at: dict[str, int] = {}

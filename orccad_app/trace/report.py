@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.diagnostics import arguments_text
-from orccad_app.mission.result import RunResult
+from orccad_app.mission.result import MissionStatus, RunResult
 from orccad_app.trace.recorder import plain_value
 
 __all__ = ["InjectionRecord", "report_dict", "format_report", "lateness_summary"]
@@ -289,7 +289,7 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
     ratio = report["sim_time_s"] / report["wall_time_s"] if report["wall_time_s"] else 0.0
     status = report["status"] + (f" ({report['reason']})" if report["reason"] else "")
     lines = [f"mission {report['mission']}: {status}"]
-    if report["status"] == "recovering":
+    if report["status"] == MissionStatus.RECOVERING:
         lines.append(f"  aborted by {report['reason']}; its 'on fatal' recovery was still "
                      f"running at {report['sim_time_s']:g} s (the run's horizon)")
     lines += [f"  simulated {report['sim_time_s']:.3f} s in {report['wall_time_s']:.2f} s wall "

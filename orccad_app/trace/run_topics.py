@@ -71,7 +71,7 @@ class RunTopicsRecorder(TraceRecorder):
         writer.signal_roles(mission_run.plan.roles)
         self._run = mission_run
         self._plants = [(plant, robot_scene(name, plant.model))
-                        for name, plant in mission_run.sim.plants.items()]
+                        for name, plant in mission_run.plants.items()]
         self._frame_period_ns = frame_period_ns
         self._next_frame_ns = 0
         self._verdicts = verdicts

@@ -192,6 +192,8 @@ def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
                   ) -> CampaignSnapshot:
     """What campaign database ``db`` holds now; refuses a file that is not one
     (:class:`OrccadError`)."""
+    from orccad_app.campaign.adapter import CRASHED
+    from orccad_app.mission.result import MissionStatus
     from orccad_app.campaign.spec import parse_spec
     from orccad_app.campaign.stats import estimates, summarize
     from orccad_app.campaign.store import CampaignStore
@@ -220,11 +222,11 @@ def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
                             by_index[w["run"]].setting)
                   for name, worst in summary["closest_to_violation"].items() for w in worst]
     candidates += [Candidate(r.index, r.outcome, None, r.outcome, r.setting)
-                   for r in records if r.status not in ("done", "crashed")][:2 * CLOSEST]
+                   for r in records if r.status not in (MissionStatus.DONE, CRASHED)][:2 * CLOSEST]
     return CampaignSnapshot(db, meta["file"], meta.get("mission", ""), meta["spec"],
                             len(records), max(limit, len(records)), confidence,
                             estimates(records, confidence) if records else {}, histograms,
-                            candidates, sum(1 for r in records if r.status == "crashed"))
+                            candidates, sum(1 for r in records if r.status == CRASHED))
 
 
 @dataclass

@@ -30,13 +30,14 @@ import numpy as np
 
 from orccad_app.diagnostics import arguments_text
 from orccad_app.executive.observer import Observer
+from orccad_app.robottask.labels import Phase
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
 from orccad_app.tui.run_process import Request, RunEnded
 from orccad_app.tui.user_inputs import UserInputs
 
-__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "PHASES", "sensor_ports",
-           "StateView", "SeenStates"]
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "sensor_ports", "StateView",
+           "SeenStates"]
 
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
@@ -48,7 +49,6 @@ one (:meth:`LiveObserver.frame_taken`): the screen's drawing shares the interpre
 run, so frames follow the run's progress, not the wall clock (on a loaded machine a wall-clock
 rate would draw more frames per simulated second, each taking time from the run)."""
 
-PHASES = {1: "waiting", 2: "measuring", 3: "running"}
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
 
@@ -390,7 +390,7 @@ class LiveObserver(Observer):
         self._posted += 1
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
-                 for site, phase in sorted(self.run.phases.items()) if phase > 0]
+                 for site, phase in sorted(self.run.phases.items()) if phase is not Phase.IDLE]
         loads = self._loads(t_ns)
         self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
@@ -412,8 +412,7 @@ class LiveObserver(Observer):
     def _loads(self, t_ns: int) -> dict[str, float]:
         """Each processor's busy share since the last update, from its statistics."""
         start, busy_then = self._window
-        busy = {name: processor.stats.busy_ns
-                for name, processor in self.run.sim.processors.items()}
+        busy = self.run.processor_busy_ns()
         span = t_ns - start
         loads = {p: min(1.0, (b - busy_then.get(p, 0)) / span) if span > 0 else 0.0
                  for p, b in busy.items()}
@@ -423,9 +422,7 @@ class LiveObserver(Observer):
     def _count_misses(self, t_ns: int) -> None:
         """Deadline misses since the last update, from the Module-Tasks' statistics: one log
         line per Module-Task that missed (how many, and how)."""
-        for name, runtime in self.run.sim.tasks.items():
-            stats = runtime.stats
-            total = stats.late + stats.overruns
+        for name, total in self.run.missed_jobs().items():
             new = total - self._misses.get(name, 0)
             if new > 0:
                 self._misses[name] = total

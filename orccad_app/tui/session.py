@@ -244,14 +244,6 @@ def failed_outcomes(report: MissionReport) -> list[PropertyOutcome]:
     return [o for o in report.outcomes if not o.holds and o.script is not None]
 
 
-def _faults(run: Any) -> dict[str, str]:
-    found = {}
-    for robot, plant in run.sim.plants.items():
-        faults = getattr(getattr(plant, "extension", None), "faults", None) or {}
-        found.update({f"{robot}.{fault}": text for fault, text in faults.items()})
-    return found
-
-
 class LiveSession:
     """One live run of ``mission`` of ``path`` (see the module docstring).
 
@@ -301,7 +293,7 @@ class LiveSession:
         self.setting = setting
         """The campaign run replayed (a :class:`~orccad_app.campaign.setting.RunSetting`),
         or ``None``."""
-        self.faults = _faults(self.run)
+        self.faults = self.run.faults()
         """Plant faults ``ROBOT.FAULT`` -> description (robot types with a plant extension)."""
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={

@@ -15,7 +15,8 @@ from collections import deque
 from pathlib import Path
 from typing import Any
 
-from orccad_app.tui.live import PHASES, LiveUpdate
+from orccad_app.robottask.labels import Phase
+from orccad_app.tui.live import LiveUpdate
 
 __all__ = ["SpeedMeter", "status_text", "waiting_lines", "run_site_lines", "running_sites",
            "tasks_in_state", "elsewhere", "waiting_elsewhere", "where_text", "rta_text", "tcs_rows", "LAG_RATIO"]
@@ -192,7 +193,7 @@ def rta_text(session: Any, tasks: list[tuple[str, int, int]]) -> str:
     for task, number, phase in tasks:
         site = sites.get(number)
         lines = [f"[b]{task}[/b] (site {number}): phase {phase}, "
-                 f"{_PHASE_TEXT.get(phase, PHASES.get(phase, ''))}"]
+                 f"{_PHASE_TEXT.get(phase, Phase(phase).word)}"]
         for n in (1, 2, 3):
             mark = "▶" if n == phase else " "
             lines.append(f"  {mark} {n} {_PHASE_TEXT[n]}")

@@ -26,7 +26,6 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.trace.report import InjectionRecord
 
@@ -98,10 +97,7 @@ class UserInputs:
         """Raise :class:`OrccadError` unless ``ROBOT.FAULT`` is a fault of a robot of the run
         and ``value`` within its declared range."""
         robot, fault = name.split(".", 1)
-        plant = self.run.sim.plants.get(robot)
-        if plant is None or plant.extension is None:
-            raise OrccadError(f"fault {name}: robot '{robot}' has no faults")
-        plant.extension.check_fault(fault, value)
+        self.run.check_fault(robot, fault, value)
 
     def hold(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` at every tick from the due instant until :meth:`release`."""
@@ -152,7 +148,7 @@ class UserInputs:
         name, value = item
         now = self.run.kernel.now
         robot, fault = name.split(".", 1)
-        self.run.sim.plants[robot].inject(fault, value)
+        self.run.apply_fault(robot, fault, value)
         self._records.append(InjectionRecord(now, name, value, True, RAISED_BY))
         self.log(now, "fault", f"{name}={value} injected by the user")
 

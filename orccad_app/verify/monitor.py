@@ -172,13 +172,18 @@ def _extensible(formula: F, bits: _Bits, word: Sequence[frozenset]) -> bool:
     masks: dict[frozenset, int] = {}
     states: frozenset = frozenset({(0, None)})
     step = monitor.step
+    settled = -1  # a mask whose step leaves ``states`` as they are: its repeats are skipped
     for letter in word:
         mask = masks.get(letter)
         if mask is None:
             mask = masks[letter] = bits.mask(letter)
-        states = step(states, mask)
-        if not states:
+        if mask == settled:
+            continue
+        following = step(states, mask)
+        if not following:
             return False
+        settled = mask if following == states else -1
+        states = following
     return monitor.extensible(states, bits)
 
 

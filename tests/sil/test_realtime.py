@@ -111,11 +111,13 @@ def test_a_deadlock_on_the_real_time_threads_fails_the_run_naming_its_cycle(tmp_
     assert _controllers_of(os.getpid()) == []
 
 
-@pytest.mark.parametrize("sanitize", ["thread", "address,undefined"])
-def test_the_runtime_runs_clean_under_the_sanitizers(tmp_path, sanitize):
-    """The real-time controller built with ThreadSanitizer, or AddressSanitizer and
-    UndefinedBehaviorSanitizer (``$ORCCAD_SIL_CFLAGS``), on blocking protocols between
-    Module-Tasks (the processor's thread, the commands' thread): no report."""
+def test_the_runtime_runs_clean_under_thread_sanitizer(tmp_path):
+    """The real-time controller built with ThreadSanitizer (``$ORCCAD_SIL_CFLAGS``) on
+    blocking protocols between Module-Tasks (the processor's thread, the commands' thread): no
+    report. (The ports alone run under AddressSanitizer and UndefinedBehaviorSanitizer in
+    test_ports.py; ``ORCCAD_SIL_CFLAGS='-fsanitize=address,undefined -g'`` runs the whole
+    controller so, by hand: too slow for every commit.)"""
+    sanitize = "thread"
     env = {**os.environ, "ORCCAD_SIL_CFLAGS": f"-fsanitize={sanitize} -g"}
     done = subprocess.run([sys.executable, "-m", "orccad_app", "sil",
                            _arm_pid_with(tmp_path, "asyn/syn", "syn/syn"), "--realtime",

@@ -204,12 +204,21 @@ def table(result: Survey) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":  # python -m tests.tcs.random_sets [SETS_PER_PROTOCOL] [--sporadic]
+if __name__ == "__main__":
+    # python -m tests.tcs.random_sets [SETS_PER_PROTOCOL] [--sporadic] [--horizon-ms MS]
+    import argparse
     import sys
 
-    sporadic = "--sporadic" in sys.argv
-    numbers = [arg for arg in sys.argv[1:] if arg != "--sporadic"]
-    outcome = survey(int(numbers[0]) if numbers else 250,
-                     first_seed=300_000 if sporadic else 0, sporadic=sporadic)
+    parser = argparse.ArgumentParser(prog="python -m tests.tcs.random_sets")
+    parser.add_argument("sets", nargs="?", type=int, default=250)
+    parser.add_argument("--sporadic", action="store_true")
+    parser.add_argument("--horizon-ms", type=int, default=None,
+                        help="run each set this long instead of its own horizon (400: drifting "
+                             "phases and rare alignments show)")
+    options = parser.parse_args()
+    first_seed = 300_000 if options.sporadic else 900_000 if options.horizon_ms else 0
+    outcome = survey(options.sets, first_seed=first_seed, sporadic=options.sporadic,
+                     horizon_ns=options.horizon_ms * 1_000_000 if options.horizon_ms else None)
     print(table(outcome))
     print(f"skipped (potential deadlock): {outcome.skipped}; unsafe: {outcome.unsafe_cases}")
+    sys.exit(1 if outcome.unsafe_cases else 0)

@@ -5,12 +5,12 @@ For each of the 8 protocols, generated sets (tests/tcs/random_sets.py: 2–5 Mod
 deadlines, context switches, bus transfer times) are analysed and run under fixed priority and
 EDF. The property: when ``analyse_timing`` says schedulable, the run has no deadline miss and
 no overrun (the bound is safe). The pessimism — clean runs the analysis rejects — is measured;
-docs/executive.md reports it from the slow variant (``ORCCAD_SLOW=1``).
+docs/executive.md reports it from the larger surveys of ``python -m tests.tcs.random_sets``
+(1200 sets per protocol; 200 sets run for 400 ms each with ``--horizon-ms 400``), which exit
+with status 1 when a set is unsafe.
 """
 
 from __future__ import annotations
-
-import os
 
 import pytest
 
@@ -47,22 +47,6 @@ def test_pessimism_stays_bounded(outcome):
     clean = sum(c["clean"] for c in outcome.counts.values())
     rejected = sum(c["pessimistic"] for c in outcome.counts.values())
     assert rejected / clean < 0.5, table(outcome)
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(not os.environ.get("ORCCAD_SLOW"), reason="set ORCCAD_SLOW=1")
-def test_schedulable_implies_no_miss_on_many_sets():
-    result = survey(1200, first_seed=100_000)
-    print(table(result))
-    assert result.unsafe_cases == []
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(not os.environ.get("ORCCAD_SLOW"), reason="set ORCCAD_SLOW=1")
-def test_schedulable_implies_no_miss_over_long_runs():
-    # 400 ms: long enough for drifting phases and rare alignments to show
-    result = survey(200, first_seed=900_000, horizon_ns=400_000_000)
-    assert result.unsafe_cases == []
 
 
 @pytest.fixture(scope="module")

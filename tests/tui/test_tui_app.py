@@ -8,7 +8,6 @@ import functools
 import time
 from pathlib import Path
 
-import pytest
 from rich.console import Console
 
 from orccad_app.tui.app import OrccadApp
@@ -199,25 +198,10 @@ async def test_pause_and_speed_keys_drive_the_pacing(tmp_path):
         assert "mission ArmPID: aborted" in _text(app.screen, "#report-text")
 
 
-def _auv_ready() -> str | None:
-    """Why the AUV pilot cannot run yet, or None."""
-    if not AUV.exists():
-        return "missions/auv_survey.orc is not written yet (the AUV plugin comes separately)"
-    try:
-        from orccad_app.tui.session import LiveSession
-        session = LiveSession(str(AUV), None, lambda update: None)
-    except Exception as error:  # the AUV plugin is not installed or not finished
-        return f"missions/auv_survey.orc does not plan yet: {error}"
-    if "auv.leak" not in session.faults:
-        return "the AUV plant has no 'leak' fault yet"
-    return None
-
-
 @pilot_test
 async def test_an_auv_run_with_an_injected_fault():
-    reason = _auv_ready()
-    if reason is not None:
-        pytest.skip(reason)
+    """The shipped AUV mission runs in the TUI with its plant's leak fault (a planning error
+    fails the test: the AUV plugin ships with the product)."""
     app = OrccadApp([], selected=str(AUV), speed=0, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
         await pilot.pause()

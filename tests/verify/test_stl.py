@@ -147,6 +147,27 @@ def test_the_running_monitor_gives_the_verdict_of_every_prefix(text):
         assert monitor.verdict(word, True) is ltl_verdict(formula, word, True)
 
 
+@pytest.mark.parametrize("text", ["always P", "eventually P", "always (P -> once Q)",
+                                  "always (P -> eventually Q)", "P until Q",
+                                  "always (P -> next Q)"])
+def test_a_verdict_read_past_repeated_letters_is_the_letter_by_letter_one(text):
+    """``ltl_verdict`` skips the repeats of a letter that leaves the monitor where it is; on
+    words made of runs of one letter it agrees with ``LtlMonitor``, which reads every letter."""
+    import random
+
+    from orccad_app.verify.monitor import LtlMonitor
+
+    formula = from_ast(parse(f"property p: {text};").properties[0].formula)
+    chooser = random.Random(text)
+    for _ in range(6):
+        word = [letter for _ in range(5)
+                for letter in [chooser.choice([P, Q, NONE, P | Q])] * chooser.randint(1, 6)]
+        monitor = LtlMonitor(formula)
+        for end in range(1, len(word) + 1):
+            assert monitor.verdict(word[:end], False) is ltl_verdict(formula, word[:end],
+                                                                     False), (word[:end])
+
+
 def test_the_model_checker_refuses_a_signal_formula_rather_than_dropping_its_bounds():
     for text in ("always[0, 1] done", "always (done -> r.x < 1.0)"):
         with pytest.raises(OrccadError, match="judged on runs, not by the model checker"):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from textual.widgets import DataTable
 
-from orccad_app.tui.live import PHASES
+from orccad_app.robottask.labels import Phase
 
 __all__ = ["TaskTable", "LoadTable", "TcsTable"]
 
@@ -33,7 +33,7 @@ class TaskTable(_Rows):
         self.add_columns("task", "site", "phase")
 
     def show(self, tasks: list[tuple[str, int, int]]) -> None:
-        self.set_rows([(task, str(site), f"{phase} {PHASES.get(phase, '')}")
+        self.set_rows([(task, str(site), f"{phase} {Phase(phase).word}")
                        for task, site, phase in tasks] or [("(none)", "", "")])
 
 

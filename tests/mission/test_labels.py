@@ -39,3 +39,10 @@ def test_task_error_units_follow_the_task_function(plan_text, hold_task, pid_run
     plan = plan_text(head + "robottask Reach() on arm {" + CARTESIAN)
     [record] = MissionRun(plan).run().robot_tasks
     assert record.as_dict()["tracking_error"]["unit"] == "m"
+
+
+def test_a_run_ends_with_a_typed_status(pid_run):
+    from orccad_app.mission.result import MissionStatus
+
+    _, result = pid_run
+    assert result.status is MissionStatus.DONE and result.exit_status == 0
