@@ -173,10 +173,10 @@ def test_a_held_input_is_present_at_every_instant_until_released():
 async def test_plots_have_series_setpoints_markers_window_and_chooser():
     app = OrccadApp([], selected=RECOVERY, speed=None, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
-        await pilot.pause()
-        run = app.screen
         await _until(pilot, lambda: _report_shown(app), timeout=60)
         await pilot.press("escape")
+        run = app.screen  # the run (in its own process) may end before the first pause
+        assert isinstance(run, RunScreen)
         plots = run.query_one("#plots")
         assert {"arm.q[0]", "qd[0]", "tracking error"} <= set(plots.series)
         assert plots.shown == ["arm.q[0]", "arm.q[1]", "arm.q[2]"]  # each over its qd[i]
