@@ -5,13 +5,15 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from orccad_app.executive.simulation import RunStats
 from orccad_app.jsonout import plain
-from orccad_app.lang.ast_robottask import ExceptionType
+
+if TYPE_CHECKING:  # traces read results without the language front end
+    from orccad_app.lang.ast_robottask import ExceptionType
 
 _dot = np.dot
 
@@ -207,7 +209,7 @@ class ExceptionRecord:
         (:meth:`UpdateRecord.as_dict`, ``null`` when no task of its was running)."""
         record = {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type.number,
                   "task": self.task}
-        if self.type is ExceptionType.ADJUST:
+        if self.type.number == 1:  # adjust
             record["update"] = None if self.update is None else self.update.as_dict()
         return record
 
