@@ -392,15 +392,23 @@ class MujocoPlant:
         block[1] = start + size
         return block[0][start:start + size].reshape(shape)
 
+    def catch_up(self) -> None:
+        """Integrate up to the kernel's now when now is on the plant's timestep grid (whole
+        steps: the integration is the one the next read or write would do, so the run is
+        unchanged); otherwise stay at the plant's last instant (at most one timestep old).
+        For observers of the plant's state (monitors, the trace's frames) while no module
+        reads the robot."""
+        now = self._kernel.now if self._attached else self._time_ns
+        if now > self._time_ns and now % self.timestep_ns == 0:
+            self.advance_to(now)
+
     def observe(self, port: str) -> np.ndarray:
         """The true value of ``port`` now, for monitors (signal properties): no noise, no
         sensor fault (an extension's ``true_value`` when it has one), the held command for
         the actuator ``tau``. The plant is brought to now only when now is on its timestep
         grid, which leaves the integration unchanged; otherwise the value is the state at the
         plant's last instant (at most one timestep old). Observing never changes a run."""
-        now = self._kernel.now if self._attached else self._time_ns
-        if now > self._time_ns and now % self.timestep_ns == 0:
-            self.advance_to(now)
+        self.catch_up()
         observer = self._observers.get(port)
         if observer is None:
             observer = self._observers[port] = self._observer(port)

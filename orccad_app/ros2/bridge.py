@@ -17,6 +17,11 @@ payloads, attachments) in ROS domain ``domain_id``:
 - ``/orccad/output/<Name>`` — published: a mission output, same types
   (:meth:`ZenohBridge.output`).
 
+The session announces itself as rmw_zenoh does, with liveliness tokens
+(:func:`~orccad_app.ros2.keyexpr.liveliness_key`): node :data:`NODE_NAME`, then each of its
+subscriptions when declared and each publisher when first used, so that ROS 2's graph
+(``ros2 node list``, ``ros2 topic list``) sees them; they are undeclared with the session.
+
 Messages arrive on Zenoh's threads and wait in queues until the caller drains them on its own
 thread (the executive's): nothing from outside touches the run between two events.
 
@@ -40,10 +45,10 @@ import numpy as np
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.observer import MissionObserver
 from orccad_app.ros2 import messages
-from orccad_app.ros2.keyexpr import attachment, topic_key
+from orccad_app.ros2.keyexpr import EntityKind, attachment, liveliness_key, topic_key
 
 __all__ = ["ZenohBridge", "MissionBridge", "JointCommand", "DEFAULT_ENDPOINT", "VALUE_TYPES",
-           "session_config"]
+           "session_config", "NODE_NAME"]
 
 DEFAULT_ENDPOINT = "tcp/127.0.0.1:7447"
 """rmw_zenoh's router (``ros2 run rmw_zenoh_cpp rmw_zenohd``) on this machine."""
@@ -52,6 +57,9 @@ VALUE_TYPES = {None: "std_msgs/msg/Empty", "bool": "std_msgs/msg/Bool",
                "int": "std_msgs/msg/Int64", "float": "std_msgs/msg/Float64",
                "duration": "std_msgs/msg/Float64", "vector": "std_msgs/msg/Float64MultiArray"}
 """A mission signal's type -> its ROS 2 message type."""
+
+NODE_NAME = "orccad"
+"""The ROS 2 node the bridge announces (namespace ``/``)."""
 
 
 @dataclass(frozen=True)
@@ -121,6 +129,10 @@ class ZenohBridge:
             raise OrccadError(f"--ros2-zenoh {' '.join(connect)}: cannot open a Zenoh "
                               f"session: {error}") from None
         self._store = messages.typestore()
+        self._zid = str(self._session.info.zid())
+        self._entities = 0  # ids of the node's entities (the node is 0)
+        self._tokens = [self._session.liveliness().declare_token(liveliness_key(
+            self.domain_id, self._zid, 0, 0, EntityKind.NODE, NODE_NAME))]
         self._gid = secrets.token_bytes(16)
         self._sequence = 0
         self._publishers: dict[str, tuple[Any, str]] = {}
@@ -140,8 +152,16 @@ class ZenohBridge:
         """The key expression of ``topic`` (rmw_zenoh's)."""
         return topic_key(self.domain_id, topic, msgtype, messages.type_hash(msgtype))
 
+    def _announce(self, kind: EntityKind, topic: str, msgtype: str) -> None:
+        """Declare the liveliness token of a publisher or subscription of ``topic``."""
+        self._entities += 1
+        self._tokens.append(self._session.liveliness().declare_token(liveliness_key(
+            self.domain_id, self._zid, 0, self._entities, kind, NODE_NAME, topic=topic,
+            msgtype=msgtype, type_hash=messages.type_hash(msgtype))))
+
     def _subscribe(self, topic: str, msgtype: str, handle: Any) -> Any:
         store = self._store
+        self._announce(EntityKind.SUBSCRIPTION, topic, msgtype)
 
         def received(sample: Any) -> None:
             try:
@@ -158,6 +178,7 @@ class ZenohBridge:
         """``message`` on ``topic`` (CDR, rmw_zenoh's attachment stamped ``time_ns``)."""
         found = self._publishers.get(topic)
         if found is None:
+            self._announce(EntityKind.PUBLISHER, topic, msgtype)
             found = self._publishers[topic] = (
                 self._session.declare_publisher(self.key(topic, msgtype)), msgtype)
         self._sequence += 1
@@ -187,6 +208,8 @@ class ZenohBridge:
         """Undeclare everything and close the session (idempotent)."""
         session, self._session = self._session, None
         if session is not None:
+            for token in self._tokens:
+                token.undeclare()
             session.close()
 
 

@@ -10,16 +10,26 @@
   unsigned LEB128 varint then its bytes; an int64 is 8 little-endian bytes).
 
 :func:`attachment` and :func:`read_attachment` write and read the latter.
+
+- **Liveliness tokens** (ROS 2 discovery: what ``ros2 node list`` and ``ros2 topic list``
+  show), :func:`liveliness_key`: ``@ros2_lv/<domain>/<zid>/<node id>/<entity id>/<kind>/
+  <enclave>/<namespace>/<node>`` for a node (kind ``NN``), followed by ``/<topic>/<type>/
+  <hash>/<qos>`` for a publisher (``MP``) or a subscription (``MS``); every ``/`` inside a
+  name is written ``%`` (the root namespace and enclave ``/`` are ``%``); ``<qos>`` lists
+  reliability, durability, history and depth, deadline, lifespan and liveliness, each left
+  empty where it is the default profile's (``::,:,:,:,,`` for the default profile).
 """
 
 from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
+from enum import Enum
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["topic_key", "dds_type", "Attachment", "attachment", "read_attachment", "GID_SIZE"]
+__all__ = ["topic_key", "dds_type", "Attachment", "attachment", "read_attachment", "GID_SIZE",
+           "EntityKind", "liveliness_key", "LIVELINESS_SPACE", "DEFAULT_QOS"]
 
 GID_SIZE = 16
 """Bytes of a publisher's global id (``RMW_GID_STORAGE_SIZE``)."""
@@ -36,6 +46,42 @@ def topic_key(domain_id: int, topic: str, msgtype: str, type_hash: str) -> str:
     name = topic[1:] if topic.startswith("/") else topic
     name = name[:-1] if name.endswith("/") else name
     return f"{domain_id}/{name}/{dds_type(msgtype)}/{type_hash}"
+
+
+LIVELINESS_SPACE = "@ros2_lv"
+"""The admin space of rmw_zenoh's liveliness tokens."""
+
+DEFAULT_QOS = "::,:,:,:,,"
+"""The ``<qos>`` part of a token for the default QoS profile (reliable, volatile, keep last
+10, no deadline, lifespan or liveliness lease): every field left empty."""
+
+
+class EntityKind(Enum):
+    """What a liveliness token announces."""
+
+    NODE = "NN"
+    PUBLISHER = "MP"
+    SUBSCRIPTION = "MS"
+
+
+def _mangled(name: str) -> str:
+    return name.replace("/", "%")
+
+
+def liveliness_key(domain_id: int, zid: str, node_id: int, entity_id: int, kind: EntityKind,
+                   node: str, *, namespace: str = "/", enclave: str = "/",
+                   topic: str | None = None, msgtype: str | None = None,
+                   type_hash: str | None = None, qos: str = DEFAULT_QOS) -> str:
+    """The key of the liveliness token of a node (``topic`` ``None``) or of one of its
+    publishers or subscriptions (see the module docstring)."""
+    parts = [LIVELINESS_SPACE, str(domain_id), zid, str(node_id), str(entity_id), kind.value,
+             _mangled(enclave), _mangled(namespace), _mangled(node)]
+    if kind is not EntityKind.NODE:
+        if topic is None or msgtype is None or type_hash is None:
+            raise ValueError("a publisher's or subscription's token names its topic, type "
+                             "and type hash")
+        parts += [_mangled(topic), dds_type(msgtype), type_hash, qos]
+    return "/".join(parts)
 
 
 @dataclass(frozen=True)

@@ -7,9 +7,11 @@ that also observes the mission run it is attached to — never reaching into it:
 - **the robot**: before the run, every robot's geometry on ``/scene`` (from its plant's MJCF
   model, :mod:`orccad_app.trace.scene`); then every body's frame on ``/tf`` every
   ``frame_period_ns`` of simulated time (default 20 ms: 50 frames per second), stamped with
-  the instant the plant's state is at (the plant is integrated up to each read and write of its
-  ports: the frames lag the run by less than a control period, and a run with a trace is the
-  same run as without), and once more at the end;
+  the instant the plant's state is at: the plant is integrated up to each read and write of its
+  ports, and by each frame up to the frame's instant when it is on the plant's timestep grid
+  (:meth:`~orccad_app.executive.plant.MujocoPlant.catch_up`: whole steps, so a run with a trace is
+  the same run as without) — the robot moves on in the frames while no module reads it
+  (between tasks, during an ``await``) — and once more at the end;
 - **joint states** (a writer that ``wants_joint_states``: rosbag2): at each instant a module
   reads one of a robot's sensors, the position, velocity and actuator force of its hinge and
   slide joints, from the plant's state at that instant; a floating base's pose with the
@@ -100,6 +102,7 @@ class RunTopicsRecorder(TraceRecorder):
 
     def _frames(self) -> None:
         for plant, scene in self._plants:
+            plant.catch_up()  # no module may read the robot now (between tasks): it moves on
             transforms = scene.transforms(plant.qpos)
             self.topics.transforms(plant.time_ns, transforms)
             for transform in transforms:

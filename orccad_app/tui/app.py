@@ -90,7 +90,8 @@ class OrccadApp(App):
 
         try:
             self.session = LiveSession(path, mission, post, speed=self.speed, seed=self.seed,
-                                       script=script, setting=setting, by=by)
+                                       script=script, setting=setting, by=by,
+                                       wait_for_screen=True, own_process=True)
         except OrccadError as error:
             self.notify(error.format(), severity="error", timeout=10)
             return

@@ -33,16 +33,21 @@ from orccad_app.executive.observer import Observer
 from orccad_app.robottask.labels import Phase
 from orccad_app.trace.report import InjectionRecord
 from orccad_app.trace.writers import sensor_ports
+from orccad_app.tui.run_process import Request, RunEnded
 from orccad_app.tui.user_inputs import UserInputs
 
-__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "sensor_ports"]
+__all__ = ["Pace", "LogEntry", "LiveUpdate", "LiveObserver", "sensor_ports", "StateView",
+           "SeenStates"]
 
 SETPOINT_PORTS = ("qd",)
 """Output ports sampled as set-points: ``qd[i]`` is plotted over ``ROBOT.q[i]``."""
 
 BUSY_FRAME_S = 0.25
-"""Wall time between two frames [s] while the run goes as fast as it can (else ``flush_s``):
-the screen's drawing shares the interpreter with the run."""
+"""While the run goes as fast as it can, a frame every this much CPU time [s] of the run's own
+thread (else every ``flush_s`` of wall time), and only once the screen has taken the previous
+one (:meth:`LiveObserver.frame_taken`): the screen's drawing shares the interpreter with the
+run, so frames follow the run's progress, not the wall clock (on a loaded machine a wall-clock
+rate would draw more frames per simulated second, each taking time from the run)."""
 
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
 
@@ -59,6 +64,8 @@ class Pace:
         self.stopped = False
         self._paused_since: float | None = None
         self._paused_s = 0.0
+        self.on_change: Callable[[float | None], None] | None = None
+        """Called with each new factor (a run in another process follows this one)."""
         self.set(factor)
 
     def set(self, factor: float | None) -> None:
@@ -78,6 +85,8 @@ class Pace:
             self._resumed.clear()
         else:
             self._resumed.set()
+        if self.on_change is not None:
+            self.on_change(factor)
 
     def stop(self) -> None:
         """Release a paused run for good (the run is being aborted)."""
@@ -151,6 +160,36 @@ class LiveUpdate:
     """Wall time spent paused so far [s]."""
     held: tuple[str, ...] = ()
     """Inputs held (raised at every instant until released)."""
+    states: dict[int, StateView] = field(default_factory=dict)
+    """What the screen reads of the automaton about ``state`` when it is a state not shown
+    before: the automaton is built as the run reaches its states (a lazy automaton), in the
+    run's process (:class:`SeenStates`)."""
+
+
+@dataclass(frozen=True)
+class StateView:
+    """A state of the mission's automaton as the screen reads it: its labels (running
+    Robot-Tasks, sub-missions) and the statements it waits at."""
+
+    labels: frozenset
+    waiting: tuple
+
+
+class SeenStates:
+    """The states of the automaton that a run in another process has shown, with the
+    ``labels`` and ``waiting`` of an automaton (indexed by state; empty for states not
+    seen): what :mod:`orccad_app.tui.status` reads."""
+
+    def __init__(self) -> None:
+        self.labels: list[frozenset] = []
+        self.waiting: list[tuple] = []
+
+    def learn(self, states: dict[int, StateView]) -> None:
+        for state, view in states.items():
+            while len(self.labels) <= state:
+                self.labels.append(frozenset())
+                self.waiting.append(())
+            self.labels[state], self.waiting[state] = view.labels, view.waiting
 
 
 def _components(value: Any, limit: int = 6) -> list[float] | None:
@@ -171,13 +210,18 @@ class LiveObserver(Observer):
     :param flush_s: how often updates are posted [s] (wall time).
     :param scripted: ``(time [ns], input)`` of the injections a script raises (logged as
         raised ``by`` ``scripted_by`` when they reach the automaton).
+    :param wait_for_screen: post a frame only once the previous one was taken
+        (:meth:`frame_taken`; a pause's frame always goes): a screen that falls behind gets
+        fewer, fuller frames and never shows an old state; and a paced run waits at its
+        first frame until the screen shows it (its pacing starts then).
     """
 
     def __init__(self, run: Any, post: Callable[[LiveUpdate], None], pace: Pace, *,
                  sample_ns: int = 10_000_000, flush_s: float = 0.1,
                  scripted: set[tuple[int, str]] | frozenset[tuple[int, str]] = frozenset(),
-                 scripted_by: str = "") -> None:
+                 scripted_by: str = "", wait_for_screen: bool = False) -> None:
         self.run, self.post, self.pace = run, post, pace
+        self.wait_for_screen = wait_for_screen
         self._scripted, self._scripted_by = scripted, scripted_by
         self.sample_ns, self.flush_s = sample_ns, flush_s
         self._sensors = sensor_ports(run.plan)
@@ -192,7 +236,16 @@ class LiveObserver(Observer):
         self._log: list[LogEntry] = []
         self._window: tuple[int, dict[str, int]] = (0, {})  # (instant, busy [ns] per cpu)
         self._misses: dict[str, int] = {}
-        self._flushed_at = 0.0
+        self._flushed_at = 0.0  # wall time [s] of the last frame
+        self._flushed_cpu = 0.0  # the run thread's CPU time [s] at the last frame
+        self._posted = 0  # frames posted ...
+        self._taken = 0  # ... and taken by the screen (frame_taken)
+        self._forward: Callable[[Request], None] | None = None  # to the run's process
+        self._remote = False  # the run is (or was) in another process
+        self._held: dict[str, Any] = {}  # ... and these inputs are held there
+        self._described: set[int] = set()  # states whose StateView was posted
+        self._screen_up = threading.Event()  # the screen took a frame (or the run ends)
+        self._adopted: list[InjectionRecord] | None = None  # ... and raised there
         self.reactions = 0
         """Reactions seen so far."""
         self.aborted_at: int | None = None
@@ -202,40 +255,101 @@ class LiveObserver(Observer):
 
     def raise_input(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` once, as ``--inject`` would at the due instant."""
-        self.inputs.pulse(name, value)
+        self._request(Request("pulse", name, value))
 
     def hold(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` at every tick from the due instant until :meth:`release`."""
-        self.inputs.hold(name, value)
+        self._request(Request("hold", name, value))
 
     def release(self, name: str) -> None:
         """Stop holding input ``name``."""
-        self.inputs.release(name)
+        self._request(Request("release", name))
 
     @property
     def held(self) -> tuple[str, ...]:
-        return self.inputs.held
+        return tuple(self._held) if self._remote else self.inputs.held
 
     def inject_fault(self, name: str, value: Any) -> None:
         """Apply the plant fault ``ROBOT.FAULT`` at the due instant, as
         ``orccad run --inject ROBOT.FAULT=VALUE@T`` does; a value out of the fault's declared
         range raises :class:`~orccad_app.diagnostics.OrccadError` now, as ``--inject``
         refuses it."""
-        self.inputs.fault(name, value)
+        self.inputs.check_fault(name, value)
+        self._request(Request("fault", name, value))
 
     @property
     def injected(self) -> list[InjectionRecord]:
         """What the user raised, once it reached the run (for the report): one record per
         pulse and fault, one per hold."""
-        return self.inputs.records()
-
-    def _log_entry(self, t_ns: int, kind: str, text: str) -> None:
-        self._log.append(LogEntry(t_ns, kind, text))
+        return list(self._adopted) if self._adopted is not None else self.inputs.records()
 
     def abort(self, reason: str = "stopped by the user") -> None:
         """End the run at the next reaction (status ``aborted``)."""
-        self._abort = reason
-        self.pace.stop()
+        self._request(Request("abort", reason))
+
+    def frame_taken(self) -> None:
+        """The screen has handled a posted :class:`LiveUpdate` (the next frame may come)."""
+        self._request(Request("taken"))
+
+    # -- a run in another process (orccad_app.tui.run_process) ------------------------------
+
+    def forward(self, send: Callable[[Request], None] | None) -> None:
+        """From now on send the user's requests (and the speed's changes) with ``send`` to
+        the run's process instead of applying them here (``None``: stop sending)."""
+        self._forward = send
+        if send is not None:
+            self._remote = True
+            self.pace.on_change = lambda factor: send(Request("pace", value=factor))
+        else:
+            self.pace.on_change = None
+
+    def local(self) -> None:
+        """In the run's process: requests are applied here (:meth:`apply`)."""
+        self._forward, self._remote, self.pace.on_change = None, False, None
+
+    def adopt(self, ended: RunEnded) -> None:
+        """Take what the run's process reported at its end (the user's injections, the
+        abort's reaction, the reactions)."""
+        self._adopted = list(ended.injected)
+        self.aborted_at, self.reactions = ended.aborted_at, ended.reactions
+
+    def _request(self, request: Request) -> None:
+        send = self._forward
+        if send is None:
+            self.apply(request)
+            return
+        if request.what == "hold":
+            self._held.setdefault(request.name, request.value)
+        elif request.what == "release":
+            self._held.pop(request.name, None)
+        elif request.what == "abort":
+            self.pace.stop()
+        send(request)
+
+    def apply(self, request: Request) -> None:
+        """Carry out a user's request here (the UI's thread, or the thread that receives
+        them in the run's process)."""
+        what, name, value = request.what, request.name, request.value
+        if what == "pulse":
+            self.inputs.pulse(name, value)
+        elif what == "hold":
+            self.inputs.hold(name, value)
+        elif what == "release":
+            self.inputs.release(name)
+        elif what == "fault":
+            self.inputs.fault(name, value)
+        elif what == "abort":
+            self._abort = name
+            self.pace.stop()
+            self._screen_up.set()
+        elif what == "pace":
+            self.pace.set(value)
+        elif what == "taken":
+            self._taken += 1
+            self._screen_up.set()
+
+    def _log_entry(self, t_ns: int, kind: str, text: str) -> None:
+        self._log.append(LogEntry(t_ns, kind, text))
 
     # -- on the executive's thread -----------------------------------------------------------
 
@@ -259,15 +373,21 @@ class LiveObserver(Observer):
             self._present = present
         self.inputs.on_reaction(t_ns)
         pace = self.pace
-        frame_s = self.flush_s if pace.factor is not None else BUSY_FRAME_S
-        if pace.factor == 0 or time.perf_counter() - self._flushed_at >= frame_s:
+        ready = self._taken >= self._posted or not self.wait_for_screen
+        if pace.factor is None:  # as fast as possible: nothing to wait for
+            if ready and time.thread_time() - self._flushed_cpu >= BUSY_FRAME_S:
+                self.flush(t_ns)
+            return
+        if pace.factor == 0 or (ready and time.perf_counter() - self._flushed_at >= self.flush_s):
             self.flush(t_ns)  # before a pause, so that the screen shows where it stopped
-        if pace.factor is not None:  # as fast as possible: nothing to wait for
-            pace.wait(t_ns)
+            if self.wait_for_screen and self._posted == 1:
+                self._screen_up.wait()  # a paced run starts when the screen shows it
+        pace.wait(t_ns)
 
     def flush(self, t_ns: int) -> None:
-        """Post what changed since the last update."""
-        self._flushed_at = time.perf_counter()
+        """Post what changed since the last update (on the executive's thread)."""
+        self._flushed_at, self._flushed_cpu = time.perf_counter(), time.thread_time()
+        self._posted += 1
         reactor = self.run.reactor
         tasks = [(self._site_task[site], site, phase)
                  for site, phase in sorted(self.run.phases.items()) if phase is not Phase.IDLE]
@@ -275,9 +395,19 @@ class LiveObserver(Observer):
         self._count_misses(t_ns)
         update = LiveUpdate(t_ns, reactor.state, reactor.status, self.pace.label, tasks,
                             self._log, self._samples, loads, dict(self._misses),
-                            time.perf_counter(), self.pace.paused_s, self.held)
+                            time.perf_counter(), self.pace.paused_s, self.held,
+                            self._describe(reactor.state))
         self._log, self._samples = [], {}
         self.post(update)
+
+    def _describe(self, state: int | None) -> dict[int, StateView]:
+        """``state``'s :class:`StateView` if not posted before."""
+        automaton = self.run.plan.automaton
+        if state is None or state in self._described or not 0 <= state < len(automaton.labels):
+            return {}
+        self._described.add(state)
+        waiting = automaton.waiting[state] if state < len(automaton.waiting) else ()
+        return {state: StateView(automaton.labels[state], tuple(waiting))}
 
     def _loads(self, t_ns: int) -> dict[str, float]:
         """Each processor's busy share since the last update, from its statistics."""

@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import tempfile
 from dataclasses import dataclass, field
@@ -20,7 +21,8 @@ from typing import TYPE_CHECKING, Any, Callable
 from orccad_app.diagnostics import OrccadError
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
-from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace
+from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace, SeenStates
+from orccad_app.tui.run_process import can_fork, run_forked
 
 if TYPE_CHECKING:
     from orccad_app.verify.checker import MissionReport, PropertyOutcome
@@ -251,11 +253,17 @@ class LiveSession:
         inputs are injected at its instants' times, as ``orccad run --inject-from`` does.
     :param setting: a campaign's run (a :class:`~orccad_app.campaign.setting.RunSetting`)
         replayed live: its overrides, injections (raised ``by``), seed and horizon.
+    :param wait_for_screen: see :class:`~orccad_app.tui.live.LiveObserver` (the run screen
+        calls ``observer.frame_taken()`` after each update).
+    :param own_process: run in a child process forked once the run is planned
+        (:mod:`orccad_app.tui.run_process`: the screen's drawing then never holds the run
+        back); where ``os.fork`` is missing, in the calling thread.
     """
 
     def __init__(self, path: str, mission: str | None, post: Callable[[LiveUpdate], None], *,
                  speed: float | None = 1.0, seed: int = 0, until_s: float | None = None,
-                 script: Any = None, setting: Any = None, by: str = "") -> None:
+                 script: Any = None, setting: Any = None, by: str = "",
+                 wait_for_screen: bool = False, own_process: bool = False) -> None:
         from orccad_app.pipeline import load, select_mission
 
         source = load(path)
@@ -290,24 +298,43 @@ class LiveSession:
         self.pace = Pace(speed)
         self.observer = LiveObserver(self.run, post, self.pace, scripted={
             (record.time_ns, record.name) for record in self.scripted},
-            scripted_by=script.by if script is not None else by)
+            scripted_by=script.by if script is not None else by, wait_for_screen=wait_for_screen)
         self.session.add_observer(self.observer)
+        self.own_process = own_process and can_fork()
+        self.automaton: Any = SeenStates() if self.own_process else plan.automaton
+        """The automaton's states as the screen reads them (:mod:`orccad_app.tui.status`):
+        the plan's (lazy) automaton, or the states the run's process has shown."""
         self.result: Any = None
         self.run_report: Any = None
         """The :class:`~orccad_app.session.RunReport` of the finished run."""
 
     def execute(self) -> Any:
         """Run to the end (blocking: call it from a worker thread); the ``RunResult``."""
-        self.run_report = self.session.execute()
+        if self.own_process:
+            post = self.observer.post
+
+            def shown(update: LiveUpdate) -> None:  # learn the states, then show them
+                self.automaton.learn(update.states)
+                post(update)
+
+            ended = run_forked(self._execute_here, self.observer, shown)
+            self.observer.adopt(ended)
+            result = dataclasses.replace(ended.report.result, modules=self.run.plan.tcs.modules)
+            self.run_report = dataclasses.replace(ended.report, result=result)
+        else:
+            self.run_report = self._execute_here()
         self.result = self.run_report.result
-        self.observer.flush(self.run.kernel.now)
         return self.result
+
+    def _execute_here(self) -> Any:
+        report = self.session.execute()
+        self.observer.flush(self.run.kernel.now)
+        return report
 
     def report(self) -> str:
         """``orccad run``'s text report of the finished run (with the properties' verdicts)
         and what the user raised, the real-time ratio computed without the time spent paused
         (said on the second line)."""
-        import dataclasses
 
         paused = self.pace.paused_s
         report = self.run_report
@@ -353,7 +380,6 @@ class LiveSession:
         effect (the same run, :mod:`orccad_app.tui.user_inputs`), ended at the same reaction
         when the user aborted it. The live run records no trace: a trace costs more than the
         run."""
-        import dataclasses
 
         from orccad_app.mission.injection import Injection
 

@@ -59,7 +59,7 @@ def _waiting(session: Any, state: int | None) -> tuple[Any, ...]:
     """The locations state ``state`` waits at (sub-missions' call sites included)."""
     from orccad_app.verify.replay import waiting_at
 
-    return () if state is None else waiting_at(session.run.plan.automaton, state)
+    return () if state is None else waiting_at(session.automaton, state)
 
 
 def _in_file(locations: Any, path: str) -> list[int]:
@@ -95,7 +95,7 @@ def _where(loc: Any, path: str) -> str:
 def tasks_in_state(session: Any, state: int | None) -> list[tuple[str, int, int]]:
     """``(task, site, phase)`` of every Robot-Task instance active in ``state`` (from the
     automaton's labels: right from the instant the task starts)."""
-    automaton = session.run.plan.automaton
+    automaton = session.automaton
     if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
         return []
     phases: dict[tuple[str, int], int] = {}
@@ -145,7 +145,7 @@ def where_text(session: Any, state: int | None, status: str = "running",
 
 def running_sites(session: Any, state: int | None) -> list[tuple[str, Any]]:
     """``(task, its run statement's location)`` of the Robot-Tasks active in ``state``."""
-    automaton = session.run.plan.automaton
+    automaton = session.automaton
     if state is None or not automaton.labels or not 0 <= state < len(automaton.labels):
         return []
     numbers = {getattr(label, "site", None) for label in automaton.labels[state]

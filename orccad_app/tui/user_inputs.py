@@ -90,9 +90,14 @@ class UserInputs:
         """Apply plant fault ``ROBOT.FAULT`` with ``value`` (at the due instant); a value out
         of the fault's declared range raises :class:`OrccadError` now, as ``--inject``
         refuses it."""
+        self.check_fault(name, value)
+        self._queue.append(("fault", name, value))
+
+    def check_fault(self, name: str, value: Any) -> None:
+        """Raise :class:`OrccadError` unless ``ROBOT.FAULT`` is a fault of a robot of the run
+        and ``value`` within its declared range."""
         robot, fault = name.split(".", 1)
         self.run.check_fault(robot, fault, value)
-        self._queue.append(("fault", name, value))
 
     def hold(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` at every tick from the due instant until :meth:`release`."""

@@ -59,12 +59,8 @@ def plan_file_auv():
     from orccad_app.mission.plan import plan_mission
     from orccad_app.mission.run import MissionRun
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.tui.live import LiveObserver
-    from orccad_app.tui.user_inputs import UserInputs
+    from orccad_app.tui.live import LiveObserver, Pace
 
     source = load(AUV)
     run = MissionRun(plan_mission(source, select_mission(source, None)), until_ns=10**9)
-    observer = LiveObserver.__new__(LiveObserver)  # only what inject_fault uses
-    observer.run = run
-    observer.inputs = UserInputs(run, lambda t_ns, kind, text: None)
-    return observer
+    return LiveObserver(run, lambda update: None, Pace(None))

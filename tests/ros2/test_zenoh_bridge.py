@@ -7,6 +7,7 @@ mission's output ``Stopping``."""
 from __future__ import annotations
 
 import socket
+import re
 import subprocess
 import sys
 import threading
@@ -58,9 +59,16 @@ def test_a_run_and_a_ros_2_peer_exchange_states_commands_inputs_and_outputs():
         with lock:
             outputs.append(str(sample.key_expr))
 
+    tokens = []  # (PUT or DELETE, key): the run's ROS 2 discovery (rmw_zenoh's liveliness)
+
+    def on_token(sample):
+        with lock:
+            tokens.append((sample.kind == zenoh.SampleKind.PUT, str(sample.key_expr)))
+
     key = topic_key(0, "/joint_states", "sensor_msgs/msg/JointState", JOINT_STATE_HASH)
     subscribers = [session.declare_subscriber(key, on_state),
-                   session.declare_subscriber("0/orccad/output/**", on_output)]
+                   session.declare_subscriber("0/orccad/output/**", on_output),
+                   session.liveliness().declare_subscriber("@ros2_lv/0/**", on_token)]
     run = subprocess.Popen([sys.executable, "-m", "orccad_app.cli", "run",
                             "missions/arm_recovery.orc", "--until", "12", "--realtime", "2",
                             "--ros2-zenoh", endpoint], stdout=subprocess.PIPE,
@@ -86,6 +94,12 @@ def test_a_run_and_a_ros_2_peer_exchange_states_commands_inputs_and_outputs():
                               messages.type_hash("std_msgs/msg/Empty")),
                     bytes(store.serialize_cdr(empty, "std_msgs/msg/Empty")))
         out, err = run.communicate(timeout=120)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:  # the tokens go with the run's session
+            with lock:
+                if any(not put for put, _ in tokens):
+                    break
+            time.sleep(0.05)
     finally:
         run.kill()
         for subscriber in subscribers:
@@ -104,6 +118,25 @@ def test_a_run_and_a_ros_2_peer_exchange_states_commands_inputs_and_outputs():
     assert stopping == [f"0/orccad/output/Stopping/std_msgs::msg::dds_::Empty_/"
                         f"{messages.type_hash('std_msgs/msg/Empty')}"]
     assert "Stop" in out  # the report's outputs and the park
+    declared = {key for put, key in tokens if put}
+    [node] = [key for key in declared if "/NN/" in key]
+    zid = node.split("/")[2]
+    assert node == f"@ros2_lv/0/{zid}/0/0/NN/%/%/orccad"
+    entity = f"@ros2_lv/0/{zid}/0/[0-9]+/"
+    expected = [
+        rf"{entity}MP/%/%/orccad/%joint_states/sensor_msgs::msg::dds_::JointState_/"
+        rf"{JOINT_STATE_HASH}/::,:,:,:,,",
+        rf"{entity}MS/%/%/orccad/%joint_commands/sensor_msgs::msg::dds_::JointState_/"
+        rf"{JOINT_STATE_HASH}/::,:,:,:,,",
+        rf"{entity}MS/%/%/orccad/%orccad%input%Stop/std_msgs::msg::dds_::Empty_/RIHS01_\w+/"
+        rf"::,:,:,:,,",
+        rf"{entity}MP/%/%/orccad/%orccad%output%Stopping/std_msgs::msg::dds_::Empty_/"
+        rf"RIHS01_\w+/::,:,:,:,,"]
+    for pattern in expected:
+        assert any(re.fullmatch(pattern, key) for key in declared), (pattern, declared)
+    ids = [key.split("/")[4] for key in declared]
+    assert len(ids) == len(set(ids))  # one id per entity
+    assert (False, node) in tokens  # undeclared when the run ended
 
 
 def test_without_the_extra_the_option_says_what_to_install():

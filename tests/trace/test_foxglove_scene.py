@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 from collections import defaultdict
 
 import jsonschema
@@ -142,3 +143,33 @@ def test_parameters_phases_state_and_verdicts_are_topics(trace):
     assert reported["park_completes"] == "undecided"
     assert reported["home_before_tracking"] == "true"
     assert verdicts["home_before_tracking"][0][1]["verdict"] == "undecided"
+
+
+def test_the_frames_go_on_while_no_module_reads_the_robot(tmp_path):
+    """After its task, the arm is read by no module during an ``await`` (its idle behaviour
+    alone acts on it): the frames still come every 20 ms, each stamped with its own instant,
+    showing the arm as the plant has it then; and the run is the one without a trace."""
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.session import RunOptions, run_mission
+
+    source = tmp_path / "gap.orc"
+    text = Path("missions/arm_pid.orc").read_text(encoding="utf-8")
+    text = text.replace("duration 4 s", "duration 0.3 s").replace(
+        "    run TrackPID();", "    run TrackPID();\n    await 0.3 s;")
+    source.write_text("\n".join(line for line in text.splitlines()
+                                if not line.startswith("property")), encoding="utf-8")
+    program = load(str(source))
+    mission = select_mission(program, None)
+    path = tmp_path / "gap.mcap"
+    traced = run_mission(program, mission, RunOptions(trace=str(path))).result
+    plain = run_mission(program, mission, RunOptions()).result
+    assert traced.status == plain.status == "done" and traced.sim_time_ns == 600_000_000
+    assert [r.as_dict() for r in traced.robot_tasks] == [r.as_dict() for r in plain.robot_tasks]
+    assert traced.outputs == plain.outputs
+    with open(path, "rb") as stream:
+        times = [message.log_time for _, _, message in
+                 make_reader(stream).iter_messages(topics=["/tf"])]
+    waiting = [t for t in times if 300_000_000 < t < 600_000_000]
+    assert len(waiting) >= 14  # 50 Hz during the await (it was one stale stamp, repeated)
+    assert all(b - a <= 21_000_000 for a, b in zip(times, times[1:]))
+    assert len(set(waiting)) == len(waiting)

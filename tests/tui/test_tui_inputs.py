@@ -117,3 +117,47 @@ def test_the_log_says_when_a_hold_starts_and_ends(tmp_path):
     assert log == ["Hold held by the user",
                    "Hold released by the user (held 0.103–0.302 s, 200 instants)"]
 
+
+
+#: The topics of ``orccad run --trace X.mcap`` beyond the events (issue 26.1).
+FOXGLOVE_TOPICS = ("/tf", "/scene", "/params/", "/mission/phase/", "/mission/state",
+                   "/properties/")
+
+
+def _messages(path) -> list[tuple[str, int, bytes]]:
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as stream:
+        return [(channel.topic, message.log_time, message.data)
+                for _, channel, message in make_reader(stream).iter_messages()]
+
+
+def test_a_run_in_its_own_process_exports_the_mcap_of_orccad_run_with_every_topic(
+        tmp_path, capsys):
+    """The console's run (in its own process, keys pressed as its frames arrive) exported
+    as MCAP is ``orccad run --trace X.mcap --inject …`` at the reported instants, message for
+    message, the Foxglove topics (frames, scene, gains, phases, state, verdicts) included."""
+    pressed = []
+
+    def post(update):  # the UI's side: a key when a frame shows the run past 0.5 s, then 1 s
+        for at, name, value in ((0.5e9, "Gripper", 0.8), (1e9, "Stop", None)):
+            if update.time_ns > at and name not in pressed:
+                pressed.append(name)
+                session.observer.raise_input(name, value)
+
+    session = LiveSession(RECOVERY, None, post, speed=None, until_s=2.0, own_process=True)
+    assert session.own_process
+    session.execute()
+    records = session.observer.injected
+    assert [r.name for r in records] == pressed[:len(records)] and records
+    exported = tmp_path / "console.mcap"
+    session.export(str(exported))
+    cli = tmp_path / "cli.mcap"
+    main(["run", RECOVERY, "--until", "2", "--trace", str(cli),
+          *_inject_args(records, session.run.tick_ns)])
+    capsys.readouterr()
+    console, reference = _messages(exported), _messages(cli)
+    topics = {topic for topic, _, _ in reference}
+    for prefix in FOXGLOVE_TOPICS:
+        assert any(topic.startswith(prefix) for topic in topics), prefix
+    assert console == reference

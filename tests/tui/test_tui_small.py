@@ -63,8 +63,8 @@ def _session(waiting: int):
                            site=SimpleNamespace(stmt=SimpleNamespace(
                                loc=SourceLocation("m.orc", 48, 5))))
     automaton = SimpleNamespace(waiting=(locs,), labels=((label,),))
-    return SimpleNamespace(path="m.orc", run=SimpleNamespace(plan=SimpleNamespace(
-        automaton=automaton, sites=[site])))
+    return SimpleNamespace(path="m.orc", automaton=automaton, run=SimpleNamespace(
+        plan=SimpleNamespace(automaton=automaton, sites=[site])))
 
 
 def test_a_long_wait_list_is_cut_after_the_running_tasks():

@@ -3,6 +3,8 @@ running Robot-Tasks and their RTA phase), plots, the TCS's load, the log and the
 
 from __future__ import annotations
 
+import math
+
 from textual import on, work
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -20,7 +22,7 @@ from orccad_app.tui.status import (SpeedMeter, rta_text, run_site_lines, status_
                                     waiting_lines)
 from orccad_app.tui.widgets.event_log import EventLog
 from orccad_app.tui.widgets.inputs import InputBar
-from orccad_app.tui.widgets.plots import BUSY_REDRAW_S, REDRAW_S, Marker, Plots
+from orccad_app.tui.widgets.plots import BUSY_PLOT_FRAMES, REDRAW_S, Marker, Plots
 from orccad_app.tui.widgets.source_view import SourceView
 from orccad_app.tui.widgets.tables import LoadTable, TaskTable, TcsTable
 from orccad_app.tui.screens import orccad
@@ -72,6 +74,7 @@ class RunScreen(Screen):
         self.meter = SpeedMeter()
         self.last: LiveUpdate | None = None
         self._tasks: list[tuple[str, int, int]] = []
+        self._busy_frames = 0  # frames taken at max speed (the plots redraw every few)
 
     def compose(self) -> ComposeResult:
         yield Header()
@@ -120,7 +123,7 @@ class RunScreen(Screen):
     def _status(self, update: LiveUpdate | None) -> None:
         limit = 4 if self.size.width < 120 else 12  # where it waits: what fits on a line
         self.query_one("#run-status", Static).update(status_text(
-            self.session, update, self.meter, limit))
+            self.session, update, self.meter, limit), layout=False)  # two lines, always
 
     def _where(self, update: LiveUpdate | None) -> None:
         """The source with the statements the mission waits at, the RTA and TCS tabs."""
@@ -136,7 +139,12 @@ class RunScreen(Screen):
 
     @on(RunUpdated)
     def _updated(self, message: RunUpdated) -> None:
-        update = message.update
+        try:
+            self._show(message.update)
+        finally:
+            self.session.observer.frame_taken()  # the run may post the next frame
+
+    def _show(self, update: LiveUpdate) -> None:
         self.last = update
         self.meter.add(update)
         if not self.finished:
@@ -148,9 +156,15 @@ class RunScreen(Screen):
                                                                       update.state))
         self.query_one(LoadTable).show(update.loads, update.misses)
         plots = self.query_one(Plots)
-        plots.min_interval_s = BUSY_REDRAW_S if self.session.pace.factor is None else REDRAW_S
         plots.add_samples(update.samples)
         plots.add_markers(_markers(update.log))
+        if self.session.pace.factor is None:  # max speed: the plots follow the frames
+            plots.min_interval_s = math.inf
+            self._busy_frames += 1
+            if self._busy_frames % BUSY_PLOT_FRAMES == 0:
+                plots.redraw()
+        else:
+            plots.min_interval_s = REDRAW_S
         self.query_one(EventLog).add(update.log)
 
     @on(RunFinished)

@@ -17,7 +17,8 @@ from textual.containers import Vertical
 from textual.widgets import Label
 from textual_plotext import PlotextPlot
 
-__all__ = ["Plots", "Marker", "FIRST", "default_series", "setpoint_of"]
+__all__ = ["Plots", "Marker", "FIRST", "default_series", "setpoint_of", "REDRAW_S",
+           "BUSY_PLOT_FRAMES"]
 
 FIRST = ("tracking error", ".q[", ".depth", ".heading", ".attitude[2]")
 """Series shown first when present (the task error, the arm's joints, the AUV's depth and
@@ -30,9 +31,11 @@ _MAX_POINTS = 240  # per series drawn: two braille dots per column of a wide ter
 
 REDRAW_S = 0.25
 """Plots are redrawn at most this often [s] (wall time) while samples arrive."""
-BUSY_REDRAW_S = 1.0
-"""... and at most this often while the run goes as fast as it can: a plot costs more to draw
-than a second of the arm's simulation, and the run shares the interpreter with the screen."""
+BUSY_PLOT_FRAMES = 4
+"""... and once every this many frames while the run goes as fast as it can (about once per
+second of the run's CPU time, :data:`~orccad_app.tui.live.BUSY_FRAME_S`): a plot costs more
+to draw than a second of the arm's simulation, and the run shares the interpreter with the
+screen."""
 
 
 @dataclass(frozen=True)
@@ -160,7 +163,8 @@ class Plots(Vertical):
         window = self._window()
         caption = self.query_one("#plots-caption", Label)
         if window is None:
-            caption.update("no samples yet: the plots start with the first measurement")
+            caption.update("no samples yet: the plots start with the first measurement",
+                           layout=False)  # one line, always
             plot.refresh()
             return
         start, end = window
@@ -181,7 +185,7 @@ class Plots(Vertical):
         span = f"last {ROLLING_S:g} s" if self.rolling else "whole mission"
         caption.update(f"{', '.join(drawn) or 'nothing chosen'}{over} — {span}; markers: "
                        f"green task start, red exception, orange input/fault  "
-                       f"[p] choose  [w] window")
+                       f"[p] choose  [w] window", layout=False)
         plot.refresh()
 
     def _plot(self, plt, name: str, start: float, marker: str) -> None:
