@@ -97,11 +97,16 @@ async def test_a_campaign_shows_its_answer_as_runs_finish_replays_a_run_and_stop
         await pilot.press("enter")  # replay it in the live view while the campaign goes on
         await _until(pilot, lambda: any(isinstance(s, RunScreen) for s in app.screen_stack))
         run = _run_screen(app)
-        assert run.session.setting == first.setting
-        assert run.session.seed == first.setting.seed
-        assert run.session.run.until_ns == round(first.setting.until_s * 1e9)
+        # the campaign goes on, so the list may have been refreshed between reading `first` and
+        # the key: the replayed run is one of the database's runs, with that run's setting
+        replayed = run.session.setting
+        assert replayed is not None
+        records = {r.index: r for r in CampaignStore(db).records()}
+        assert replayed == records[replayed.index].setting
+        assert run.session.seed == replayed.seed
+        assert run.session.run.until_ns == round(replayed.until_s * 1e9)
         periods = {m.name: m.period_ns for m in run.session.run.plan.tcs.module_tasks}
-        wanted = dict(t.split("=") for t in first.setting.timings)["TrackPID.ctrl.period_ms"]
+        wanted = dict(t.split("=") for t in replayed.timings)["TrackPID.ctrl.period_ms"]
         assert periods["TrackPID.ctrl"] == round(float(wanted) * 1e6)  # its --timing
         await _until(pilot, lambda: run.finished)  # 0.5 s at 1×
         while app.screen is not screen:
