@@ -5,17 +5,34 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from orccad_app.executive.simulation import RunStats
 from orccad_app.jsonout import plain
 
+if TYPE_CHECKING:  # traces read results without the language front end
+    from orccad_app.lang.ast_robottask import ExceptionType
+
 _dot = np.dot
 
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
-           "ErrorSamples", "MissionStatus", "STATUSES", "RECOVERING"]
+           "ErrorSamples", "MissionStatus", "STATUSES", "RECOVERING", "TaskOutcome"]
+
+
+class TaskOutcome(enum.StrEnum):
+    """How a Robot-Task run ended (its value is the word of reports and traces, except
+    ``RAISED``, written as the exception's name: :attr:`RobotTaskRecord.outcome`)."""
+
+    RUNNING = "running"
+    """Still running at the end of the run."""
+    GOOD_END = "good_end"
+    """Ended normally (``X.good_end``)."""
+    RAISED = "raised"
+    """Ended by an exception (its own type-2/3 one, or the mission's ``Timeout``)."""
+    KILLED = "killed"
+    """Killed by an enclosing preemption."""
 
 
 class MissionStatus(enum.StrEnum):
@@ -84,8 +101,8 @@ class RobotTaskRecord:
     :param site: its ``run`` site.
     :param start_ns: when it started [ns].
     :param end_ns: when it ended [ns], ``None`` if still running at the end.
-    :param outcome: ``good_end``, the exception that ended it, ``killed`` (an enclosing
-        preemption) or ``running``.
+    :param end: how it ended (:class:`TaskOutcome`).
+    :param exception: for ``end`` ``RAISED``, the exception that ended it.
     :param errors: the task error's samples (the ``e`` output of its control law).
     :param error_unit: their unit (the task function's: ``rad`` in joint space, ``m`` for a
         Cartesian position).
@@ -97,10 +114,19 @@ class RobotTaskRecord:
     site: int
     start_ns: int
     end_ns: int | None = None
-    outcome: str = "running"
+    end: TaskOutcome = TaskOutcome.RUNNING
+    exception: str | None = None
     errors: ErrorSamples = field(default_factory=ErrorSamples)
     error_unit: str = "rad"
     args: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def outcome(self) -> str:
+        """The word of reports, traces and observers: ``good_end``, the exception that ended
+        it, ``killed`` (an enclosing preemption) or ``running``."""
+        if self.end is TaskOutcome.RAISED and self.exception is not None:
+            return self.exception
+        return self.end.value
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form (``tracking_error`` is ``null`` without a control law)."""
@@ -166,23 +192,24 @@ class ExceptionRecord:
 
     :param time_ns: when [ns].
     :param name: the exception (``TrackingLost``, ``Timeout``, ``at_rest_timeout``).
-    :param type: 1 (adjust), 2 (abort the task) or 3 (fatal), RR-1801 §3.4.2.
+    :param type: adjust (1), abort the task (2) or fatal (3), RR-1801 §3.4.2; serialized as
+        its ``number``.
     :param task: the Robot-Task that raised it, ``None`` for the mission's own (``within``).
     :param update: for type 1, the parameter update it applied.
     """
 
     time_ns: int
     name: str
-    type: int
+    type: ExceptionType
     task: str | None
     update: UpdateRecord | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON form; a type-1 exception's also has ``update``
         (:meth:`UpdateRecord.as_dict`, ``null`` when no task of its was running)."""
-        record = {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type,
+        record = {"time_s": self.time_ns / 1e9, "name": self.name, "type": self.type.number,
                   "task": self.task}
-        if self.type == 1:
+        if self.type.number == 1:  # adjust
             record["update"] = None if self.update is None else self.update.as_dict()
         return record
 

@@ -62,10 +62,12 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.lang.ast_robottask import ExceptionType
 from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
+from orccad_app.mission.result import (ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult,
+                                       TaskOutcome)
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError, plain_arguments
@@ -399,16 +401,16 @@ class MissionRun:
                 try:
                     change = None if update is None else self._updates.apply(update, role.name)
                 except UpdateError:  # the exception happened; its update ends the run
-                    self._record(ExceptionRecord(now, role.name, 1, role.task))
+                    self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task))
                     raise
-                self._record(ExceptionRecord(now, role.name, 1, role.task, change))
+                self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task, change))
             elif role.kind is RoleKind.RAISED:
                 kind, task = self._origin(role.name)
                 raised[role.name] = task
                 self._record(ExceptionRecord(now, role.name, kind, task))
         return raised
 
-    def _origin(self, exception: str) -> tuple[int, str | None]:
+    def _origin(self, exception: str) -> tuple[ExceptionType, str | None]:
         """The type of ``exception`` and the running task that raised it (``None`` and type 2
         for the mission's own ``Timeout``)."""
         raisers = {r.task: r.type for r in self._roles.raisers.get(exception, ())}
@@ -416,7 +418,7 @@ class MissionRun:
             if self._phase.get(site.number, Phase.IDLE) is not Phase.IDLE and \
                     site.task in raisers:
                 return raisers[site.task], site.task
-        return 2, None
+        return ExceptionType.ABORT, None
 
     def _record(self, record: ExceptionRecord) -> None:
         self.exceptions.append(record)
@@ -463,13 +465,14 @@ class MissionRun:
         for hook in self._hooks["on_task_start"]:
             hook(now, site.task, site.number, args)
 
-    def _end_task(self, now: int, site: SiteModules, outcome: str) -> None:
+    def _end_task(self, now: int, site: SiteModules,
+                  outcome: tuple[TaskOutcome, str | None]) -> None:
         self._updates.stop(site.modules)
         record = self._running.pop(site.number)
         record.end_ns = now
-        record.outcome = outcome
+        record.end, record.exception = outcome
         for hook in self._hooks["on_task_end"]:
-            hook(now, site.task, site.number, outcome)
+            hook(now, site.task, site.number, record.outcome)
 
     # -- running -----------------------------------------------------------------------------
 
@@ -536,12 +539,14 @@ def run_horizon_s(plan: MissionPlan, default_s: float) -> float:
     return plan.run_horizon_s(default_s)
 
 
-def _outcome(site: SiteModules, emitted: set[str], raised: dict[str, str | None]) -> str:
+def _outcome(site: SiteModules, emitted: set[str],
+             raised: dict[str, str | None]) -> tuple[TaskOutcome, str | None]:
+    """How the run of ``site`` ended, and the exception that ended it if one did."""
     if site.good_end_signal in emitted:
-        return "good_end"
+        return TaskOutcome.GOOD_END, None
     for exception, origin in raised.items():
         if origin == site.task:
-            return exception
+            return TaskOutcome.RAISED, exception
     if "Timeout" in raised:
-        return "Timeout"
-    return "killed"
+        return TaskOutcome.RAISED, "Timeout"
+    return TaskOutcome.KILLED, None

@@ -93,10 +93,10 @@ def record_raisers(task: ast.RobotTask, roles: SignalRoles) -> None:
     """Record the exceptions a run of ``task`` can raise into the application: its type-2
     ones (with the watchdogs' ``OBSERVER_timeout``) and its type-3 ones."""
     for name in task.raisable():
-        roles.add_raiser(name, task.name, 2)
+        roles.add_raiser(name, task.name, ast.ExceptionType.ABORT)
     for exc in task.exceptions:
         if exc.type is ast.ExceptionType.FATAL:
-            roles.add_raiser(exc.name, task.name, 3)
+            roles.add_raiser(exc.name, task.name, ast.ExceptionType.FATAL)
 
 
 def _out(name: str, loc: SourceLocation) -> ir.SignalDecl:

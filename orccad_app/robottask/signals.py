@@ -13,6 +13,8 @@ import enum
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from orccad_app.lang.ast_robottask import ExceptionType
+
 __all__ = ["RoleKind", "SignalRole", "SignalRoles", "RaisedBy"]
 
 
@@ -60,12 +62,12 @@ class RaisedBy:
     """A Robot-Task that can raise an exception into the application.
 
     :param task: the Robot-Task.
-    :param type: 2 (the task is killed, the application is told) or 3 (the application is
+    :param type: abort, 2 (the task is killed, the application is told) or fatal, 3 (the application is
         aborted), RR-1801 §3.4.2; a watchdog's ``OBSERVER_timeout`` is type 2.
     """
 
     task: str
-    type: int
+    type: ExceptionType
 
 
 @dataclass
@@ -85,7 +87,7 @@ class SignalRoles:
         """Record the role of ``signal``."""
         self.by_signal[signal] = SignalRole(kind, task, name)
 
-    def add_raiser(self, exception: str, task: str, type_: int) -> None:
+    def add_raiser(self, exception: str, task: str, type_: ExceptionType) -> None:
         """Record that ``task`` can raise ``exception`` with type ``type_``."""
         found = self.raisers.setdefault(exception, [])
         if all(r.task != task for r in found):

@@ -47,6 +47,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
+from orccad_app.mission.result import TaskOutcome
 from orccad_app.trace.recorder import TraceRow
 from orccad_app.trace.state_topics import (PHASE_SCHEMA, STATE_SCHEMA, VERDICT_SCHEMA,
                                            VerdictSample, phase_message, state_message,
@@ -402,7 +403,7 @@ class TopicWriter:
                              f"{m['task']}.{param}", value, latched=True)
         elif event == "task_end":
             self._active(time_ns, m["task"], 0, m["site"], "end", m["outcome"])
-            level = INFO if m["outcome"] == "good_end" else WARNING
+            level = INFO if m["outcome"] == TaskOutcome.GOOD_END else WARNING
             self.log(time_ns, level, "mission", f"{m['task']} ends: {m['outcome']}")
         elif event == "exception":
             level = {1: INFO, 2: WARNING}.get(m["type"], ERROR)

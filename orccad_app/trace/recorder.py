@@ -200,7 +200,7 @@ class TraceRecorder(Observer):
 
     def on_exception(self, record: Any) -> None:
         self._row(record.time_ns, "exception", record.task or "", record.name,
-                  value=record.type)
+                  value=record.type.number)
         update = record.update
         if update is not None:
             self._row(record.time_ns, "update", update.module, update.param,

@@ -267,7 +267,7 @@ def _exception_lines(result: RunResult) -> list[str]:
     groups: list[tuple[float, float, str, int]] = []
     for record in result.exceptions:
         change = f": {record.update.text()}" if record.update is not None else ""
-        text = (f"{record.name} (type {record.type}"
+        text = (f"{record.name} (type {record.type.number}"
                 f"{', ' + record.task if record.task else ''}){change}")
         time_s = record.time_ns / 1e9
         if groups and groups[-1][2] == text:

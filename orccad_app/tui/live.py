@@ -475,4 +475,4 @@ class LiveObserver(Observer):
         origin = f" from {record.task}" if record.task else ""
         change = f": {record.update.text()}" if getattr(record, "update", None) else ""
         self._log.append(LogEntry(record.time_ns, "exception",
-                                  f"{record.name} (type {record.type}){origin}{change}"))
+                                  f"{record.name} (type {record.type.number}){origin}{change}"))

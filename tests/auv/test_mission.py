@@ -63,7 +63,7 @@ def test_a_leak_mid_survey_aborts_and_surfaces_at_once(plan):
     assert (result.status, result.reason) == ("aborted", "Leak")
     assert _tasks(result)[-2:] == [("Survey", "Leak"), ("Surface", "good_end")]
     [record] = result.exceptions
-    assert (record.name, record.type, record.time_ns) == ("Leak", 3, pytest.approx(120e9, abs=2e8))
+    assert (record.name, record.type.number, record.time_ns) == ("Leak", 3, pytest.approx(120e9, abs=2e8))
     _surfaced(vehicle)
 
 
@@ -80,7 +80,7 @@ def test_too_close_to_the_seabed_climbs_and_resumes(plan):
     assert result.status == "done"
     assert _tasks(result)[3:7] == [("Survey", "AltitudeLow"), ("Dive", "good_end"),
                                    ("Survey", "good_end"), ("Surface", "good_end")]
-    assert ("AltitudeLow", 2) in [(e.name, e.type) for e in result.exceptions]
+    assert ("AltitudeLow", 2) in [(e.name, e.type.number) for e in result.exceptions]
     _surfaced(vehicle)
 
 

@@ -7,7 +7,9 @@ import pytest
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive import EventLog
+from orccad_app.lang.ast_robottask import ExceptionType
 from orccad_app.mission.injection import Injection, parse_injection
+from orccad_app.mission.result import TaskOutcome
 from orccad_app.mission.run import MissionRun
 from orccad_app.tcs import response_time_analysis
 
@@ -64,16 +66,38 @@ def test_injected_tracking_lost_fails_the_mission_at_that_instant(plan_file):
     assert (result.status, result.reason, result.sim_time_ns) == \
         ("failed", "TrackingLost", 1_000_000_000)
     assert result.robot_tasks[0].outcome == "TrackingLost"
-    assert [(e.name, e.type, e.task) for e in result.exceptions] == \
+    assert [(e.name, e.type.number, e.task) for e in result.exceptions] == \
         [("TrackingLost", 2, "TrackPID")]
     assert result.exit_status == 1
+
+
+def test_outcomes_and_exception_types_stay_typed_until_serialized(plan_file):
+    """A real run's records hold TaskOutcome and ExceptionType members, never a plain word or
+    number; their JSON is the words and numbers of before (``TrackingLost``, 1, 2)."""
+    plan = plan_file(PID)
+    result, _ = _run(plan, injections=[Injection("TrackPID.Saturated", 200_000_000),
+                                       Injection("TrackPID.TrackingLost", 1_000_000_000)])
+    [record] = result.robot_tasks
+    assert type(record.end) is TaskOutcome and record.end is TaskOutcome.RAISED
+    assert record.exception == "TrackingLost" and record.as_dict()["outcome"] == "TrackingLost"
+    assert [type(e.type) for e in result.exceptions] == [ExceptionType, ExceptionType]
+    assert [e.type for e in result.exceptions] == [ExceptionType.ADJUST, ExceptionType.ABORT]
+    assert [type(e.as_dict()["type"]) for e in result.exceptions] == [int, int]
+    assert [e.as_dict()["type"] for e in result.exceptions] == [1, 2]
+    raisers = [r for found in plan.roles.raisers.values() for r in found]
+    assert raisers and all(type(r.type) is ExceptionType for r in raisers)
+
+
+def test_a_finished_task_ends_good_end_typed(pid_run):
+    assert [(r.end, type(r.end)) for r in pid_run[1].robot_tasks] == \
+        [(TaskOutcome.GOOD_END, TaskOutcome)]
 
 
 def test_type1_exception_retunes_the_running_module(plan_file):
     plan = plan_file(PID)
     result, log = _run(plan, injections=[Injection("TrackPID.Saturated", 500_000_000)])
     assert result.status == "done"
-    assert [(e.name, e.type) for e in result.exceptions] == [("Saturated", 1)]
+    assert [(e.name, e.type.number) for e in result.exceptions] == [("Saturated", 1)]
     assert _events(log, "on_param") == [("on_param", 500_000_000, "TrackPID.ctrl", "kp", "200.0")]
     assert plan.tcs.module("TrackPID.ctrl").compute.params["kp"] == 200.0
 
@@ -81,7 +105,7 @@ def test_type1_exception_retunes_the_running_module(plan_file):
 def test_fatal_exception_aborts_the_mission(plan_file):
     result, _ = _run(plan_file(PID), injections=[Injection("TrackPID.JointLimit", 200_000_000)])
     assert (result.status, result.reason) == ("aborted", "JointLimit")
-    assert [(e.name, e.type) for e in result.exceptions] == [("JointLimit", 3)]
+    assert [(e.name, e.type.number) for e in result.exceptions] == [("JointLimit", 3)]
 
 
 def test_a_mission_still_running_at_until_times_out(plan_file):

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from orccad_app.lang.ast_robottask import ExceptionType
 from orccad_app.mission.plan import plan_mission
 from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import compose_mission, load, select_mission
@@ -40,8 +41,8 @@ def test_the_lowering_gives_the_role_of_every_signal_it_adds(source):
     assert roles.get("Timeout.raised") == SignalRole(RoleKind.RAISED, None, "Timeout")
     assert roles.get("Track.start") == SignalRole(RoleKind.START, "Track")
     assert roles.get("Track.Lost") == SignalRole(RoleKind.EVENT, "Track", "Lost")
-    assert roles.raisers["Lost"] == [RaisedBy("Track", 2)]
-    assert roles.raisers["at_rest_timeout"] == [RaisedBy("Track", 2)]
+    assert roles.raisers["Lost"] == [RaisedBy("Track", ExceptionType.ABORT)]
+    assert roles.raisers["at_rest_timeout"] == [RaisedBy("Track", ExceptionType.ABORT)]
     assert "Timeout" not in roles.raisers  # the mission's own (run … within)
     # every generated output has a role; only the mission's own are left without one
     generated = {s.name for s in composition.automaton.outputs if roles.get(s.name) is None}
