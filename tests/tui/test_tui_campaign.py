@@ -103,6 +103,8 @@ async def test_a_campaign_shows_its_answer_as_runs_finish_replays_a_run_and_stop
         assert replayed is not None
         records = {r.index: r for r in CampaignStore(db).records()}
         assert replayed == records[replayed.index].setting
+        # ... and the run was one of the listed candidates, before the key or after it
+        assert replayed.index in {first.run} | {c.run for c in screen.candidates}
         assert run.session.seed == replayed.seed
         assert run.session.run.until_ns == round(replayed.until_s * 1e9)
         periods = {m.name: m.period_ns for m in run.session.run.plan.tcs.module_tasks}
