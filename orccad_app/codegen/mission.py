@@ -10,17 +10,19 @@ output (and the input it comes from).
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from orccad_app.codegen.generate import CProgram, generate
 from orccad_app.codegen.static_types import CType, CodegenError, Kind
 from orccad_app.diagnostics import OrccadError
+from orccad_app.lang import ast
 from orccad_app.lang.run_args import param_type
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.robottask.composition import Composition
-from orccad_app.robottask.signals import RoleKind
+from orccad_app.robottask.signals import RoleKind, SignalRoles
 
-__all__ = ["generate_mission", "default_prefix", "check_prefix"]
+__all__ = ["generate_mission", "generate_composed", "default_prefix", "check_prefix"]
 
 _C_KEYWORDS = frozenset(
     "auto break case char const continue default do double else enum extern float for goto "
@@ -48,19 +50,29 @@ def check_prefix(prefix: str) -> str:
 
 def generate_mission(composition: Composition, prefix: str, origin: str = "") -> CProgram:
     """The C of ``composition``'s automaton (full, not lazy)."""
-    automaton = composition.automaton
+    return generate_composed(composition.automaton, composition.roles,
+                             tuple(site.task for site in composition.sites),
+                             composition.program.robottasks, prefix, origin)
+
+
+def generate_composed(automaton: Automaton | object, roles: SignalRoles, sites: tuple[str, ...],
+                      robottasks: Iterable[ast.RobotTask], prefix: str,
+                      origin: str = "") -> CProgram:
+    """The C of a composed mission automaton from its parts: ``roles`` of its signals, the
+    Robot-Task of each run site (site order) and the program's Robot-Tasks (their parameters
+    type the run-time argument outputs)."""
     if not isinstance(automaton, Automaton):
         raise CodegenError("the generator needs the full automaton (compiled, not lazy)")
-    return generate(automaton, prefix, roles=composition.roles,
-                    sites=tuple(site.task for site in composition.sites),
-                    hints=_argument_types(composition), origin=origin)
+    return generate(automaton, prefix, roles=roles, sites=sites,
+                    hints=_argument_types(automaton, roles, robottasks), origin=origin)
 
 
-def _argument_types(composition: Composition) -> dict[ir.SignalDecl, CType]:
-    tasks = {task.name: task for task in composition.program.robottasks}
+def _argument_types(automaton: Automaton, roles: SignalRoles,
+                    robottasks: Iterable[ast.RobotTask]) -> dict[ir.SignalDecl, CType]:
+    tasks = {task.name: task for task in robottasks}
     hints: dict[ir.SignalDecl, CType] = {}
-    for decl in composition.automaton.outputs:
-        role = composition.roles.get(decl.name)
+    for decl in automaton.outputs:
+        role = roles.get(decl.name)
         if role is None or role.kind is not RoleKind.ARGUMENT or decl.type != "vector":
             continue
         task = tasks.get(role.task or "")

@@ -59,9 +59,11 @@ def run(args: argparse.Namespace) -> int:
         files[f"{prefix}_main.c"] = main_source(program)
     if args.module_tasks:
         from orccad_app.mission.plan import plan_mission
+        from orccad_app.sil.automaton import binding_header
         from orccad_app.sil.emit import module_task_files
 
         files.update(module_task_files(plan_mission(source, mission), args.file))
+        files["orccad_automaton_binding.h"] = binding_header(program)
     for path in write_files(args.output or prefix, files):
         print(path)
     return 0

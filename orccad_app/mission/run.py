@@ -51,7 +51,7 @@ mission's callbacks (:class:`~orccad_app.mission.observer.MissionObserver`) get 
 from __future__ import annotations
 
 import time
-from typing import Any, Iterable
+from typing import Any, Iterable, Protocol
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
@@ -74,7 +74,7 @@ from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
+__all__ = ["MissionRun", "MissionReactor", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
            "TERMINATED"]
 
 _CONTROL = EventClass.CONTROL
@@ -97,6 +97,30 @@ class ReactionError(OrccadError):
 
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError, UpdateError)
 _LOCATED_FAILURES = (ArgumentError, ReactionError)
+
+
+class MissionReactor(Protocol):
+    """What a run steps: :class:`~orccad_app.reactive.runtime.Reactor` (the Python runtime),
+    or another runtime of the plan's automaton with its interface (the controller's C
+    automaton in ``orccad sil``)."""
+
+    state: int
+    status: str
+    reason: str | None
+
+    def step(self, inputs: Any = frozenset(), clock_ns: int | None = None) -> Any:
+        """One instant: the step (``outputs``, ``valued``, ``status``, ``target``)."""
+
+    def values(self, step: Any) -> dict[str, Any]:
+        """The values of ``step``'s valued outputs."""
+
+    @property
+    def finished(self) -> bool:
+        """The program has terminated."""
+
+    @property
+    def labels(self) -> frozenset:
+        """The labels of the current state."""
 
 
 class _Link(Observer):
@@ -128,13 +152,16 @@ class MissionRun:
     :param observers: executive observers (traces), optionally with the mission hooks.
     :param realtime: ``None`` (as fast as possible) or the pacing factor (sim s / wall s).
     :param tick_ns: the automaton's periodic reaction [ns] (default ``plan.tick_ns``).
+    :param reactor: what runs the plan's automaton (default a
+        :class:`~orccad_app.reactive.runtime.Reactor` of it; ``orccad sil`` passes the
+        controller process's C automaton).
     """
 
     def __init__(self, plan: MissionPlan, *, seed: int = 0,
                  until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
                  processors: Iterable[Processor] = (), bus: Bus | None = None,
                  observers: Iterable[Any] = (), realtime: float | None = None,
-                 tick_ns: int | None = None) -> None:
+                 tick_ns: int | None = None, reactor: MissionReactor | None = None) -> None:
         if not isinstance(until_ns, int) or until_ns <= 0:
             raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
         self.plan = plan
@@ -143,7 +170,7 @@ class MissionRun:
         _check_run_budget(plan, until_ns)
         self.realtime = realtime
         self.tick_ns = tick_ns or plan.tick_ns
-        self.reactor = Reactor(plan.automaton)
+        self.reactor: MissionReactor = reactor if reactor is not None else Reactor(plan.automaton)
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}

@@ -36,7 +36,7 @@ def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
     """The runtime library's C files for the controller whose ``main`` is in ``main``."""
     ports = [C_DIR / "orccad_port.c"] if main == "orccad_rt.c" else []
     return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", *ports, C_DIR / "orccad_wire.c",
-            C_DIR / main]
+            C_DIR / "orccad_automaton.c", C_DIR / main]
 
 
 def compiler() -> str:
@@ -64,14 +64,18 @@ def _cache_dir() -> Path:
 
 def build_executable(sources: list[Path], name: str = "orccad_controller",
                      libraries: tuple[str, ...] = ("-lm",)) -> Path:
-    """Compile ``sources`` (with ``orccad_mt.h`` on the include path) into one executable,
-    cached by content; return its path."""
+    """Compile ``sources`` (with the runtime library's folder and every source's folder on the
+    include path: the generated headers sit beside the generated sources) into one
+    executable, cached by content (the sources and every header of those folders); return its
+    path."""
     cc = compiler()
     flags = (*CFLAGS, *extra_flags())
+    folders = list(dict.fromkeys([C_DIR, *(path.parent for path in sources)]))
     digest = hashlib.sha256()
     for part in (cc, *flags, *libraries):
         digest.update(part.encode() + b"\0")
-    for path in [*sources, *sorted(C_DIR.glob("*.h"))]:
+    headers = [header for folder in folders for header in sorted(folder.glob("*.h"))]
+    for path in [*sources, *headers]:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     target_dir = _cache_dir() / "sil" / digest.hexdigest()[:24]
     target = target_dir / name
@@ -80,8 +84,8 @@ def build_executable(sources: list[Path], name: str = "orccad_controller",
     target_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target_dir) as work:
         partial = Path(work) / name
-        command = [cc, *flags, "-I", str(C_DIR), *map(str, sources), "-o", str(partial),
-                   *libraries]
+        includes = [part for folder in folders for part in ("-I", str(folder))]
+        command = [cc, *flags, *includes, *map(str, sources), "-o", str(partial), *libraries]
         try:
             done = subprocess.run(command, capture_output=True, text=True,
                                   timeout=_BUILD_TIMEOUT_S)

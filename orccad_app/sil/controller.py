@@ -49,6 +49,7 @@ class Op(IntEnum):
     KILL = 9
     RESET = 10
     EPOCH = 11
+    REACT = 12
 
 
 class ControllerFailure(ComputeError):
@@ -102,11 +103,19 @@ class ControllerProcess:
     def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: list[float] = (),
                 offset: int = 0) -> tuple[float, ...]:
         """Send one request and wait for its reply (the heartbeat); the reply's doubles."""
+        payload = struct.pack(f"={len(values)}d", *values) if values else b""
+        body = self._exchange(op, module, t_s, offset, payload)
+        return struct.unpack(f"={len(body) // 8}d", body) if body else ()
+
+    def request_words(self, op: Op, payload: bytes, module: int = 0) -> bytes:
+        """Send one request whose data are ``payload`` (8-byte words, already packed) and
+        wait for its reply; the reply's words, unpacked by the caller."""
+        return self._exchange(op, module, 0.0, 0, payload)
+
+    def _exchange(self, op: Op, module: int, t_s: float, offset: int, payload: bytes) -> bytes:
         if self.failure is not None:
             raise ControllerFailure(self.failure)
-        frame = _REQUEST.pack(op, module, t_s, len(values), offset)
-        if values:
-            frame += struct.pack(f"={len(values)}d", *values)
+        frame = _REQUEST.pack(op, module, t_s, len(payload) // 8, offset) + payload
         try:
             self._socket.sendall(frame)
             head = self._receive(_REPLY.size, op)
@@ -117,7 +126,7 @@ class ControllerProcess:
         if status != 0:
             self._fail(f"the controller refused request {op.name} for Module-Task {module} "
                        f"(status {status})")
-        return struct.unpack(f"={count}d", body) if count else ()
+        return body
 
     def _receive(self, size: int, op: Op) -> bytes:
         chunks, left = [], size

@@ -76,6 +76,8 @@ class ModuleTable:
     processors: tuple[str, ...]
     connections: tuple[CConnection, ...] = ()
     robot_ports: tuple[RobotPortRef, ...] = ()
+    automaton_digest: str = ""
+    """A hash of the mission automaton's C linked beside the table (empty: none yet)."""
 
     def index(self, name: str) -> int:
         """The table index of the Module-Task ``name``."""
@@ -88,7 +90,7 @@ class ModuleTable:
     def digest(self) -> str:
         """A hash of the table's C text: the controller answers it, the plant server checks
         it (a controller built from another table is refused)."""
-        text = _entries_text(self) + _wiring_text(self)
+        text = _entries_text(self) + _wiring_text(self) + self.automaton_digest
         return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
@@ -286,7 +288,8 @@ def table_source(table: ModuleTable, source: str) -> str:
 
 RUNTIME_FILES = ("orccad_mt.h", "orccad_mt.c", "orccad_dynamics.h", "orccad_dynamics.c",
                  "orccad_port.h", "orccad_port.c", "orccad_wire.h", "orccad_wire.c",
-                 "orccad_rt.c", "orccad_io.h", "orccad_io_shm.c")
+                 "orccad_automaton.h", "orccad_automaton.c", "orccad_rt.c", "orccad_io.h",
+                 "orccad_io_shm.c")
 """The runtime library's files that ``orccad codegen --module-tasks`` writes beside the
 table (all generated: the user's ``orccad_io.c`` lives outside the folder)."""
 

@@ -17,13 +17,16 @@ instances.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from orccad_app.codegen.generate import CProgram
 from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.sil.automaton import mission_automaton, write_automaton
 from orccad_app.sil.build import build_executable
 from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess
 from orccad_app.sil.emit import ModuleTable, module_table, write_generated
@@ -61,11 +64,19 @@ class _NotInController:
                                 f"process")
 
 
-def controller_for(plan: MissionPlan, source: str, build_dir: Path) -> tuple[ModuleTable, Path]:
-    """The generated table of ``plan`` and its compiled controller (cached by content)."""
-    table = module_table(plan)
-    sources = write_generated(table, build_dir, source)
-    return table, build_executable(sources)
+def controller_for(plan: MissionPlan, source: str, build_dir: Path, automaton: CProgram,
+                   main: str = "orccad_lockstep.c", extra: tuple[Path, ...] = (),
+                   libraries: tuple[str, ...] = ("-lm",)) -> tuple[ModuleTable, Path]:
+    """The generated table of ``plan`` and its compiled controller (cached by content), with
+    the mission's ``automaton`` (:func:`~orccad_app.sil.automaton.mission_automaton`) linked
+    in; ``main``: the controller's main (lockstep or real time), ``extra`` sources."""
+    table = dataclasses.replace(module_table(plan),
+                                automaton_digest=hashlib.sha256(
+                                    automaton.source.encode()).hexdigest()[:32])
+    sources = write_generated(table, build_dir, source, main)
+    sources += write_automaton(automaton, build_dir)
+    name = "orccad_controller" if main == "orccad_lockstep.c" else "orccad_controller_rt"
+    return table, build_executable([*sources, *extra], name, libraries)
 
 
 def start_controller(table: ModuleTable, executable: Path,
@@ -89,12 +100,15 @@ def remote_sites(plan: MissionPlan, table: ModuleTable,
 
 @contextmanager
 def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
-             heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> Iterator[ControllerProcess]:
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+             automaton: CProgram | None = None) -> Iterator[ControllerProcess]:
     """While in the block, ``plan``'s Module-Tasks compute in a controller process built for
-    it (emitted into ``build_dir``, a temporary directory by default); the process is ended
-    and reaped when the block ends, however it ends."""
+    it (emitted into ``build_dir``, a temporary directory by default), where the mission's
+    ``automaton`` (default :func:`~orccad_app.sil.automaton.mission_automaton` of the plan)
+    reacts too; the process is ended and reaped when the block ends, however it ends."""
+    automaton = automaton or mission_automaton(plan)
     with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = controller_for(plan, source, build_dir or Path(scratch))
+        table, executable = controller_for(plan, source, build_dir or Path(scratch), automaton)
         controller = start_controller(table, executable, heartbeat_s)
         try:
             remote_sites(plan, table, controller)

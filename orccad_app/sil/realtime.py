@@ -42,10 +42,12 @@ from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun
-from orccad_app.sil.build import C_DIR, build_executable
+from orccad_app.codegen.generate import CProgram
+from orccad_app.sil.automaton import mission_automaton
+from orccad_app.sil.build import C_DIR
 from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
-from orccad_app.sil.emit import ModuleTable, module_table, write_generated
-from orccad_app.sil.lockstep import RemoteSite
+from orccad_app.sil.emit import ModuleTable
+from orccad_app.sil.lockstep import RemoteSite, controller_for
 from orccad_app.sil.shared import SharedMemory
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
@@ -287,17 +289,18 @@ def module_timings(run: RealtimeRun) -> list[ModuleTiming]:
 
 @contextmanager
 def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
-             heartbeat_s: float = DEFAULT_HEARTBEAT_S
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S, automaton: CProgram | None = None
              ) -> Iterator[tuple[ModuleTable, ControllerProcess, SharedMemory]]:
     """While in the block, the real-time controller of ``plan`` runs (its threads idle until
-    activated); ended, reaped and its shared memory removed when the block ends."""
-    table = module_table(plan)
+    activated), the mission's ``automaton`` linked in; ended, reaped and its shared memory
+    removed when the block ends."""
+    automaton = automaton or mission_automaton(plan)
+    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+        table, executable = controller_for(plan, source, build_dir or Path(scratch), automaton,
+                                           "orccad_rt.c", (C_DIR / "orccad_io_shm.c",),
+                                           ("-lm", "-pthread"))
     shared = SharedMemory(len(table.robot_ports), len(table.entries))
     try:
-        with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-            sources = write_generated(table, build_dir or Path(scratch), source, "orccad_rt.c")
-            sources.append(C_DIR / "orccad_io_shm.c")
-            executable = build_executable(sources, "orccad_controller_rt", ("-lm", "-pthread"))
         controller = ControllerProcess(executable, len(table.entries), table.digest,
                                        heartbeat_s, ("--io", shared.path))
         shared.unlink()  # the controller answered HELLO: it has mapped the file

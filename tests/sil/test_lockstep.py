@@ -141,23 +141,45 @@ def _command(*args: str) -> subprocess.CompletedProcess:
                           text=True, timeout=120)
 
 
+def _messages(path) -> list[tuple[str, int, bytes]]:
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as stream:
+        return [(channel.topic, message.log_time, message.data)
+                for _, channel, message in make_reader(stream).iter_messages()]
+
+
 def test_the_command_writes_the_trace_and_json_of_orccad_run(tmp_path):
     """`orccad sil --lockstep` goes through the run façade: its MCAP trace (the richest
-    writer: events, state topics, verdicts) is `orccad run`'s byte for byte, its --json report
-    is `orccad run`'s plus the controller's section."""
-    suffix = "mcap"
+    writer: events, state topics, verdicts) is `orccad run`'s message for message, but for
+    the automaton's state numbers — the compiled automaton's, which the controller runs,
+    where `orccad run` numbers its lazily built states as the run reaches them: the two
+    numberings are one bijection over the run, and the states' source locations are equal.
+    Its --json report is `orccad run`'s plus the controller's section."""
     import json
 
-    mission = str(MISSIONS / "arm_pid.orc")
-    common = ["--until", "0.3", "--inject", "TrackPID.TrackingLost@0.2", "--json"]
-    sil = _command("sil", mission, "--lockstep", *common, "--trace", str(tmp_path / f"sil.{suffix}"))
-    run = _command("run", mission, *common, "--trace", str(tmp_path / f"run.{suffix}"))
-    assert sil.returncode == run.returncode == 1, sil.stderr
+    mission = str(MISSIONS / "arm_recovery.orc")
+    common = ["--until", "3", "--inject", "TrackPID.TrackingLost@2.5", "--json"]
+    sil = _command("sil", mission, "--lockstep", *common, "--trace", str(tmp_path / "sil.mcap"))
+    run = _command("run", mission, *common, "--trace", str(tmp_path / "run.mcap"))
+    assert sil.returncode == run.returncode == 1, sil.stderr  # a timeout at 3 s
     got, expected = json.loads(sil.stdout), json.loads(run.stdout)
     assert got.pop("controller")["mode"] == "lockstep"
     got.pop("wall_time_s"), expected.pop("wall_time_s")
-    assert got == expected and got["status"] == "failed"
-    assert (tmp_path / f"sil.{suffix}").read_bytes() == (tmp_path / f"run.{suffix}").read_bytes()
+    assert got == expected and got["robot_tasks"][1]["outcome"] == "TrackingLost"
+    numbering: dict[int, int] = {}
+    sil_messages, run_messages = _messages(tmp_path / "sil.mcap"), _messages(tmp_path / "run.mcap")
+    assert len(sil_messages) == len(run_messages)
+    for (topic, time, data), (run_topic, run_time, run_data) in zip(sil_messages, run_messages):
+        assert (topic, time) == (run_topic, run_time)
+        if topic != "/mission/state":
+            assert data == run_data, (topic, time)
+            continue
+        state, run_state = json.loads(data), json.loads(run_data)
+        number, run_number = state.pop("state"), run_state.pop("state")
+        assert numbering.setdefault(run_number, number) == number, time
+        assert state == run_state, time
+    assert len(set(numbering.values())) == len(numbering) >= 4  # a bijection
 
 
 @pytest.mark.parametrize("flag,words", [(["--scheduler", "edf"], "fixed priorities"),

@@ -3,7 +3,9 @@
  * The Module-Tasks of the generated table run here, in their own process; the plant server
  * (orccad_app/sil/lockstep.py) keeps the timing model — releases, declared execution times,
  * the port protocols, the automaton — and the MuJoCo plant, and sends one request per job
- * over a Unix socket (a socketpair inherited as file descriptor argv[2]). Each request is
+ * over a Unix socket (a socketpair inherited as file descriptor argv[2]), and one request per
+ * reaction of the mission's automaton, which runs here too (orccad_automaton.h: the C of
+ * `orccad codegen`, its memory reset at HELLO). Each request is
  * answered before the plant goes on: the two wait for each other, so a run does not depend on
  * the machine's speed.
  *
@@ -18,12 +20,17 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "orccad_automaton.h"
 #include "orccad_mt.h"
 #include "orccad_wire.h"
 
-#define MAX_DOUBLES (ORC_MAX_PORTS * (ORC_MAX_DIM + 1) + ORC_MAX_PARAMS)
+#define MODULE_DOUBLES (ORC_MAX_PORTS * (ORC_MAX_DIM + 1) + ORC_MAX_PARAMS)
+#define MAX_DOUBLES (MODULE_DOUBLES > ORC_AUTOMATON_IN_WORDS ? MODULE_DOUBLES \
+                                                              : ORC_AUTOMATON_IN_WORDS)
+#define MAX_REPLY (MODULE_DOUBLES > ORC_AUTOMATON_OUT_WORDS ? MODULE_DOUBLES \
+                                                             : ORC_AUTOMATON_OUT_WORDS)
 
-static double data_in[MAX_DOUBLES], data_out[MAX_DOUBLES];
+static double data_in[MAX_DOUBLES], data_out[MAX_REPLY];
 
 static int reply(int fd, uint32_t status, uint32_t n)
 {
@@ -69,7 +76,7 @@ int main(int argc, char **argv)
         if (req.n > MAX_DOUBLES || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {
             return 3;
         }
-        if (req.op != OP_HELLO && req.op != OP_PING && req.op != OP_QUIT) {
+        if (req.op != OP_HELLO && req.op != OP_PING && req.op != OP_QUIT && req.op != OP_REACT) {
             if (req.module >= (uint32_t)ORC_N_MODULES) {
                 reply(fd, 1, 0);
                 continue;
@@ -78,6 +85,7 @@ int main(int argc, char **argv)
         }
         switch (req.op) {
         case OP_HELLO:
+            orc_automaton_reset();
             orc_wire_hello(data_out);
             if (reply(fd, 0, ORC_HELLO_DOUBLES) != 0) {
                 return 3;
@@ -99,6 +107,13 @@ int main(int argc, char **argv)
             n = compute(m, req.t_s);
             if (n == (uint32_t)-1) {
                 reply(fd, 3, 0);
+            } else if (reply(fd, 0, n) != 0) {
+                return 3;
+            }
+            break;
+        case OP_REACT:
+            if (orc_automaton_react(data_in, req.n, data_out, &n) != 0) {
+                reply(fd, 5, 0);
             } else if (reply(fd, 0, n) != 0) {
                 return 3;
             }

@@ -43,6 +43,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "orccad_automaton.h"
 #include "orccad_io.h"
 #include "orccad_mt.h"
 #include "orccad_port.h"
@@ -51,7 +52,11 @@
 #define MAX_MODULES 64
 #define MAX_CONNECTIONS 256
 #define MAX_PROCESSORS 16
-#define MAX_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
+#define MODULE_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
+#define MAX_DOUBLES (MODULE_DOUBLES > ORC_AUTOMATON_IN_WORDS ? MODULE_DOUBLES \
+                                                              : ORC_AUTOMATON_IN_WORDS)
+#define MAX_ANSWER (3 * MAX_MODULES + ORC_HELLO_DOUBLES > ORC_AUTOMATON_OUT_WORDS \
+                        ? 3 * MAX_MODULES + ORC_HELLO_DOUBLES : ORC_AUTOMATON_OUT_WORDS)
 
 /* The state of one Module-Task in the runtime, and of its current job. */
 typedef struct {
@@ -479,6 +484,7 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
     uint32_t i;
     *n = 0;
     if (req->op == OP_HELLO) {
+        orc_automaton_reset();
         orc_wire_hello(answer);
         *n = ORC_HELLO_DOUBLES;
         return 0;
@@ -486,6 +492,9 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
     if (req->op == OP_PING) { /* the heartbeat, with the jobs deadlocked if any */
         *n = find_deadlock(answer);
         return 0;
+    }
+    if (req->op == OP_REACT) { /* one reaction of the mission's automaton */
+        return orc_automaton_react(data_in, req->n, answer, n) != 0 ? 5 : 0;
     }
     if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's) */
         epoch_ns = orc_io_epoch_ns(epoch_ns);
@@ -540,7 +549,7 @@ int main(int argc, char **argv)
     pthread_condattr_t condattr;
     int fd, p, warned = 0, status = 0;
     orc_request req;
-    double answer[3 * MAX_MODULES + ORC_HELLO_DOUBLES];
+    static double answer[MAX_ANSWER];
     if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
         fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
                 argv[0]);

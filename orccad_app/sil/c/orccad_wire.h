@@ -21,7 +21,8 @@ enum orc_op {
     OP_ACTIVATE = 8, /* real time: first release at t_s (the Module-Tasks in the data) */
     OP_KILL = 9,     /* real time: deactivated, the unfinished job aborted */
     OP_RESET = 10,   /* real time: the Module-Task's ports back to "before any write" */
-    OP_EPOCH = 11    /* real time: t = 0 is now (the I/O side's epoch) */
+    OP_EPOCH = 11,   /* real time: t = 0 is now (the I/O side's epoch) */
+    OP_REACT = 12    /* one reaction of the mission's automaton (orccad_automaton.h) */
 };
 
 typedef struct {
