@@ -1,7 +1,7 @@
 """Writing the generated files: all or nothing, never over files that are not ours.
 
-The output folder may not exist (it is made), or be empty, or hold only files with the names
-being written (a previous run's: they are replaced). Anything else in it is refused before
+The output folder may not exist (it is made), or be empty, or hold only regular files with the
+names being written (a previous run's: they are replaced). Anything else in it is refused before
 anything is written. The files are first written under temporary names in the folder's
 parent (a new folder) or in the folder (an existing one) and moved into place only once all
 are complete: an interruption leaves the old files or the new ones, never a mixture of
@@ -26,7 +26,8 @@ def write_files(folder: str | Path, files: dict[str, str]) -> list[Path]:
     if target.exists() and not target.is_dir():
         raise OrccadError(f"{target}: exists and is not a folder (-o names the output folder)")
     if target.is_dir():
-        others = sorted(p.name for p in target.iterdir() if p.name not in files)
+        others = sorted(p.name for p in target.iterdir()
+                        if p.name not in files or p.is_symlink() or not p.is_file())
         if others:
             shown = ", ".join(others[:5]) + (" …" if len(others) > 5 else "")
             raise OrccadError(f"{target}: the output folder holds other files ({shown}); "

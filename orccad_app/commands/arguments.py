@@ -134,8 +134,10 @@ def add_format(parser: argparse.ArgumentParser, formats: dict[str, str], default
                         help=f"output format ({listing})")
 
 
-def refuse_overwriting(output: str | None, *inputs: str | None) -> None:
-    """Refuse ``-o OUT`` when OUT is one of the command's input files."""
+def refuse_overwriting(output: str | None, *inputs: str | None,
+                       flag: str = "-o/--output") -> None:
+    """Refuse ``-o OUT`` (or the output ``flag`` names) when OUT is one of the command's
+    input files."""
     if not output:
         return
     from orccad_app.diagnostics import OrccadError
@@ -144,7 +146,7 @@ def refuse_overwriting(output: str | None, *inputs: str | None) -> None:
     for source in inputs:
         if source and _same_file(target, Path(source)):
             raise OrccadError(f"{output}: refusing to overwrite the input file {source} "
-                              "(choose another -o/--output)")
+                              f"(choose another {flag})")
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -47,6 +47,10 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.codegen.output import write_files
     from orccad_app.pipeline import compose_mission, load, select_mission
 
+    if args.output is not None and not args.output.strip():
+        from orccad_app.diagnostics import OrccadError
+        raise OrccadError("-o/--output: an empty name (name a folder, or leave the flag out: "
+                          "PREFIX)")
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
@@ -64,6 +68,6 @@ def run(args: argparse.Namespace) -> int:
 
         files.update(module_task_files(plan_mission(source, mission), args.file))
         files["orccad_automaton_binding.h"] = binding_header(program)
-    for path in write_files(args.output or prefix, files):
+    for path in write_files(prefix if args.output is None else args.output, files):
         print(path)
     return 0

@@ -27,7 +27,7 @@ import argparse
 
 from orccad_app.commands.arguments import add_mission, factor, refuse_overwriting
 from orccad_app.commands.run_flags import (add_run_flags, check_run_flags, observe, render,
-                                           run_options)
+                                           refuse_trace_over_inputs, run_options)
 
 __all__ = ["register", "run"]
 
@@ -65,8 +65,9 @@ def run(args: argparse.Namespace) -> int:
     _file_after_injections(args)
     check_run_flags(args)
     options = run_options(args, args.realtime)
-    refuse_overwriting(args.trace, args.file)
+    refuse_overwriting(args.trace, args.file, flag="--trace")
     source = load(args.file)
+    refuse_trace_over_inputs(args, source)
     source.print_warnings()
     session = RunSession(source, select_mission(source, args.mission), options)
     starting = observe(args, session)

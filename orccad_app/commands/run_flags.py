@@ -19,7 +19,8 @@ from typing import Any
 from orccad_app.commands.arguments import (bounded_int, checked_injection, non_negative_int,
                                            seconds)
 
-__all__ = ["add_run_flags", "check_run_flags", "run_options", "observe", "render"]
+__all__ = ["add_run_flags", "check_run_flags", "run_options", "refuse_trace_over_inputs",
+           "observe", "render"]
 
 
 def _wall_seconds(text: str) -> float:
@@ -97,6 +98,9 @@ def check_run_flags(args: argparse.Namespace) -> None:
     ``--foxglove-port`` and ``--foxglove-wait`` need ``--foxglove``."""
     from orccad_app.diagnostics import OrccadError
 
+    for flag, value in (("--trace", args.trace), ("--inject-from", args.inject_from)):
+        if value is not None and not value.strip():
+            raise OrccadError(f"{flag}: an empty name (name a file, or leave the flag out)")
     if args.trace_format is not None and not args.trace:
         raise OrccadError("--trace-format needs --trace")
     if args.trace_format == "rosbag2":
@@ -113,6 +117,15 @@ def check_run_flags(args: argparse.Namespace) -> None:
         from orccad_app.trace.foxglove_live import require_foxglove
 
         require_foxglove()
+
+
+def refuse_trace_over_inputs(args: argparse.Namespace, source: Any) -> None:
+    """Refuse a ``--trace`` that names one of the run's inputs: the .orc file, a file it
+    imports, the ``--inject-from`` script (``source``: the loaded file)."""
+    from orccad_app.commands.arguments import refuse_overwriting
+
+    refuse_overwriting(args.trace, args.file, args.inject_from,
+                       *(imported.path for imported in source.imported), flag="--trace")
 
 
 def _warn_first_instant(injections) -> None:
