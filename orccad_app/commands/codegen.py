@@ -64,10 +64,11 @@ def run(args: argparse.Namespace) -> int:
     if args.module_tasks:
         from orccad_app.mission.plan import plan_mission
         from orccad_app.sil.automaton import binding_header
-        from orccad_app.sil.emit import module_task_files
+        from orccad_app.sil.emit import module_table, module_task_files
 
-        files.update(module_task_files(plan_mission(source, mission), args.file))
-        files["orccad_automaton_binding.h"] = binding_header(program)
+        plan = plan_mission(source, mission)
+        files.update(module_task_files(plan, args.file))
+        files["orccad_automaton_binding.h"] = binding_header(program, plan, module_table(plan))
     for path in write_files(prefix if args.output is None else args.output, files):
         print(path)
     return 0

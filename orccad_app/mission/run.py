@@ -376,8 +376,15 @@ class MissionRun:
             step = reactor.step(inputs, now)  # the lean path: the leaf's precomputed result
         except OrccadError as error:
             raise ReactionError(error.message, error.location, error.notes) from None
+        self._apply(now, tuple(pending), step)
+
+    def _apply(self, now: int, inputs: tuple[str, ...], step: Any) -> None:
+        """What the reaction at ``now`` to ``inputs`` decided (``step``, the reactor having
+        made it): the hooks, the outputs, the exceptions, the Robot-Tasks started, killed and
+        retuned; the run stops when the mission has ended."""
+        reactor = self.reactor
         for hook in self._on_reaction:
-            hook(now, tuple(pending), step.outputs, reactor.status)
+            hook(now, inputs, step.outputs, reactor.status)
         if not step.outputs and reactor.state == self._state and not reactor.finished:
             return  # a tick that changed nothing (the common case)
         emitted = set(step.outputs)

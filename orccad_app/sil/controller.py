@@ -50,6 +50,7 @@ class Op(IntEnum):
     RESET = 10
     EPOCH = 11
     REACT = 12
+    INPUT = 13
 
 
 class ControllerFailure(ComputeError):

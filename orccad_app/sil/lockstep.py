@@ -74,7 +74,7 @@ def controller_for(plan: MissionPlan, source: str, build_dir: Path, automaton: C
                                 automaton_digest=hashlib.sha256(
                                     automaton.source.encode()).hexdigest()[:32])
     sources = write_generated(table, build_dir, source, main)
-    sources += write_automaton(automaton, build_dir)
+    sources += write_automaton(automaton, plan, table, build_dir)
     name = "orccad_controller" if main == "orccad_lockstep.c" else "orccad_controller_rt"
     return table, build_executable([*sources, *extra], name, libraries)
 

@@ -3,15 +3,17 @@
 ``orccad sil FILE --realtime``: the controller process (``orccad_app/sil/c/orccad_rt.c``) runs
 one thread per processor, releasing the active Module-Tasks with
 ``clock_nanosleep(TIMER_ABSTIME)`` at their periods on the wall clock, under ``SCHED_FIFO``
-where permitted. This process is the **plant server and the mission's supervisor**: the
-executive's kernel paced to the wall clock (``MissionRun`` with ``realtime=1``) runs the
-mission's automaton and the MuJoCo plant, but no Module-Task job: every
-``exchange_ns`` it brings the plant to now, writes the robot's sensors into the shared memory
-(:mod:`orccad_app.sil.shared`), applies the torques the controller wrote, and turns the
-observers' events the controller counted into the automaton's inputs; what the automaton
-decides (start, kill, type-1 updates, fresh ports) goes to the controller over the socket;
-the outputs of the controller's last jobs go to the executive's write listeners (the trace,
-the task errors of the report).
+where permitted. The mission's automaton is a task of the controller too (``orccad_rt_automaton.c``): it
+reacts at its ticks and at its observers' events, and records each reaction in the shared
+memory. This process is the **plant server and the mission's supervisor**: the executive's
+kernel paced to the wall clock (``MissionRun`` with ``realtime=1``) runs the MuJoCo plant but
+no Module-Task job and no reaction: every ``exchange_ns`` it brings the plant to now, writes
+the robot's sensors into the shared memory (:mod:`orccad_app.sil.shared`), applies the torques
+the controller wrote, and applies, in order, the reactions the automaton task recorded
+(``MissionRun._apply``: start, kill, type-1 updates, fresh ports go to the controller over
+the socket); an input (``--inject``) goes to the automaton task as ``OP_INPUT`` with its
+instant. The outputs of the controller's last jobs go to the executive's write listeners (the
+trace, the task errors of the report).
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 
@@ -38,17 +40,19 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.codegen.generate import CProgram
+from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.run import MissionRun
-from orccad_app.codegen.generate import CProgram
-from orccad_app.sil.automaton import mission_automaton
+from orccad_app.mission.run import MissionRun, ReactionError
+from orccad_app.sil.automaton import ControllerAutomaton, mission_automaton, reaction_words
 from orccad_app.sil.build import C_DIR
-from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S, ControllerProcess, Op
+from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
+                                      Op)
 from orccad_app.sil.emit import ModuleTable
 from orccad_app.sil.lockstep import RemoteSite, controller_for
-from orccad_app.sil.shared import SharedMemory
+from orccad_app.sil.shared import REACTION_RING, ReactionsLost, SharedMemory
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
@@ -141,18 +145,16 @@ class RealtimeRun(MissionRun):
     controller's threads (see the module docstring)."""
 
     def __init__(self, plan: MissionPlan, table: ModuleTable, controller: ControllerProcess,
-                 shared: SharedMemory, **options: Any) -> None:
-        super().__init__(plan, realtime=1.0, **options)
+                 shared: SharedMemory, *, reactor: ControllerAutomaton, **options: Any) -> None:
+        super().__init__(plan, realtime=1.0, reactor=reactor, **options)
+        self._automaton = reactor
         self._table, self._controller, self._shared = table, controller, shared
         self.sim = _ControllerSim(self.sim, controller, table)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
         self._ports = [(k, port, port.robot, port.port)
                        for k, port in enumerate(table.robot_ports)]
         self._seen_actuators = [0] * len(table.robot_ports)
-        self._events = [0] * len(table.entries)
         self._seqs = [0] * len(table.entries)
-        self._observers = [(m, entry.name) for m, entry in enumerate(table.entries)
-                           if entry.layout.outputs and entry.layout.outputs[0].type == "event"]
         hooks = self.sim.hooks
         self._writes = [(m, entry.name,
                          [(slot, port.name, port.type, port.dim,
@@ -190,11 +192,7 @@ class RealtimeRun(MissionRun):
                     plant.actuate(name, value)
             else:
                 shared.write_port(k, plant.sample(name))
-        for m, name in self._observers:
-            count = shared.events(m)
-            if count > self._events[m]:
-                self._events[m] = count
-                self.signal(f"{name}.{self._table.entries[m].layout.outputs[0].name}", True)
+        self._apply_reactions()
         for m, name, ports in self._writes:  # each job's outputs, to the write listeners
             if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
                 continue
@@ -213,6 +211,32 @@ class RealtimeRun(MissionRun):
             cycle = self._controller.request(Op.PING)
             if cycle:
                 raise self._deadlock(now, cycle)
+
+    def _tick(self, _: object) -> None:
+        """No tick here: the automaton task reacts at its own ticks in the controller."""
+
+    def _post(self, name: str, value: Any) -> None:
+        """An input (``--inject``, an input script, the operator): queued in the controller for
+        the automaton task's first reaction at or after now."""
+        self._controller.request_words(
+            Op.INPUT, self._automaton.input_words(name, value, self.kernel.now))
+
+    def _apply_reactions(self) -> None:
+        """The reactions the automaton task made since the last exchange, applied in order
+        (the Robot-Tasks started, killed and retuned over the socket; the report's records)."""
+        try:
+            reactions = self._shared.reactions()
+        except ReactionsLost as lost:
+            raise ControllerFailure(f"the plant server fell more than {REACTION_RING} "
+                                    f"reactions behind the automaton task ({lost} lost)") from None
+        for words in reactions:
+            try:
+                at_ns, inputs, step = self._automaton.replay(words)
+            except OrccadError as error:
+                raise ReactionError(error.message, error.location, error.notes) from None
+            self._apply(at_ns, inputs, step)
+            if self.reactor.finished:
+                break
 
     def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its
@@ -299,7 +323,8 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
         table, executable = controller_for(plan, source, build_dir or Path(scratch), automaton,
                                            "orccad_rt.c", (C_DIR / "orccad_io_shm.c",),
                                            ("-lm", "-pthread"))
-    shared = SharedMemory(len(table.robot_ports), len(table.entries))
+    shared = SharedMemory(len(table.robot_ports), len(table.entries),
+                          reaction_words(automaton))
     try:
         controller = ControllerProcess(executable, len(table.entries), table.digest,
                                        heartbeat_s, ("--io", shared.path))

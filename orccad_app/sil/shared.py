@@ -10,7 +10,9 @@ server and by the controller (``orccad_app/sil/c/orccad_rt.c`` holds the same la
   never written);
 - per Module-Task, its mirror ``[seq, released, overruns, misses, events, lateness count,
   response max [ns] (double), unused]`` then its output slots ``[present, v0 … v7]``;
-- per Module-Task, a ring of its last release latenesses [ns] (doubles).
+- per Module-Task, a ring of its last release latenesses [ns] (doubles);
+- a ring of the automaton task's last :data:`REACTION_RING` reactions, each the words of its
+  request then of its reply (``orccad_automaton.h``); header word 2 counts those published.
 """
 
 from __future__ import annotations
@@ -24,13 +26,18 @@ import numpy as np
 
 from orccad_app.sil.layout import MAX_DIM, MAX_PORTS
 
-__all__ = ["SharedMemory", "Mirror", "LATENESS_RING"]
+__all__ = ["SharedMemory", "Mirror", "LATENESS_RING", "REACTION_RING", "ReactionsLost"]
 
 HEADER_WORDS = 8
 ROBOT_WORDS = 1 + MAX_DIM
 MODULE_HEAD = 8
 MODULE_WORDS = MODULE_HEAD + MAX_PORTS * (1 + MAX_DIM)
 LATENESS_RING = 16384
+REACTION_RING = 4096
+
+
+class ReactionsLost(Exception):
+    """The automaton task published more reactions than the ring holds since the last read."""
 
 
 @dataclass(frozen=True)
@@ -49,13 +56,14 @@ class Mirror:
 
 
 class SharedMemory:
-    """The mapped file (see the module docstring) for ``robot_ports`` ports and ``modules``
-    Module-Tasks; removed by :meth:`close`."""
+    """The mapped file (see the module docstring) for ``robot_ports`` ports, ``modules``
+    Module-Tasks and reactions of ``reaction_words`` words; removed by :meth:`close`."""
 
-    def __init__(self, robot_ports: int, modules: int) -> None:
+    def __init__(self, robot_ports: int, modules: int, reaction_words: int = 0) -> None:
         self.robot_ports, self.modules = robot_ports, modules
+        self.reaction_words = reaction_words
         words = (HEADER_WORDS + robot_ports * ROBOT_WORDS + modules * MODULE_WORDS
-                 + modules * LATENESS_RING)
+                 + modules * LATENESS_RING + REACTION_RING * reaction_words)
         where = "/dev/shm" if os.path.isdir("/dev/shm") else None
         fd, self.path = tempfile.mkstemp(prefix="orccad-sil-", dir=where)
         try:
@@ -68,6 +76,8 @@ class SharedMemory:
         self._robot = HEADER_WORDS
         self._modules = self._robot + robot_ports * ROBOT_WORDS
         self._rings = self._modules + modules * MODULE_WORDS
+        self._reactions = self._rings + modules * LATENESS_RING
+        self._read_reactions = 0
 
     def set_epoch(self, monotonic_ns: int) -> None:
         """The instant of t = 0 [ns, CLOCK_MONOTONIC]."""
@@ -116,6 +126,23 @@ class SharedMemory:
         count = int(self.ints[self._modules + m * MODULE_WORDS + 5])
         at = self._rings + m * LATENESS_RING
         return self.floats[at:at + min(count, LATENESS_RING)].copy()
+
+    def reactions(self) -> list[bytes]:
+        """The reactions published since the last call, oldest first, each its words as
+        bytes; raises :class:`ReactionsLost` when the ring was overrun."""
+        count = int(self.ints[2])
+        first = self._read_reactions
+        if count - first > REACTION_RING:
+            raise ReactionsLost(count - first - REACTION_RING)
+        size = self.reaction_words
+        found = []
+        for number in range(first, count):
+            at = self._reactions + (number % REACTION_RING) * size
+            found.append(self.ints[at:at + size].tobytes())
+        if int(self.ints[2]) - first > REACTION_RING:  # overwritten while read
+            raise ReactionsLost(int(self.ints[2]) - first - REACTION_RING)
+        self._read_reactions = count
+        return found
 
     def unlink(self) -> None:
         """Remove the file once both sides have mapped it: nothing is left in ``/dev/shm``

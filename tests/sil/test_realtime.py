@@ -169,3 +169,42 @@ def test_without_sched_fifo_a_warning_says_why():
     assert "SCHED_FIFO is not permitted here (ORCCAD_NO_FIFO is set)" in done.stderr
     assert done.returncode == 1  # timeout at 0.3 s: the run itself went on
     assert "Measured on the controller's threads" in done.stdout
+
+
+def test_the_automaton_is_a_task_of_the_controller():
+    """In real time the mission's automaton reacts on its own thread in the controller: at
+    every tick of its clock and at the observers' events, never asked by the plant server
+    (no REACT request); the plant server applies each recorded reaction in order, and an
+    --inject reaches the task as an input at its instant (arm_pid: TrackingLost at 0.3 s ends
+    the run failed)."""
+    from orccad_app.sil.controller import Op
+
+    reactions: list[tuple[int, tuple[str, ...], tuple[str, ...]]] = []
+    ops: list[Op] = []
+
+    class Reactions:
+        def on_reaction(self, t_ns, inputs, outputs, status):
+            reactions.append((t_ns, tuple(inputs), tuple(outputs)))
+
+    inject = (parse_injection("TrackPID.TrackingLost@0.3"),)
+    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
+        session = session_of("arm_pid.orc", runs=runs, observers=(Reactions(),),
+                             injections=inject, until_s=1.0)
+        request_words = runs.controller.request_words
+
+        def spy(op, payload, module=0):
+            ops.append(op)
+            return request_words(op, payload, module)
+
+        runs.controller.request_words = spy
+        result = session.execute().result
+        assert runs.automaton is not None and runs.automaton.instant == len(reactions)
+    assert Op.REACT not in ops and ops.count(Op.INPUT) == 1
+    assert result.status == "failed" and result.robot_tasks[0].outcome == "TrackingLost"
+    assert reactions[0][0] == 0 and "TrackPID.start" in reactions[0][2]
+    times = [t for t, _, _ in reactions]
+    assert times == sorted(times)
+    ticks = {t for t in times if t % 1_000_000 == 0}
+    assert len(ticks) >= 290  # every 1 ms tick up to the exception at 0.3 s
+    lost = [t for t, inputs, _ in reactions if "TrackPID.TrackingLost" in inputs]
+    assert len(lost) == 1 and 300_000_000 <= lost[0] <= 302_000_000

@@ -26,5 +26,10 @@ long long orc_io_epoch_ns(long long fallback);
 void orc_io_publish(int m, const orc_mt *mt, long long released, long long overruns,
                     long long misses, long long events, double response_max_ns);
 void orc_io_lateness(int m, double lateness_ns);
+/* Publish one reaction of the mission's automaton: its request's `n_request` words and its
+ * reply's `n_reply` (orccad_automaton.h; SIL: to the plant server, which applies the
+ * Robot-Tasks' lifecycle it decides). Called from the automaton task. */
+void orc_io_reaction(const double *request, unsigned n_request, const double *reply,
+                     unsigned n_reply);
 
 #endif

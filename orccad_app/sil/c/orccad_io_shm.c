@@ -4,15 +4,19 @@
  * [seq, v0 .. v7] under a sequence lock (odd: being written; 0: never written); per
  * Module-Task a mirror [seq, released, overruns, misses, events, lateness count, response max
  * (double), unused] then its output slots [present, v0 .. v7]; per Module-Task a ring of
- * its last release latenesses [ns]. C99 + POSIX. */
+ * its last release latenesses [ns]; a ring of the automaton's last reactions (header word 2:
+ * how many were published), each the words of its request then of its reply
+ * (orccad_automaton.h). C99 + POSIX. */
 #define _POSIX_C_SOURCE 200809L
 #include <fcntl.h>
 #include <stdint.h>
+#include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "orccad_automaton.h"
 #include "orccad_io.h"
 
 #define HEADER_WORDS 8
@@ -20,6 +24,8 @@
 #define MODULE_HEAD 8
 #define MODULE_WORDS (MODULE_HEAD + ORC_MAX_PORTS * (1 + ORC_MAX_DIM))
 #define LATENESS_RING 16384
+#define REACTION_RING 4096
+#define REACTION_WORDS (ORC_AUTOMATON_IN_WORDS + ORC_AUTOMATON_OUT_WORDS)
 #define READ_SPIN_TRIES 64
 #define READ_PAUSE_NS 20000L
 #define READ_GIVE_UP_TRIES (READ_SPIN_TRIES + 5000)
@@ -144,3 +150,16 @@ void orc_io_lateness(int m, double lateness_ns)
     w[5] += 1;
 }
 
+
+void orc_io_reaction(const double *request, unsigned n_request, const double *reply,
+                     unsigned n_reply)
+{
+    volatile int64_t *count = &shm_words[2];
+    double *entry = (double *)&shm_words[HEADER_WORDS + ORC_N_ROBOT_PORTS * ROBOT_WORDS
+                                         + ORC_N_MODULES * (MODULE_WORDS + LATENESS_RING)
+                                         + (*count % REACTION_RING) * REACTION_WORDS];
+    memcpy(entry, request, n_request * sizeof(double));
+    memcpy(entry + ORC_AUTOMATON_IN_WORDS, reply, n_reply * sizeof(double));
+    __sync_synchronize();
+    *count += 1;
+}

@@ -20,13 +20,16 @@
  * hardware's on a robot. Each job's measured timing (release lateness, overruns, deadline
  * misses, response time) and outputs are published through them too.
  *
- * The plant server drives the Robot-Tasks' lifecycle over the socket (file descriptor
- * argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1 update), INIT,
- * ACTIVATE (first release at a given instant), KILL, RESET (its ports' values dropped), PING
- * (the heartbeat) and QUIT, with the frames of orccad_lockstep.c. Commands and jobs take one
- * runtime lock: a command is applied between two jobs. The commands' thread runs under
- * SCHED_FIFO too (priority 70) when the processor threads do: a supervisor waiting for an
- * answer holds the plant.
+ * The mission's automaton is a task of its own (orccad_rt_automaton.c: it reacts at its
+ * ticks and at the observers' events, and publishes each reaction through orc_io_reaction).
+ * The plant server applies the Robot-Tasks' lifecycle the automaton decides over the socket
+ * (file descriptor argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1
+ * update), INIT, ACTIVATE (first release at a given instant), KILL, RESET (its ports' values
+ * dropped), INPUT (an input for the automaton at an instant), EPOCH (t = 0: the automaton
+ * starts), PING (the heartbeat) and QUIT, with the frames of orccad_lockstep.c. Commands, the
+ * automaton's reactions and jobs take one runtime lock: a command is applied between two
+ * jobs. The commands' thread runs under SCHED_FIFO too (priority 70) when the processor
+ * threads do: a supervisor waiting for an answer holds the plant.
  *
  * C99 + POSIX threads; no allocation after start, no recursion. */
 #define _POSIX_C_SOURCE 200809L
@@ -47,9 +50,10 @@
 #include "orccad_io.h"
 #include "orccad_mt.h"
 #include "orccad_port.h"
+#include "orccad_rt.h"
 #include "orccad_wire.h"
 
-#define MAX_MODULES 64
+#define MAX_MODULES ORC_RT_MAX_MODULES
 #define MAX_CONNECTIONS 256
 #define MAX_PROCESSORS 16
 #define MODULE_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
@@ -73,14 +77,14 @@ typedef struct {
 
 enum { JOB_IDLE = 0, JOB_READING = 1, JOB_WRITING = 2 };
 
-static pthread_mutex_t rt_lock = PTHREAD_MUTEX_INITIALIZER;
-static pthread_cond_t rt_changed; /* a port, an interrupt or a command changed (monotonic) */
+pthread_mutex_t orc_rt_lock = PTHREAD_MUTEX_INITIALIZER;
+pthread_cond_t orc_rt_changed; /* a port, an interrupt or a command changed (monotonic) */
 static rt_task tasks[MAX_MODULES];
 static orc_port ports[MAX_CONNECTIONS];
 static int input_of[MAX_MODULES][ORC_MAX_PORTS]; /* the connection into each input slot */
 static int writes[MAX_CONNECTIONS];              /* connections by producer, in port order */
 static int first_write[MAX_MODULES + 1];
-static volatile int stopping;
+volatile int orc_rt_stopping;
 static int64_t epoch_ns;
 static double data_in[MAX_DOUBLES];
 
@@ -89,6 +93,21 @@ static int64_t now_ns(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+int64_t orc_rt_now_ns(void)
+{
+    return now_ns();
+}
+
+int64_t orc_rt_epoch_ns(void)
+{
+    return epoch_ns;
+}
+
+int64_t orc_rt_events(int m)
+{
+    return tasks[m].events;
 }
 
 static struct timespec timespec_of(int64_t ns)
@@ -301,7 +320,7 @@ static void read_at_release(int processor, const int *released)
 static int run_jobs(int processor)
 {
     int moved_any = 0, moved = 1;
-    while (moved && !stopping) {
+    while (moved && !orc_rt_stopping) {
         int priority, m;
         moved = 0;
         for (priority = 1; priority <= 99 && !moved; priority++) {
@@ -369,15 +388,15 @@ static uint32_t find_deadlock(double *cycle)
 static void *processor_thread(void *arg)
 {
     int processor = (int)(intptr_t)arg;
-    pthread_mutex_lock(&rt_lock);
-    while (!stopping) {
+    pthread_mutex_lock(&orc_rt_lock);
+    while (!orc_rt_stopping) {
         int64_t next = INT64_MAX;
         int m, waits = 0, released[MAX_MODULES] = {0};
         struct timespec ts;
         release_due(processor, now_ns(), released);
         read_at_release(processor, released);
         if (run_jobs(processor)) {
-            pthread_cond_broadcast(&rt_changed); /* a port moved: other threads look again */
+            pthread_cond_broadcast(&orc_rt_changed); /* a port moved: other threads look again */
         }
         for (m = 0; m < ORC_N_MODULES; m++) {
             if (!tasks[m].active || ORC_MODULES[m].processor != processor) {
@@ -393,37 +412,33 @@ static void *processor_thread(void *arg)
         }
         ts = timespec_of(next);
         if (waits) { /* a blocked job or an interrupt: another thread may signal it */
-            pthread_cond_timedwait(&rt_changed, &rt_lock, &ts);
+            pthread_cond_timedwait(&orc_rt_changed, &orc_rt_lock, &ts);
             continue;
         }
-        pthread_mutex_unlock(&rt_lock);
+        pthread_mutex_unlock(&orc_rt_lock);
         while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
         }
-        pthread_mutex_lock(&rt_lock);
+        pthread_mutex_lock(&orc_rt_lock);
     }
-    pthread_mutex_unlock(&rt_lock);
+    pthread_mutex_unlock(&orc_rt_lock);
     return NULL;
 }
 
-static int start_thread(pthread_t *thread, int processor, int *warned)
+int orc_rt_start_thread(pthread_t *thread, void *(*body)(void *), void *arg, int priority,
+                        int *warned)
 {
     pthread_attr_t attr;
     struct sched_param param;
-    int m, best = 99, error;
-    for (m = 0; m < ORC_N_MODULES; m++) {
-        if (ORC_MODULES[m].processor == processor && ORC_MODULES[m].priority < best) {
-            best = ORC_MODULES[m].priority;
-        }
-    }
+    int error;
     pthread_attr_init(&attr);
     pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
     pthread_attr_setschedpolicy(&attr, SCHED_FIFO);
-    param.sched_priority = best < 79 ? 80 - best : 1;
+    param.sched_priority = priority;
     pthread_attr_setschedparam(&attr, &param);
     if (getenv("ORCCAD_NO_FIFO") != NULL) {
         error = EPERM;
     } else {
-        error = pthread_create(thread, &attr, processor_thread, (void *)(intptr_t)processor);
+        error = pthread_create(thread, &attr, body, arg);
     }
     pthread_attr_destroy(&attr);
     if (error == EPERM) {
@@ -434,9 +449,22 @@ static int start_thread(pthread_t *thread, int processor, int *warned)
                                                      : "no CAP_SYS_NICE or RLIMIT_RTPRIO");
             *warned = 1;
         }
-        error = pthread_create(thread, NULL, processor_thread, (void *)(intptr_t)processor);
+        error = pthread_create(thread, NULL, body, arg);
     }
     return error;
+}
+
+/* The thread of `processor`: priority 80 minus its best Module-Task priority (1 the highest). */
+static int start_processor(pthread_t *thread, int processor, int *warned)
+{
+    int m, best = 99;
+    for (m = 0; m < ORC_N_MODULES; m++) {
+        if (ORC_MODULES[m].processor == processor && ORC_MODULES[m].priority < best) {
+            best = ORC_MODULES[m].priority;
+        }
+    }
+    return orc_rt_start_thread(thread, processor_thread, (void *)(intptr_t)processor,
+                               best < 79 ? 80 - best : 1, warned);
 }
 
 /* ---- the socket: commands and heartbeat --------------------------------------------------- */
@@ -493,11 +521,13 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
         *n = find_deadlock(answer);
         return 0;
     }
-    if (req->op == OP_REACT) { /* one reaction of the mission's automaton */
-        return orc_automaton_react(data_in, req->n, answer, n) != 0 ? 5 : 0;
+    if (req->op == OP_INPUT) { /* inputs for the automaton task, at their instant */
+        return orc_automaton_input(data_in, req->n);
     }
-    if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's) */
+    if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's): the
+                                * automaton task starts its ticks */
         epoch_ns = orc_io_epoch_ns(epoch_ns);
+        orc_automaton_start();
         return 0;
     }
     if (req->module >= (uint32_t)ORC_N_MODULES) {
@@ -545,7 +575,7 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
 
 int main(int argc, char **argv)
 {
-    pthread_t threads[MAX_PROCESSORS];
+    pthread_t threads[MAX_PROCESSORS], automaton;
     pthread_condattr_t condattr;
     int fd, p, warned = 0, status = 0;
     orc_request req;
@@ -569,13 +599,19 @@ int main(int argc, char **argv)
     index_wiring();
     pthread_condattr_init(&condattr);
     pthread_condattr_setclock(&condattr, CLOCK_MONOTONIC);
-    pthread_cond_init(&rt_changed, &condattr);
+    pthread_cond_init(&orc_rt_changed, &condattr);
     pthread_condattr_destroy(&condattr);
     for (p = 0; p < ORC_N_PROCESSORS; p++) {
-        if (start_thread(&threads[p], p, &warned) != 0) {
+        if (start_processor(&threads[p], p, &warned) != 0) {
             fprintf(stderr, "orccad_rt: cannot start the thread of processor %d\n", p);
             return 2;
         }
+    }
+    /* the mission's automaton task: above every processor thread (its reactions start and
+     * stop their Module-Tasks, its observers' events are the most urgent) */
+    if (orc_rt_start_thread(&automaton, orc_automaton_task, NULL, 80, &warned) != 0) {
+        fprintf(stderr, "orccad_rt: cannot start the automaton task\n");
+        return 2;
     }
     if (!warned) { /* the commands' thread: above the plant server, below the processors */
         struct sched_param command_param;
@@ -592,21 +628,22 @@ int main(int argc, char **argv)
             orc_wire_reply(fd, 0, 0, NULL);
             break;
         }
-        pthread_mutex_lock(&rt_lock);
+        pthread_mutex_lock(&orc_rt_lock);
         code = command(&req, answer, &n);
-        pthread_cond_broadcast(&rt_changed);
-        pthread_mutex_unlock(&rt_lock);
+        pthread_cond_broadcast(&orc_rt_changed);
+        pthread_mutex_unlock(&orc_rt_lock);
         if (orc_wire_reply(fd, code, n, answer) != 0) {
             status = 3;
             break;
         }
     }
-    pthread_mutex_lock(&rt_lock);
-    stopping = 1;
-    pthread_cond_broadcast(&rt_changed);
-    pthread_mutex_unlock(&rt_lock);
+    pthread_mutex_lock(&orc_rt_lock);
+    orc_rt_stopping = 1;
+    pthread_cond_broadcast(&orc_rt_changed);
+    pthread_mutex_unlock(&orc_rt_lock);
     for (p = 0; p < ORC_N_PROCESSORS; p++) {
         pthread_join(threads[p], NULL);
     }
+    pthread_join(automaton, NULL);
     return status;
 }

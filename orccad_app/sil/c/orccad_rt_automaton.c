@@ -1,0 +1,151 @@
+/* orccad_rt_automaton.c: the mission's automaton as a task of the real-time controller.
+ *
+ * A thread of its own (SCHED_FIFO above the processor threads where permitted) reacts at every
+ * tick of the mission (ORC_AUTOMATON_TICK_NS, the gcd of the Module-Task periods, released by
+ * absolute instants on CLOCK_MONOTONIC from the run's t = 0), and at once when an observer's
+ * job fires an event or an input falls due between two ticks, as the executive reacts at an
+ * event's instant. A reaction's inputs are the events the observers' jobs fired since the
+ * previous one (ORC_AUTOMATON_EVENTS: observer Module-Task -> the automaton input it raises)
+ * and the inputs queued by the supervisor (OP_INPUT: the operator's, `--inject`'s), due at
+ * their instant; an input already present in the reaction waits for the next one. Each
+ * reaction — its request's and its reply's words, orccad_automaton.h — is published through
+ * orc_io_reaction (SIL: a ring in the shared memory, from which the plant server applies the
+ * Robot-Tasks' lifecycle and rebuilds the report). A negative step (a run-time error of the
+ * mission) is published and ends the reactions. C99 + POSIX threads; no allocation. */
+#define _POSIX_C_SOURCE 200809L
+#include <string.h>
+#include <time.h>
+
+#include "orccad_automaton.h"
+#include "orccad_io.h"
+#include "orccad_rt.h"
+
+#define MAX_QUEUED 64
+
+static const int input_slots[][2] = ORC_AUTOMATON_INPUT_SLOTS; /* presence word, value words */
+static const int event_inputs[][2] = ORC_AUTOMATON_EVENTS;     /* observer, presence word */
+static int64_t consumed[ORC_AUTOMATON_N_EVENTS + 1];           /* events already reacted to */
+static double queued[MAX_QUEUED][ORC_AUTOMATON_IN_WORDS];      /* word 0: due instant [ns] */
+static int n_queued;
+static double request[ORC_AUTOMATON_IN_WORDS], reply[ORC_AUTOMATON_OUT_WORDS];
+static int started, failed;
+static int64_t last_clock = -1;
+
+static int64_t int_word(const double *word)
+{
+    int64_t value;
+    memcpy(&value, word, sizeof value);
+    return value;
+}
+
+static void set_int(double *word, int64_t value)
+{
+    memcpy(word, &value, sizeof value);
+}
+
+void orc_automaton_start(void)
+{
+    started = 1;
+}
+
+uint32_t orc_automaton_input(const double *words, uint32_t n)
+{
+    if (n != ORC_AUTOMATON_IN_WORDS) {
+        return 1;
+    }
+    if (n_queued == MAX_QUEUED) {
+        return 6; /* more inputs ahead than a reaction period can hold: refused */
+    }
+    memcpy(queued[n_queued++], words, n * sizeof(double));
+    return 0;
+}
+
+static int event_pending(void)
+{
+    int i;
+    for (i = 0; i < ORC_AUTOMATON_N_EVENTS; i++) {
+        if (orc_rt_events(event_inputs[i][0]) > consumed[i]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The queued inputs due at `clock` merged into the request, in their order, until one meets
+ * an input already present (it waits for the next reaction). */
+static void take_inputs(int64_t clock)
+{
+    int q = 0, i;
+    for (; q < n_queued && int_word(&queued[q][0]) <= clock; q++) {
+        int meets = 0;
+        for (i = 0; i < ORC_AUTOMATON_N_INPUTS; i++) {
+            int at = input_slots[i][0];
+            meets |= int_word(&queued[q][at]) != 0 && int_word(&request[at]) != 0;
+        }
+        if (meets) {
+            break;
+        }
+        for (i = 0; i < ORC_AUTOMATON_N_INPUTS; i++) {
+            int at = input_slots[i][0];
+            if (int_word(&queued[q][at]) != 0) {
+                memcpy(&request[at], &queued[q][at], (size_t)(1 + input_slots[i][1]) * sizeof(double));
+            }
+        }
+    }
+    if (q > 0) {
+        memmove(queued[0], queued[q], (size_t)(n_queued - q) * sizeof queued[0]);
+        n_queued -= q;
+    }
+}
+
+/* One reaction at `clock` [ns since t = 0]. */
+static void react(int64_t clock)
+{
+    int i;
+    uint32_t n = 0;
+    memset(request, 0, sizeof request);
+    set_int(&request[0], clock);
+    for (i = 0; i < ORC_AUTOMATON_N_EVENTS; i++) {
+        int64_t events = orc_rt_events(event_inputs[i][0]);
+        if (events > consumed[i]) {
+            consumed[i] = events;
+            set_int(&request[event_inputs[i][1]], 1);
+        }
+    }
+    take_inputs(clock);
+    if (orc_automaton_react(request, ORC_AUTOMATON_IN_WORDS, reply, &n) != 0) {
+        failed = 1;
+        return;
+    }
+    last_clock = clock;
+    orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
+    failed = int_word(&reply[0]) < 0;
+}
+
+void *orc_automaton_task(void *unused)
+{
+    int64_t tick = 0;
+    (void)unused;
+    pthread_mutex_lock(&orc_rt_lock);
+    while (!orc_rt_stopping) {
+        int64_t epoch = orc_rt_epoch_ns(), next = orc_rt_now_ns() + 1000000;
+        struct timespec ts;
+        if (started && !failed) {
+            int64_t since = orc_rt_now_ns() - epoch;
+            while (!failed && tick * ORC_AUTOMATON_TICK_NS <= since) { /* every tick due: */
+                react(tick * ORC_AUTOMATON_TICK_NS);                  /* the timers count them */
+                tick += 1;
+            }
+            if (!failed && (event_pending()
+                            || (n_queued > 0 && int_word(&queued[0][0]) <= since))) {
+                react(since > last_clock ? since : last_clock); /* an event's instant */
+            }
+            next = epoch + tick * ORC_AUTOMATON_TICK_NS;
+        }
+        ts.tv_sec = (time_t)(next / 1000000000LL);
+        ts.tv_nsec = (long)(next % 1000000000LL);
+        pthread_cond_timedwait(&orc_rt_changed, &orc_rt_lock, &ts); /* a tick, or an event */
+    }
+    pthread_mutex_unlock(&orc_rt_lock);
+    return NULL;
+}
