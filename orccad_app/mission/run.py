@@ -220,7 +220,8 @@ class MissionRun:
             if injection.time_ns >= self.until_ns:
                 raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
                                   f"after --until ({self.until_ns / 1e9:g} s)")
-            self.kernel.schedule(injection.time_ns, _CONTROL, self._inject, injection)
+            self.kernel.schedule(max(0, injection.time_ns - self.input_lead_ns), _CONTROL,
+                                 self._inject, injection)
         self.kernel.schedule(0, _CONTROL, self._tick)
 
     def _schedule_fault(self, injection: Injection) -> None:
@@ -336,6 +337,10 @@ class MissionRun:
     def phases(self) -> dict[int, Phase]:
         """Site number -> phase of every running Robot-Task (a copy)."""
         return dict(self._phase)
+
+    input_lead_ns = 0
+    """How long before its instant an injection is handed to the reactor [ns] (a reactor
+    running on its own clock queues it until then)."""
 
     def _inject(self, injection: Injection) -> None:
         self._post(injection.name, injection.value)

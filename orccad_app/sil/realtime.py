@@ -44,6 +44,7 @@ from orccad_app.codegen.generate import CProgram
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
+from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
 from orccad_app.sil.automaton import ControllerAutomaton, mission_automaton, reaction_words
@@ -59,6 +60,9 @@ __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 _HEARTBEAT_NS = 100_000_000
 _EXCHANGE = EventClass.DELIVERY
 """The exchange with the controller is a delivery: first in its instant."""
+_INPUT_LEAD_NS = 20_000_000
+"""Injections reach the controller this long ahead of their instant [ns] (it queues at most
+256: a reaction period of 1 ms takes 20 inputs in that time)."""
 _PLANT_FIFO_PRIORITY = 60
 """The plant server's SCHED_FIFO priority, below the controller's threads' (80 minus the
 best Module-Task priority)."""
@@ -212,12 +216,21 @@ class RealtimeRun(MissionRun):
             if cycle:
                 raise self._deadlock(now, cycle)
 
+    input_lead_ns = _INPUT_LEAD_NS
+
     def _tick(self, _: object) -> None:
         """No tick here: the automaton task reacts at its own ticks in the controller."""
 
+    def _inject(self, injection: Injection) -> None:
+        """An injection (``--inject``, an input script), handed to the controller
+        ``input_lead_ns`` ahead: queued there for the automaton task's first reaction at or
+        after its instant, whatever the plant server's lateness."""
+        self._controller.request_words(Op.INPUT, self._automaton.input_words(
+            injection.name, injection.value, injection.time_ns))
+
     def _post(self, name: str, value: Any) -> None:
-        """An input (``--inject``, an input script, the operator): queued in the controller for
-        the automaton task's first reaction at or after now."""
+        """An input raised now (an observer's callback): queued in the controller for the
+        automaton task's first reaction at or after now."""
         self._controller.request_words(
             Op.INPUT, self._automaton.input_words(name, value, self.kernel.now))
 

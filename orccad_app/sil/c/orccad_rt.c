@@ -27,8 +27,10 @@
  * update), INIT, ACTIVATE (first release at a given instant), KILL, RESET (its ports' values
  * dropped), INPUT (an input for the automaton at an instant), EPOCH (t = 0: the automaton
  * starts), PING (the heartbeat) and QUIT, with the frames of orccad_lockstep.c. Commands, the
- * automaton's reactions and jobs take one runtime lock: a command is applied between two
- * jobs. The commands' thread runs under SCHED_FIFO too (priority 70) when the processor
+ * automaton's reactions and the jobs' port operations take one runtime lock; a job's compute
+ * runs outside it (the jobs of different processors overlap in time), and a command touching
+ * a Module-Task's memory waits for its compute to end. The commands' thread runs under
+ * SCHED_FIFO too (priority 70) when the processor
  * threads do: a supervisor waiting for an answer holds the plant.
  *
  * C99 + POSIX threads; no allocation after start, no recursion. */
@@ -73,6 +75,9 @@ typedef struct {
     int at;                   /* the next input slot to read, or write to do */
     int waiting;              /* blocked on that read or write (a port protocol) */
     int64_t job_release_ns;   /* the current job's release */
+    int computing;            /* its compute runs, outside the runtime's lock */
+    unsigned generation;      /* changed by a kill or an activation: a job computing across
+                                 one is aborted */
 } rt_task;
 
 enum { JOB_IDLE = 0, JOB_READING = 1, JOB_WRITING = 2 };
@@ -255,7 +260,19 @@ static int advance(int m)
     rt_task *t = &tasks[m];
     int at = t->at, phase = t->phase;
     if (t->phase == JOB_READING && read_inputs(m)) {
-        orc_mt_compute(&ORC_INSTANCES[m], (double)(t->job_release_ns - epoch_ns) * 1e-9);
+        /* The compute runs outside the lock (it touches only the Module-Task's own memory,
+         * which a command waits for): the jobs of different processors overlap in time. */
+        unsigned generation = t->generation;
+        double t_s = (double)(t->job_release_ns - epoch_ns) * 1e-9;
+        t->computing = 1;
+        pthread_mutex_unlock(&orc_rt_lock);
+        orc_mt_compute(&ORC_INSTANCES[m], t_s);
+        pthread_mutex_lock(&orc_rt_lock);
+        t->computing = 0;
+        pthread_cond_broadcast(&orc_rt_changed); /* a command may wait for it */
+        if (t->generation != generation) {
+            return 1; /* killed or activated anew meanwhile: the job is aborted */
+        }
         t->phase = JOB_WRITING;
         t->at = 0;
     }
@@ -483,6 +500,7 @@ static void reset_ports(int m)
 static void kill_task(int m)
 {
     rt_task *t = &tasks[m];
+    t->generation += 1;
     if (t->phase != JOB_IDLE && t->waiting) {
         int reading = t->phase == JOB_READING;
         int c = reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
@@ -494,8 +512,18 @@ static void kill_task(int m)
 }
 
 /* Module-Task m activated: its first release at release_ns. */
+/* Until Module-Task m's compute (outside the lock) has ended: a command touching its memory
+ * waits for it. */
+static void wait_compute(int m)
+{
+    while (tasks[m].computing) {
+        pthread_cond_wait(&orc_rt_changed, &orc_rt_lock);
+    }
+}
+
 static void activate(int m, int64_t release_ns)
 {
+    wait_compute(m);
     orc_mt_init(&ORC_INSTANCES[m]);
     kill_task(m);
     tasks[m].active = 1;
@@ -536,12 +564,15 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
     mt = &ORC_INSTANCES[req->module];
     switch (req->op) {
     case OP_START:
+        wait_compute((int)req->module);
         orc_mt_load(mt, &ORC_MODULES[req->module]);
         orc_mt_init(mt);
         return 0;
     case OP_PARAM:
+        wait_compute((int)req->module);
         return orc_mt_set_param(mt, (int)req->offset, data_in, (int)req->n) ? 2 : 0;
     case OP_INIT:
+        wait_compute((int)req->module);
         orc_mt_init(mt);
         return 0;
     case OP_ACTIVATE: { /* every Module-Task in the data (or the request's one), their

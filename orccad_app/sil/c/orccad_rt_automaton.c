@@ -20,7 +20,7 @@
 #include "orccad_io.h"
 #include "orccad_rt.h"
 
-#define MAX_QUEUED 64
+#define MAX_QUEUED 256
 
 static const int input_slots[][2] = ORC_AUTOMATON_INPUT_SLOTS; /* presence word, value words */
 static const int event_inputs[][2] = ORC_AUTOMATON_EVENTS;     /* observer, presence word */
