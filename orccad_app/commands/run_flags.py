@@ -93,14 +93,26 @@ def add_run_flags(parser: argparse.ArgumentParser) -> None:
 
 
 def check_run_flags(args: argparse.Namespace) -> None:
-    """What the flags need, said before the file is loaded: ``--trace-format`` needs
-    ``--trace``; rosbag2, ``--ros2-zenoh`` and ``--foxglove`` their extras;
-    ``--foxglove-port`` and ``--foxglove-wait`` need ``--foxglove``."""
+    """What the flags need, said before the file is loaded: a name for ``--trace`` and
+    ``--inject-from``, and a ``--trace`` that is not a FIFO or a socket (opening one waits
+    for a reader forever); ``--trace-format`` needs ``--trace``; rosbag2, ``--ros2-zenoh``
+    and ``--foxglove`` their extras; ``--foxglove-port`` and ``--foxglove-wait`` need
+    ``--foxglove``."""
+    import os
+    import stat
+
     from orccad_app.diagnostics import OrccadError
 
     for flag, value in (("--trace", args.trace), ("--inject-from", args.inject_from)):
         if value is not None and not value.strip():
             raise OrccadError(f"{flag}: an empty name (name a file, or leave the flag out)")
+    try:
+        mode = os.stat(args.trace).st_mode if args.trace else 0
+    except OSError:
+        mode = 0  # a new file (or an unwritable one: said when it is opened)
+    if stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode):
+        raise OrccadError(f"--trace {args.trace}: a {'FIFO' if stat.S_ISFIFO(mode) else 'socket'}"
+                          ", not a regular file (a trace is written to a file)")
     if args.trace_format is not None and not args.trace:
         raise OrccadError("--trace-format needs --trace")
     if args.trace_format == "rosbag2":

@@ -100,6 +100,18 @@ def test_a_bad_or_empty_output_name_is_refused(orccad, tmp_path, flag, value, wo
     assert (tmp_path / "notes.txt").read_text() == "mine\n"
 
 
+@pytest.mark.parametrize("command", ["sil", "run"])
+def test_a_trace_onto_a_fifo_is_refused_not_waited_on(tmp_path, command):
+    shutil.copy(MISSIONS / "arm_pid.orc", tmp_path)
+    os.mkfifo(tmp_path / "pipe")  # no reader: opening it to write would wait forever
+    mode = ("--lockstep",) if command == "sil" else ()
+    done = subprocess.run([sys.executable, "-m", "orccad_app", command, "arm_pid.orc", *mode,
+                           "--trace", "pipe", "--trace-format", "csv"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=30)
+    assert done.returncode == 2, done.stderr
+    assert "--trace pipe: a FIFO, not a regular file" in done.stderr
+
+
 def test_a_build_dir_a_previous_build_wrote_is_regenerated(orccad, tmp_path):
     shutil.copy(MISSIONS / "arm_pid.orc", tmp_path)
     for _ in range(2):
