@@ -88,7 +88,8 @@ class ControllerProcess:
         self.pid = self.process.pid
         try:
             answer = self.request(Op.HELLO)
-        except ControllerFailure:
+        except BaseException:  # Ctrl-C or SIGTERM while waiting: nobody else can end it
+            self.kill()
             raise
         got_modules = int(answer[0])
         got_digest = struct.pack("=8d", *answer[1:9]).split(b"\0")[0].decode(errors="replace")

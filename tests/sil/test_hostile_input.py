@@ -21,6 +21,7 @@ from pathlib import Path
 import pytest
 
 from orccad_app.cli import main
+from orccad_app.sil.controller import ControllerProcess
 from orccad_app.sil.build import BuildError, compiler_command
 
 from tests.sil.helpers import MISSIONS
@@ -215,3 +216,25 @@ def test_codegen_refuses_an_empty_output_name_and_a_folder_in_the_way(orccad, tm
     assert "out: the output folder holds other files (abro.c)" in done.stderr
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["abro.c"]
     assert (tmp_path / "out" / "abro.c" / "keep.txt").read_text() == "mine\n"
+
+
+def test_ctrl_c_while_a_controller_starts_leaves_no_process(tmp_path):
+    # a controller hung before its first answer, in its own session (Ctrl-C at the terminal
+    # does not reach it) and not reading its socket: only the plant server can end it
+    marker = f"8{os.getpid() % 100}.25"
+    hung = tmp_path / "hung-controller"
+    hung.write_text(f"#!/bin/sh\nexec sleep {marker}\n")
+    hung.chmod(0o755)
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGALRM, interrupt)
+    signal.setitimer(signal.ITIMER_REAL, 0.5)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            ControllerProcess(hung, 1, "digest", heartbeat_s=30.0)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    assert _processes_with(marker) == []
