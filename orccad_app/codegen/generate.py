@@ -27,7 +27,7 @@ from orccad_app.codegen.reaction import Graph, intern
 from orccad_app.codegen.static_types import CType, CodegenError, Kind, TypeTable, infer
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import ABORTED, DONE, FAILED, RUNNING, Automaton
-from orccad_app.robottask.labels import PhaseLabel
+from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import SignalRoles
 
 __all__ = ["CProgram", "generate", "STATUS_CODES"]
@@ -176,9 +176,11 @@ def _phases(automaton: Automaton, site_count: int) -> list[list[int]]:
     labels = automaton.labels or tuple(frozenset() for _ in automaton.trees)
     for state_labels in labels:
         row = [0] * site_count
-        for label in state_labels:
+        for label in state_labels:  # as the mission layer reads them (MissionRun._phases)
             if isinstance(label, PhaseLabel) and label.site < site_count:
-                row[label.site] = int(label.phase)
+                row[label.site] = max(row[label.site], int(label.phase))
+            elif isinstance(label, RtLabel) and label.site < site_count:
+                row[label.site] = max(row[label.site], int(Phase.SYNCHRONIZING))
         rows.append(row)
     return rows
 

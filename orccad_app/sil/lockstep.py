@@ -41,6 +41,8 @@ class RemoteSite(SiteModules):
 
     controller: Any = None
     table: Any = None
+    managed: bool = False
+    """The controller starts its Module-Tasks itself (its real-time automaton task)."""
 
     def fresh_computes(self, instance: Any = None) -> dict[str, Any]:
         shadows = super().fresh_computes(instance)
@@ -49,7 +51,7 @@ class RemoteSite(SiteModules):
         for name, shadow in shadows.items():
             index = table.index(name)
             proxies[name] = RemoteModule(self.controller, index, table.entries[index].layout,
-                                         shadow)
+                                         shadow, start=not self.managed)
         return proxies
 
 

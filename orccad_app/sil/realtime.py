@@ -47,12 +47,14 @@ from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
-from orccad_app.sil.automaton import ControllerAutomaton, mission_automaton, reaction_words
+from orccad_app.sil.automaton import (ControllerAutomaton, managed_sites, mission_automaton,
+                                     reaction_words)
 from orccad_app.sil.build import C_DIR
 from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
                                       Op)
 from orccad_app.sil.emit import ModuleTable
 from orccad_app.sil.lockstep import RemoteSite, controller_for
+from orccad_app.sil.remote import RemoteModule
 from orccad_app.sil.shared import REACTION_RING, ReactionsLost, SharedMemory
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
@@ -116,17 +118,19 @@ class _ControllerSim:
     """The executive's simulation as the mission layer sees it, with the Module-Tasks'
     activations, kills and fresh ports sent to the controller instead of run here."""
 
-    def __init__(self, sim: Any, controller: ControllerProcess, table: ModuleTable) -> None:
+    def __init__(self, sim: Any, controller: ControllerProcess, table: ModuleTable,
+                 managed: frozenset[str]) -> None:
         self._sim = sim
         self._controller = controller
         self._table = table
+        self._managed = managed  # the automaton task starts, kills and activates these
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._sim, name)
 
-    @staticmethod
-    def _names(modules: Iterable[str] | str) -> list[str]:
-        return [modules] if isinstance(modules, str) else list(modules)
+    def _names(self, modules: Iterable[str] | str) -> list[str]:
+        names = [modules] if isinstance(modules, str) else list(modules)
+        return [name for name in names if name not in self._managed]
 
     def activate(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
         """One request for all ``modules``: their first releases are one instant."""
@@ -153,7 +157,9 @@ class RealtimeRun(MissionRun):
         super().__init__(plan, realtime=1.0, reactor=reactor, **options)
         self._automaton = reactor
         self._table, self._controller, self._shared = table, controller, shared
-        self.sim = _ControllerSim(self.sim, controller, table)  # type: ignore[assignment]
+        self._managed_sites = [site for site in plan.sites if site.number in managed_sites(plan)]
+        managed = frozenset(name for site in self._managed_sites for name in site.modules)
+        self.sim = _ControllerSim(self.sim, controller, table, managed)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
         self._ports = [(k, port, port.robot, port.port)
                        for k, port in enumerate(table.robot_ports)]
@@ -247,9 +253,23 @@ class RealtimeRun(MissionRun):
                 at_ns, inputs, step = self._automaton.replay(words)
             except OrccadError as error:
                 raise ReactionError(error.message, error.location, error.notes) from None
+            self._retire_restarted(step.outputs)
             self._apply(at_ns, inputs, step)
             if self.reactor.finished:
                 break
+
+    def _retire_restarted(self, outputs: tuple[str, ...]) -> None:
+        """The sites the automaton task restarted in this reaction have fresh Module-Tasks in
+        the controller already: their previous proxies write no parameter any more (a type-1
+        update of the previous run, applied in the same reaction, is dropped with it)."""
+        phases = self._phases()
+        for site in self._managed_sites:
+            if site.start_signal in outputs and self._phase.get(site.number, 0) > 0 \
+                    and phases.get(site.number, 0) > 0:
+                for name in site.modules:
+                    compute = self.plan.tcs.module(name).compute
+                    if isinstance(compute, RemoteModule):
+                        compute.retire()
 
     def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its
@@ -343,10 +363,11 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
                                        heartbeat_s, ("--io", shared.path))
         shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
-            sites = []
+            sites, managed = [], managed_sites(plan)
             for site in plan.sites:
                 fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
-                sites.append(RemoteSite(**fields, controller=controller, table=table))
+                sites.append(RemoteSite(**fields, controller=controller, table=table,
+                                        managed=site.number in managed))
             plan.sites = sites
             yield table, controller, shared
         finally:

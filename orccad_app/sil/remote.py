@@ -29,10 +29,12 @@ class RemoteModule:
     :param index: the Module-Task's index in the generated table.
     :param nominal: its layout in the table (the parameters compiled in).
     :param shadow: the Python instance of this start (never computes).
+    :param start: send the fresh start (``START``, then the run-time arguments); ``False``
+        when the controller has started it itself (its real-time automaton task).
     """
 
     def __init__(self, controller: ControllerProcess, index: int, nominal: CLayout,
-                 shadow: Any) -> None:
+                 shadow: Any, start: bool = True) -> None:
         self._controller = controller
         self._index = index
         self._shadow = shadow
@@ -46,9 +48,20 @@ class RemoteModule:
         self._layout = layout
         self._inputs = [(p.name, p.dim) for p in layout.inputs]
         self._outputs = [(p.name, p.type, p.dim) for p in layout.outputs]
+        self._retired = False
+        if not start:
+            if layout.params != nominal.params:
+                raise ControllerFailure(f"module-task {index}: started by the controller with "
+                                        f"its nominal parameters, but this start binds others")
+            return
         controller.request(Op.START, index)
         if layout.params != nominal.params:  # run-time arguments bound at this start
             self._send_params(layout.params)
+
+    def retire(self) -> None:
+        """The controller has started this Module-Task afresh: this proxy's run is over, its
+        parameter writes stay with its shadow."""
+        self._retired = True
 
     @property
     def params(self) -> dict[str, Any]:
@@ -56,7 +69,8 @@ class RemoteModule:
         return self._shadow.params
 
     def _send_params(self, params: tuple[float, ...]) -> None:
-        self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
+        if not self._retired:
+            self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
 
     def init(self) -> None:
         """Activation: the C Module-Task resets its state."""

@@ -58,6 +58,7 @@ def twin(monkeypatch):
     ("arm_interrupts.orc", "ArmInterrupts", None),
     ("arm_interrupts.orc", "ArmInterruptsTight", None),
     ("arm_retune.orc", None, None),
+    ("auv_waypoints.orc", None, "Waypoint([15, 0, 5])@0.5"),  # a valued input, run-time args
 ])
 def test_the_c_automaton_reacts_as_the_python_reactor_reaction_by_reaction(twin, file, mission,
                                                                           inject):

@@ -176,12 +176,28 @@ def test_without_sched_fifo_a_warning_says_why():
     assert "Measured on the controller's threads" in done.stdout
 
 
+def _spied(runs, ops):
+    """Record every request's operation sent to the controller of ``runs``."""
+    request, request_words = runs.controller.request, runs.controller.request_words
+
+    def spy(op, *args, **kwargs):
+        ops.append(op)
+        return request(op, *args, **kwargs)
+
+    def spy_words(op, *args, **kwargs):
+        ops.append(op)
+        return request_words(op, *args, **kwargs)
+
+    runs.controller.request, runs.controller.request_words = spy, spy_words
+
+
 def test_the_automaton_is_a_task_of_the_controller():
     """In real time the mission's automaton reacts on its own thread in the controller: at
     every tick of its clock and at the observers' events, never asked by the plant server
-    (no REACT request); the plant server applies each recorded reaction in order, and an
-    --inject reaches the task as an input at its instant (arm_pid: TrackingLost at 0.3 s ends
-    the run failed)."""
+    (no REACT request), and applies the Robot-Tasks' lifecycle itself (no START, ACTIVATE,
+    KILL or RESET request); the plant server applies each recorded reaction to its records in
+    order, and an --inject reaches the task as an input at its instant (arm_pid: TrackingLost
+    at 0.3 s ends the run failed, the Module-Tasks killed by the task)."""
     from orccad_app.sil.controller import Op
 
     reactions: list[tuple[int, tuple[str, ...], tuple[str, ...]]] = []
@@ -195,17 +211,14 @@ def test_the_automaton_is_a_task_of_the_controller():
     with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
         session = session_of("arm_pid.orc", runs=runs, observers=(Reactions(),),
                              injections=inject, until_s=1.0)
-        request_words = runs.controller.request_words
-
-        def spy(op, payload, module=0):
-            ops.append(op)
-            return request_words(op, payload, module)
-
-        runs.controller.request_words = spy
+        _spied(runs, ops)
         result = session.execute().result
+        timings = {t.name: t for t in runs.timings()}
         assert runs.automaton is not None and runs.automaton.instant == len(reactions)
-    assert Op.REACT not in ops and ops.count(Op.INPUT) == 1
+    assert ops.count(Op.INPUT) == 1 and ops.count(Op.EPOCH) == 1
+    assert not {Op.REACT, Op.START, Op.ACTIVATE, Op.KILL, Op.RESET} & set(ops), set(ops)
     assert result.status == "failed" and result.robot_tasks[0].outcome == "TrackingLost"
+    assert 250 <= timings["TrackPID.ctrl"].released <= 320  # started and killed by the task
     assert reactions[0][0] == 0 and "TrackPID.start" in reactions[0][2]
     times = [t for t, _, _ in reactions]
     assert times == sorted(times)
@@ -213,3 +226,23 @@ def test_the_automaton_is_a_task_of_the_controller():
     assert len(ticks) >= 290  # every 1 ms tick up to the exception at 0.3 s
     lost = [t for t, inputs, _ in reactions if "TrackPID.TrackingLost" in inputs]
     assert len(lost) == 1 and lost[0] == 300_000_000  # handed ahead, taken at its tick
+
+
+def test_a_start_with_run_time_arguments_is_bound_by_the_supervisor():
+    """auv_waypoints: GoTo's target is a run-time argument (the Waypoint's value): the plant
+    server binds it and starts GoTo's Module-Tasks (START, PARAM, ACTIVATE), the automaton
+    task having reacted to the injected value."""
+    from orccad_app.sil.controller import Op
+
+    ops: list[Op] = []
+    inject = (parse_injection("Waypoint([15, 0, 5])@0.5"),)
+    with ControllerRuns(SilMode.REALTIME, "auv_waypoints.orc") as runs:
+        session = session_of("auv_waypoints.orc", runs=runs, injections=inject, until_s=1.2)
+        _spied(runs, ops)
+        result = session.execute().result
+        timings = {t.name: t for t in runs.timings()}
+    goto = result.robot_tasks[0]
+    assert (goto.name, goto.start_ns, goto.args) == ("GoTo", 500_000_000,
+                                                     {"target": [15.0, 0.0, 5.0]})
+    assert {Op.START, Op.PARAM, Op.ACTIVATE} <= set(ops)
+    assert timings["GoTo.pilot"].released >= 10

@@ -23,6 +23,11 @@ void orc_automaton_reset(void)
     ORC_A(reset)(&memory);
 }
 
+int orc_automaton_phase(int site)
+{
+    return ORC_A(phase)(&memory, site);
+}
+
 static int value_words(const orccad_signal_info *info)
 {
     switch (info->kind) {

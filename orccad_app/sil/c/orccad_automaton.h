@@ -27,5 +27,8 @@ void orc_automaton_reset(void);
 /* One reaction: `request` of `n` words (above) in, the reply's words into `reply`
  * (ORC_AUTOMATON_OUT_WORDS of them); 0, or -1 when the request has the wrong size. */
 int orc_automaton_react(const double *request, uint32_t n, double *reply, uint32_t *n_reply);
+/* The phase of run site `site` in the current state (1 synchronizing, 2 measuring, 3 active;
+ * 0: not running), as the mission layer reads the state's labels. */
+int orc_automaton_phase(int site);
 
 #endif

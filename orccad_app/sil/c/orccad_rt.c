@@ -534,6 +534,33 @@ static void activate(int m, int64_t release_ns)
     }
 }
 
+int orc_rt_active(int m)
+{
+    return tasks[m].active;
+}
+
+void orc_rt_fresh(int m)
+{
+    wait_compute(m);
+    orc_mt_load(&ORC_INSTANCES[m], &ORC_MODULES[m]);
+    orc_mt_init(&ORC_INSTANCES[m]);
+}
+
+void orc_rt_kill(int m)
+{
+    kill_task(m);
+}
+
+void orc_rt_reset_ports(int m)
+{
+    reset_ports(m);
+}
+
+void orc_rt_activate(int m, int64_t release_ns)
+{
+    activate(m, release_ns);
+}
+
 static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
 {
     orc_mt *mt;

@@ -21,6 +21,15 @@ int64_t orc_rt_now_ns(void);
 int64_t orc_rt_epoch_ns(void);
 int64_t orc_rt_events(int m);
 
+/* The Robot-Tasks' lifecycle on Module-Task m: active?; a fresh start (nominal parameters,
+ * state reset; waits for its compute); killed (its unfinished job aborted); its ports back to
+ * "before any write"; activated, its first release at `release_ns` (absolute). */
+int orc_rt_active(int m);
+void orc_rt_fresh(int m);
+void orc_rt_kill(int m);
+void orc_rt_reset_ports(int m);
+void orc_rt_activate(int m, int64_t release_ns);
+
 /* Start `body(arg)` on a thread under SCHED_FIFO at `priority` when permitted, else under
  * the default policy after one warning (*warned set); 0 or the error. */
 int orc_rt_start_thread(pthread_t *thread, void *(*body)(void *), void *arg, int priority,

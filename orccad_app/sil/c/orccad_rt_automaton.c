@@ -31,6 +31,14 @@ static double request[ORC_AUTOMATON_IN_WORDS], reply[ORC_AUTOMATON_OUT_WORDS];
 static int started, failed;
 static int64_t last_clock = -1;
 
+/* The run sites whose lifecycle the task applies: {managed, start output's presence word in
+ * the reply (-1: none), first of its Module-Tasks in site_modules, how many, first of its
+ * measuring ones, how many}; a site with run-time arguments is not managed (the supervisor
+ * binds them and applies its lifecycle). */
+static const int sites[][6] = ORC_AUTOMATON_SITES;
+static const int site_modules[] = ORC_AUTOMATON_SITE_MODULES;
+static int site_phase[ORC_AUTOMATON_N_SITES + 1];
+
 static int64_t int_word(const double *word)
 {
     int64_t value;
@@ -98,6 +106,53 @@ static void take_inputs(int64_t clock)
     }
 }
 
+static int wanted(int s, int phase, int m)
+{
+    int i, first = phase >= 3 ? sites[s][2] : sites[s][4];
+    int count = phase >= 3 ? sites[s][3] : phase == 2 ? sites[s][5] : 0;
+    for (i = first; i < first + count; i++) {
+        if (site_modules[i] == m) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The Robot-Tasks' lifecycle the reaction decided, as the mission layer applies it
+ * (MissionRun._update_sites): a start or restart loads fresh Module-Tasks and fresh ports,
+ * the Module-Tasks its new phase does not want are killed, those it wants activated, their
+ * first release shared at `release_ns`. */
+static void lifecycle(int64_t release_ns)
+{
+    int s, i;
+    for (s = 0; s < ORC_AUTOMATON_N_SITES; s++) {
+        int old = site_phase[s], phase = orc_automaton_phase(s), start = sites[s][1];
+        int restart = old > 0 && phase > 0 && start >= 0 && int_word(&reply[start]) != 0;
+        int starting = phase > 0 && (old == 0 || restart);
+        int first = sites[s][2], count = sites[s][3];
+        site_phase[s] = phase;
+        if (!sites[s][0]) {
+            continue;
+        }
+        for (i = first; i < first + count; i++) {
+            int m = site_modules[i];
+            if (orc_rt_active(m) && (restart || !wanted(s, phase, m))) {
+                orc_rt_kill(m);
+            }
+        }
+        for (i = first; starting && i < first + count; i++) {
+            orc_rt_fresh(site_modules[i]);
+            orc_rt_reset_ports(site_modules[i]);
+        }
+        for (i = first; i < first + count; i++) {
+            int m = site_modules[i];
+            if (wanted(s, phase, m) && !orc_rt_active(m)) {
+                orc_rt_activate(m, release_ns);
+            }
+        }
+    }
+}
+
 /* One reaction at `clock` [ns since t = 0]. */
 static void react(int64_t clock)
 {
@@ -118,8 +173,12 @@ static void react(int64_t clock)
         return;
     }
     last_clock = clock;
-    orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
     failed = int_word(&reply[0]) < 0;
+    if (!failed) {
+        int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
+        lifecycle(at > now ? at : now);
+    }
+    orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
 }
 
 void *orc_automaton_task(void *unused)
