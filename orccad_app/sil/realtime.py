@@ -47,8 +47,8 @@ from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
-from orccad_app.sil.automaton import (ControllerAutomaton, managed_sites, mission_automaton,
-                                     reaction_words)
+from orccad_app.sil.automaton import (ControllerAutomaton, c_adjustments, managed_sites,
+                                     mission_automaton, reaction_words)
 from orccad_app.sil.build import C_DIR
 from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
                                       Op)
@@ -158,6 +158,7 @@ class RealtimeRun(MissionRun):
         self._automaton = reactor
         self._table, self._controller, self._shared = table, controller, shared
         self._managed_sites = [site for site in plan.sites if site.number in managed_sites(plan)]
+        self._c_adjusts = {a.signal: a for a in c_adjustments(plan, table)}
         managed = frozenset(name for site in self._managed_sites for name in site.modules)
         self.sim = _ControllerSim(self.sim, controller, table, managed)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
@@ -187,7 +188,6 @@ class RealtimeRun(MissionRun):
         now = self.kernel.now
         if now == 0:
             self._shared.set_epoch(time.monotonic_ns())
-            self._controller.request(Op.EPOCH)
         self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = self.sim.plants
         shared = self._shared
@@ -202,6 +202,8 @@ class RealtimeRun(MissionRun):
                     plant.actuate(name, value)
             else:
                 shared.write_port(k, plant.sample(name))
+        if now == 0:  # the automaton task starts once the first sensors are there: the
+            self._controller.request(Op.EPOCH)  # Module-Tasks it activates read them
         self._apply_reactions()
         for m, name, ports in self._writes:  # each job's outputs, to the write listeners
             if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
@@ -254,7 +256,12 @@ class RealtimeRun(MissionRun):
             except OrccadError as error:
                 raise ReactionError(error.message, error.location, error.notes) from None
             self._retire_restarted(step.outputs)
-            self._apply(at_ns, inputs, step)
+            muted = self._mute_applied(step.outputs)
+            try:
+                self._apply(at_ns, inputs, step)
+            finally:
+                for proxy in muted:
+                    proxy.muted = False
             if self.reactor.finished:
                 break
 
@@ -270,6 +277,22 @@ class RealtimeRun(MissionRun):
                     compute = self.plan.tcs.module(name).compute
                     if isinstance(compute, RemoteModule):
                         compute.retire()
+
+    def _mute_applied(self, outputs: tuple[str, ...]) -> list[RemoteModule]:
+        """The proxies whose type-1 update of this reaction the automaton task applied itself
+        (muted while the mission layer records it)."""
+        muted = []
+        for name in outputs:
+            adjust = self._c_adjusts.get(name)
+            if adjust is None:
+                continue
+            site = self._running_site(self.plan.sites[adjust.site].task)
+            if site is not None and site.number == adjust.site:
+                proxy = self.plan.tcs.module(self._table.entries[adjust.module].name).compute
+                if isinstance(proxy, RemoteModule):
+                    proxy.muted = True
+                    muted.append(proxy)
+        return muted
 
     def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its

@@ -49,6 +49,9 @@ class RemoteModule:
         self._inputs = [(p.name, p.dim) for p in layout.inputs]
         self._outputs = [(p.name, p.type, p.dim) for p in layout.outputs]
         self._retired = False
+        self.muted = False
+        """Parameter writes stay with the shadow (the controller applies this update
+        itself)."""
         if not start:
             if layout.params != nominal.params:
                 raise ControllerFailure(f"module-task {index}: started by the controller with "
@@ -69,7 +72,7 @@ class RemoteModule:
         return self._shadow.params
 
     def _send_params(self, params: tuple[float, ...]) -> None:
-        if not self._retired:
+        if not (self._retired or self.muted):
             self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
 
     def init(self) -> None:

@@ -20,13 +20,38 @@ from tests.sil.helpers import MISSIONS, session_of
 from tests.sil.test_process import _controllers_of, _gone
 
 
+#: a plant server later than this behind the wall clock has been stalled by the machine (the
+#: arm's torques held that long): tracking cannot be judged on that run [s]
+STALL_S = 0.010
+ATTEMPTS = 3
+
+
+def on_a_real_time_machine(run):
+    """``run()``'s value (its first item the run's result) from the first of
+    :data:`ATTEMPTS` runs whose plant server the machine never stalled beyond
+    :data:`STALL_S`; skipped, with the stalls measured, when the machine stalled every one
+    (a loaded machine is not a real-time one: function is checked where time is kept)."""
+    stalls = []
+    for _ in range(ATTEMPTS):
+        got = run()
+        lateness = got[0].lateness_s or [0.0]
+        if max(lateness) <= STALL_S:
+            return got
+        stalls.append(max(lateness))
+    pytest.skip("the machine stalled the plant server behind the wall clock in every run ("
+                + ", ".join(f"{s * 1e3:.0f} ms" for s in stalls) + f" > {STALL_S * 1e3:g} ms): "
+                "real-time tracking cannot be judged here")
+
+
 def _realtime(file: str, mission: str | None = None, **options):
-    """The result and timings of a real-time SIL run of shipped ``file``, and its
-    controller runs."""
-    with ControllerRuns(SilMode.REALTIME, file) as runs:
-        result = session_of(file, mission, runs, **options).execute().result
-        timings = {t.name: t for t in runs.timings()}
-    return result, timings, runs
+    """The result and timings of a real-time SIL run of shipped ``file`` on a machine that
+    kept time (:func:`on_a_real_time_machine`), and its controller runs."""
+    def run():
+        with ControllerRuns(SilMode.REALTIME, file) as runs:
+            result = session_of(file, mission, runs, **options).execute().result
+            timings = {t.name: t for t in runs.timings()}
+        return result, timings, runs
+    return on_a_real_time_machine(run)
 
 
 def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
@@ -86,10 +111,14 @@ def test_blocking_protocols_run_on_the_real_time_threads(tmp_path):
 
     path = _arm_pid_with(tmp_path, "asyn/syn", "syn/syn")
     source = load(path)
-    with ControllerRuns(SilMode.REALTIME, path) as runs:
-        result = RunSession(source, select_mission(source, None),
-                            RunOptions(run_factory=runs)).execute().result
-        timings = {t.name: t for t in runs.timings()}
+
+    def run():
+        with ControllerRuns(SilMode.REALTIME, path) as runs:
+            result = RunSession(source, select_mission(source, None),
+                                RunOptions(run_factory=runs)).execute().result
+            return result, {t.name: t for t in runs.timings()}
+
+    result, timings = on_a_real_time_machine(run)
     assert result.status == "done", result.reason
     assert result.robot_tasks[0].errors.max_abs < 0.1
     traj, ctrl = timings["TrackPID.traj"], timings["TrackPID.ctrl"]
@@ -246,3 +275,33 @@ def test_a_start_with_run_time_arguments_is_bound_by_the_supervisor():
                                                      {"target": [15.0, 0.0, 5.0]})
     assert {Op.START, Op.PARAM, Op.ACTIVATE} <= set(ops)
     assert timings["GoTo.pilot"].released >= 10
+
+
+def test_a_constant_type_1_update_is_applied_by_the_automaton_task():
+    """arm_recovery's Saturated sets ctrl.kp to 200 (a constant): the automaton task writes it
+    into the law's parameters itself (no PARAM request from the plant server), the report
+    records 600 -> 200, and the arm then tracks as the executive's run with kp = 200 does
+    (the task error's RMS within 25 %)."""
+    from orccad_app.sil.controller import Op
+
+    from tests.sil.helpers import executive_report
+
+    ops: list[Op] = []
+    inject = (parse_injection("TrackPID.Saturated@1.8"),)
+
+    def run():
+        ops.clear()
+        with ControllerRuns(SilMode.REALTIME, "arm_recovery.orc") as runs:
+            session = session_of("arm_recovery.orc", runs=runs, injections=inject, until_s=2.6)
+            _spied(runs, ops)
+            return (session.execute().result,)
+
+    (result,) = on_a_real_time_machine(run)
+    assert Op.PARAM not in ops and Op.START not in ops
+    (update,) = [e.update for e in result.exceptions if e.name == "Saturated"]
+    assert (update.old, update.new) == (600.0, 200.0)
+    track = result.robot_tasks[1]
+    expected = executive_report("arm_recovery.orc", injections=inject, until_s=2.6)
+    rms = expected["robot_tasks"][1]["tracking_error"]["rms"]
+    got = track.errors.summary()["rms"]
+    assert track.name == "TrackPID" and abs(got - rms) <= 0.25 * rms, (got, rms)

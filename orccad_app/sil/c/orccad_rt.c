@@ -561,6 +561,12 @@ void orc_rt_activate(int m, int64_t release_ns)
     activate(m, release_ns);
 }
 
+void orc_rt_set_param(int m, int offset, double value)
+{
+    wait_compute(m);
+    (void)orc_mt_set_param(&ORC_INSTANCES[m], offset, &value, 1);
+}
+
 static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
 {
     orc_mt *mt;

@@ -29,6 +29,9 @@ void orc_rt_fresh(int m);
 void orc_rt_kill(int m);
 void orc_rt_reset_ports(int m);
 void orc_rt_activate(int m, int64_t release_ns);
+/* Parameter word `offset` of Module-Task m set to `value` (a type-1 update; waits for its
+ * compute). */
+void orc_rt_set_param(int m, int offset, double value);
 
 /* Start `body(arg)` on a thread under SCHED_FIFO at `priority` when permitted, else under
  * the default policy after one warning (*warned set); 0 or the error. */

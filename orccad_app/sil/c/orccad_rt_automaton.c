@@ -33,11 +33,16 @@ static int64_t last_clock = -1;
 
 /* The run sites whose lifecycle the task applies: {managed, start output's presence word in
  * the reply (-1: none), first of its Module-Tasks in site_modules, how many, first of its
- * measuring ones, how many}; a site with run-time arguments is not managed (the supervisor
- * binds them and applies its lifecycle). */
-static const int sites[][6] = ORC_AUTOMATON_SITES;
+ * measuring ones, how many, its Robot-Task's number}; a site with run-time arguments is not
+ * managed (the supervisor binds them and applies its lifecycle). */
+static const int sites[][7] = ORC_AUTOMATON_SITES;
 static const int site_modules[] = ORC_AUTOMATON_SITE_MODULES;
 static int site_phase[ORC_AUTOMATON_N_SITES + 1];
+/* The type-1 updates the task applies (constant values): {site, the ADJUST output's presence
+ * word in the reply, Module-Task, first of its parameter words, how many}. */
+static const int adjusts[][5] = ORC_AUTOMATON_ADJUSTS;
+static const int adjust_offsets[] = ORC_AUTOMATON_ADJUST_OFFSETS;
+static const double adjust_values[] = ORC_AUTOMATON_ADJUST_VALUES;
 
 static int64_t int_word(const double *word)
 {
@@ -118,6 +123,37 @@ static int wanted(int s, int phase, int m)
     return 0;
 }
 
+/* Site s is the first running site of its Robot-Task (the one a type-1 update applies to,
+ * as the mission layer finds it: the phases before the reaction's lifecycle). */
+static int first_running(int s)
+{
+    int other;
+    if (site_phase[s] == 0) {
+        return 0;
+    }
+    for (other = 0; other < s; other++) {
+        if (sites[other][6] == sites[s][6] && site_phase[other] > 0) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The constant type-1 updates the reaction emitted, written into their Module-Task's
+ * parameters (between two of its jobs). */
+static void adjust(void)
+{
+    int a, i;
+    for (a = 0; a < ORC_AUTOMATON_N_ADJUSTS; a++) {
+        if (int_word(&reply[adjusts[a][1]]) == 0 || !first_running(adjusts[a][0])) {
+            continue;
+        }
+        for (i = adjusts[a][3]; i < adjusts[a][3] + adjusts[a][4]; i++) {
+            orc_rt_set_param(adjusts[a][2], adjust_offsets[i], adjust_values[i]);
+        }
+    }
+}
+
 /* The Robot-Tasks' lifecycle the reaction decided, as the mission layer applies it
  * (MissionRun._update_sites): a start or restart loads fresh Module-Tasks and fresh ports,
  * the Module-Tasks its new phase does not want are killed, those it wants activated, their
@@ -176,6 +212,7 @@ static void react(int64_t clock)
     failed = int_word(&reply[0]) < 0;
     if (!failed) {
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
+        adjust();
         lifecycle(at > now ? at : now);
     }
     orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
