@@ -74,7 +74,7 @@ from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "MissionReactor", "Terminated", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
+__all__ = ["MissionRun", "MissionReactor", "Terminated", "check_run_budget", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
            "TERMINATED"]
 
 _CONTROL = EventClass.CONTROL
@@ -167,7 +167,7 @@ class MissionRun:
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
-        _check_run_budget(plan, until_ns)
+        check_run_budget(plan, until_ns)
         self.realtime = realtime
         self.tick_ns = tick_ns or plan.tick_ns
         self.reactor: MissionReactor = reactor if reactor is not None else Reactor(plan.automaton)
@@ -560,7 +560,9 @@ Module-Task released over the whole horizon, an upper bound): a 1 us period cost
 and 1.4 GB per simulated second, so the period's gcd alone is no budget."""
 
 
-def _check_run_budget(plan: MissionPlan, until_ns: int) -> None:
+def check_run_budget(plan: MissionPlan, until_ns: int) -> None:
+    """Refuse a run of ``plan`` up to ``until_ns`` that would cost more than
+    :data:`MAX_RUN_EVENTS` reactions and jobs (before any of it is built)."""
     reactions = until_ns // plan.tick_ns if plan.tick_ns else 0
     jobs = sum(until_ns // task.period_ns for task in plan.tcs.module_tasks
                if task.period_ns > 0)

@@ -27,7 +27,7 @@ from typing import Any
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.plan import MissionPlan
-from orccad_app.mission.run import MissionRun
+from orccad_app.mission.run import MissionRun, check_run_budget
 from orccad_app.session import RunOptions
 from orccad_app.codegen.generate import CProgram
 from orccad_app.reactive.automaton import Automaton
@@ -88,6 +88,8 @@ class ControllerRuns:
         """The run of ``plan``, its Module-Tasks in a controller started for it."""
         if self.run is not None:
             raise OrccadError("orccad sil: one controller runs one mission run")
+        if "until_ns" in options:  # the run's cost, refused before anything is built
+            check_run_budget(plan, options["until_ns"])
         program = mission_automaton(plan)  # the plan's automaton becomes the full one
         if self.mode is SilMode.REALTIME:
             from orccad_app.sil.realtime import RealtimeRun, realtime

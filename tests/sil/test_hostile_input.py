@@ -238,3 +238,14 @@ def test_ctrl_c_while_a_controller_starts_leaves_no_process(tmp_path):
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
     assert _processes_with(marker) == []
+
+
+def test_a_run_past_its_budget_is_refused_before_the_controller_is_built(orccad, tmp_path):
+    """The run's cost (reactions and jobs over --until) is checked before the controller's
+    C is generated and compiled: nothing lands in the build cache."""
+    cache = tmp_path / "cache"
+    done = orccad("sil", str(MISSIONS / "arm_pid.orc"), "--lockstep", "--until", "10000",
+                  "--timing", "TrackPID.ctrl.period_ms=0.001", cwd=tmp_path,
+                  env={"ORCCAD_CACHE_DIR": str(cache)})
+    assert done.returncode == 2 and "would cost up to" in done.stderr, done.stderr
+    assert not cache.exists() or not any(cache.rglob("orccad_controller*"))
