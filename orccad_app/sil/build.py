@@ -46,8 +46,8 @@ class BuildError(OrccadError):
 
 def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
     """The runtime library's C files for the controller whose ``main`` is in ``main``."""
-    ports = ([C_DIR / "orccad_port.c", C_DIR / "orccad_rt_automaton.c"] if main == "orccad_rt.c"
-             else [])
+    ports = ([C_DIR / "orccad_port.c", C_DIR / "orccad_rt_automaton.c",
+              C_DIR / "orccad_rt_main.c"] if main == "orccad_rt.c" else [])
     return [C_DIR / "orccad_mt.c", C_DIR / "orccad_dynamics.c", *ports, C_DIR / "orccad_wire.c",
             C_DIR / "orccad_automaton.c", C_DIR / main]
 

@@ -23,7 +23,7 @@
  * The mission's automaton is a task of its own (orccad_rt_automaton.c: it reacts at its
  * ticks and at the observers' events, and publishes each reaction through orc_io_reaction).
  * The plant server applies the Robot-Tasks' lifecycle the automaton decides over the socket
- * (file descriptor argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1
+ * (orccad_rt_main.c, file descriptor argv[2]): START (fresh Module-Task, nominal parameters), PARAM (a type-1
  * update), INIT, ACTIVATE (first release at a given instant), KILL, RESET (its ports' values
  * dropped), INPUT (an input for the automaton at an instant), EPOCH (t = 0: the automaton
  * starts), PING (the heartbeat) and QUIT, with the frames of orccad_lockstep.c. Commands, the
@@ -36,33 +36,22 @@
  * C99 + POSIX threads; no allocation after start, no recursion. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
-#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <time.h>
-#include <unistd.h>
 
-#include "orccad_automaton.h"
 #include "orccad_io.h"
 #include "orccad_mt.h"
 #include "orccad_port.h"
 #include "orccad_rt.h"
-#include "orccad_wire.h"
 
 #define MAX_MODULES ORC_RT_MAX_MODULES
 #define MAX_CONNECTIONS 256
-#define MAX_PROCESSORS 16
-#define MODULE_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
-#define MAX_DOUBLES (MODULE_DOUBLES > ORC_AUTOMATON_IN_WORDS ? MODULE_DOUBLES \
-                                                              : ORC_AUTOMATON_IN_WORDS)
-#define MAX_ANSWER (3 * MAX_MODULES + ORC_HELLO_DOUBLES > ORC_AUTOMATON_OUT_WORDS \
-                        ? 3 * MAX_MODULES + ORC_HELLO_DOUBLES : ORC_AUTOMATON_OUT_WORDS)
+#define MAX_PROCESSORS ORC_RT_MAX_PROCESSORS
 
 /* The state of one Module-Task in the runtime, and of its current job. */
 typedef struct {
@@ -91,7 +80,6 @@ static int writes[MAX_CONNECTIONS];              /* connections by producer, in 
 static int first_write[MAX_MODULES + 1];
 volatile int orc_rt_stopping;
 static int64_t epoch_ns;
-static double data_in[MAX_DOUBLES];
 
 static int64_t now_ns(void)
 {
@@ -567,97 +555,34 @@ void orc_rt_set_param(int m, int offset, double value)
     (void)orc_mt_set_param(&ORC_INSTANCES[m], offset, &value, 1);
 }
 
-static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
+uint32_t orc_rt_set_params(int m, int offset, const double *values, int n)
 {
-    orc_mt *mt;
-    uint32_t i;
-    *n = 0;
-    if (req->op == OP_HELLO) {
-        orc_automaton_reset();
-        orc_wire_hello(answer);
-        *n = ORC_HELLO_DOUBLES;
-        return 0;
-    }
-    if (req->op == OP_PING) { /* the heartbeat, with the jobs deadlocked if any */
-        *n = find_deadlock(answer);
-        return 0;
-    }
-    if (req->op == OP_INPUT) { /* inputs for the automaton task, at their instant */
-        return orc_automaton_input(data_in, req->n);
-    }
-    if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's): the
-                                * automaton task starts its ticks */
-        epoch_ns = orc_io_epoch_ns(epoch_ns);
-        orc_automaton_start();
-        return 0;
-    }
-    if (req->module >= (uint32_t)ORC_N_MODULES) {
-        return 1;
-    }
-    mt = &ORC_INSTANCES[req->module];
-    switch (req->op) {
-    case OP_START:
-        wait_compute((int)req->module);
-        orc_mt_load(mt, &ORC_MODULES[req->module]);
-        orc_mt_init(mt);
-        return 0;
-    case OP_PARAM:
-        wait_compute((int)req->module);
-        return orc_mt_set_param(mt, (int)req->offset, data_in, (int)req->n) ? 2 : 0;
-    case OP_INIT:
-        wait_compute((int)req->module);
-        orc_mt_init(mt);
-        return 0;
-    case OP_ACTIVATE: { /* every Module-Task in the data (or the request's one), their
-                         * first release shared, as in the executive (their jobs read before
-                         * any of them computes): at epoch + t_s, or now when that has passed
-                         * (the plant server behind the wall clock is not the threads' lateness) */
-        int64_t at = epoch_ns + (int64_t)(req->t_s * 1e9 + 0.5), now = now_ns();
-        for (i = 0; i < req->n; i++) {
-            if (!(data_in[i] >= 0 && data_in[i] < ORC_N_MODULES)) {
-                return 1;
-            }
-        }
-        if (req->n == 0) {
-            activate((int)req->module, at > now ? at : now);
-        }
-        for (i = 0; i < req->n; i++) {
-            activate((int)data_in[i], at > now ? at : now);
-        }
-        return 0;
-    }
-    case OP_KILL:
-        kill_task((int)req->module);
-        return 0;
-    case OP_RESET:
-        reset_ports((int)req->module);
-        return 0;
-    default:
-        return 4;
-    }
+    wait_compute(m);
+    return orc_mt_set_param(&ORC_INSTANCES[m], offset, values, n) ? 2 : 0;
 }
 
-int main(int argc, char **argv)
+void orc_rt_init(int m)
 {
-    pthread_t threads[MAX_PROCESSORS], automaton;
+    wait_compute(m);
+    orc_mt_init(&ORC_INSTANCES[m]);
+}
+
+uint32_t orc_rt_deadlock(double *cycle)
+{
+    return find_deadlock(cycle);
+}
+
+void orc_rt_take_epoch(void)
+{
+    epoch_ns = orc_io_epoch_ns(epoch_ns);
+}
+
+int orc_rt_setup(void)
+{
     pthread_condattr_t condattr;
-    int fd, p, warned = 0, status = 0;
-    orc_request req;
-    static double answer[MAX_ANSWER];
-    if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
-        fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
-                argv[0]);
-        return 2;
-    }
     if (ORC_N_MODULES > MAX_MODULES || ORC_N_CONNECTIONS > MAX_CONNECTIONS
         || ORC_N_PROCESSORS > MAX_PROCESSORS) {
-        fprintf(stderr, "orccad_rt: the table exceeds the runtime's sizes\n");
-        return 2;
-    }
-    fd = atoi(argv[2]);
-    if (orc_io_open(argv[4]) != 0) {
-        fprintf(stderr, "orccad_rt: the robot's I/O cannot start (%s)\n", argv[4]);
-        return 2;
+        return -1;
     }
     epoch_ns = now_ns();
     index_wiring();
@@ -665,49 +590,18 @@ int main(int argc, char **argv)
     pthread_condattr_setclock(&condattr, CLOCK_MONOTONIC);
     pthread_cond_init(&orc_rt_changed, &condattr);
     pthread_condattr_destroy(&condattr);
-    for (p = 0; p < ORC_N_PROCESSORS; p++) {
-        if (start_processor(&threads[p], p, &warned) != 0) {
-            fprintf(stderr, "orccad_rt: cannot start the thread of processor %d\n", p);
-            return 2;
-        }
-    }
-    /* the mission's automaton task: above every processor thread (its reactions start and
-     * stop their Module-Tasks, its observers' events are the most urgent) */
-    if (orc_rt_start_thread(&automaton, orc_automaton_task, NULL, 80, &warned) != 0) {
-        fprintf(stderr, "orccad_rt: cannot start the automaton task\n");
-        return 2;
-    }
-    if (!warned) { /* the commands' thread: above the plant server, below the processors */
-        struct sched_param command_param;
-        command_param.sched_priority = 70;
-        (void)pthread_setschedparam(pthread_self(), SCHED_FIFO, &command_param);
-    }
-    for (;;) {
-        uint32_t n, code;
-        if (orc_wire_read(fd, &req, sizeof req) != 0 || req.n > MAX_DOUBLES
-            || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {
-            break; /* the plant server is gone */
-        }
-        if (req.op == OP_QUIT) {
-            orc_wire_reply(fd, 0, 0, NULL);
-            break;
-        }
-        pthread_mutex_lock(&orc_rt_lock);
-        code = command(&req, answer, &n);
-        pthread_cond_broadcast(&orc_rt_changed);
-        pthread_mutex_unlock(&orc_rt_lock);
-        if (orc_wire_reply(fd, code, n, answer) != 0) {
-            status = 3;
-            break;
-        }
-    }
+    return 0;
+}
+
+int orc_rt_start_processor(pthread_t *thread, int processor, int *warned)
+{
+    return start_processor(thread, processor, warned);
+}
+
+void orc_rt_stop(void)
+{
     pthread_mutex_lock(&orc_rt_lock);
     orc_rt_stopping = 1;
     pthread_cond_broadcast(&orc_rt_changed);
     pthread_mutex_unlock(&orc_rt_lock);
-    for (p = 0; p < ORC_N_PROCESSORS; p++) {
-        pthread_join(threads[p], NULL);
-    }
-    pthread_join(automaton, NULL);
-    return status;
 }

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #define ORC_RT_MAX_MODULES 64
+#define ORC_RT_MAX_PROCESSORS 16
 
 /* The runtime's one lock, and its condition variable (CLOCK_MONOTONIC): broadcast when a
  * port, an interrupt, an observer's event or a command changed. */
@@ -32,6 +33,18 @@ void orc_rt_activate(int m, int64_t release_ns);
 /* Parameter word `offset` of Module-Task m set to `value` (a type-1 update; waits for its
  * compute). */
 void orc_rt_set_param(int m, int offset, double value);
+
+/* The commands (orccad_rt_main.c): a parameter write (0, or 2 when refused); INIT; the
+ * jobs deadlocked, as [module, connection, reading] triples into `cycle` (the number of
+ * doubles, 0: none); the I/O side's t = 0 taken; the runtime set up (-1: the table exceeds
+ * its sizes); a processor's thread started; every thread told to stop. */
+uint32_t orc_rt_set_params(int m, int offset, const double *values, int n);
+void orc_rt_init(int m);
+uint32_t orc_rt_deadlock(double *cycle);
+void orc_rt_take_epoch(void);
+int orc_rt_setup(void);
+int orc_rt_start_processor(pthread_t *thread, int processor, int *warned);
+void orc_rt_stop(void);
 
 /* Start `body(arg)` on a thread under SCHED_FIFO at `priority` when permitted, else under
  * the default policy after one warning (*warned set); 0 or the error. */

@@ -1,0 +1,153 @@
+/* orccad_rt_main.c: the real-time controller's commands thread (its main): the socket to the
+ * supervisor (file descriptor after --fd; the frames of orccad_wire.h), the robot's I/O opened
+ * (--io), the processor threads and the automaton task started, every request applied under
+ * the runtime's lock (orccad_rt.h), and the threads stopped and joined when the supervisor
+ * quits or is gone. C99 + POSIX threads; no allocation. */
+#define _POSIX_C_SOURCE 200809L
+#include <pthread.h>
+#include <sched.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "orccad_automaton.h"
+#include "orccad_io.h"
+#include "orccad_mt.h"
+#include "orccad_rt.h"
+#include "orccad_wire.h"
+
+#define MODULE_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
+#define MAX_DOUBLES (MODULE_DOUBLES > ORC_AUTOMATON_IN_WORDS ? MODULE_DOUBLES \
+                                                              : ORC_AUTOMATON_IN_WORDS)
+#define MAX_ANSWER (3 * ORC_RT_MAX_MODULES + ORC_HELLO_DOUBLES)
+
+static double data_in[MAX_DOUBLES];
+
+static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
+{
+    uint32_t i;
+    *n = 0;
+    if (req->op == OP_HELLO) {
+        orc_automaton_reset();
+        orc_wire_hello(answer);
+        *n = ORC_HELLO_DOUBLES;
+        return 0;
+    }
+    if (req->op == OP_PING) { /* the heartbeat, with the jobs deadlocked if any */
+        *n = orc_rt_deadlock(answer);
+        return 0;
+    }
+    if (req->op == OP_INPUT) { /* inputs for the automaton task, at their instant */
+        return orc_automaton_input(data_in, req->n);
+    }
+    if (req->op == OP_EPOCH) { /* the I/O side's t = 0 (SIL: the plant server's): the
+                                * automaton task starts its ticks */
+        orc_rt_take_epoch();
+        orc_automaton_start();
+        return 0;
+    }
+    if (req->module >= (uint32_t)ORC_N_MODULES) {
+        return 1;
+    }
+    switch (req->op) {
+    case OP_START:
+        orc_rt_fresh((int)req->module);
+        return 0;
+    case OP_PARAM:
+        return orc_rt_set_params((int)req->module, (int)req->offset, data_in, (int)req->n);
+    case OP_INIT:
+        orc_rt_init((int)req->module);
+        return 0;
+    case OP_ACTIVATE: { /* every Module-Task in the data (or the request's one), their
+                         * first release shared, as in the executive (their jobs read before
+                         * any of them computes): at epoch + t_s, or now when that has passed
+                         * (the plant server behind the wall clock is not the threads' lateness) */
+        int64_t at = orc_rt_epoch_ns() + (int64_t)(req->t_s * 1e9 + 0.5), now = orc_rt_now_ns();
+        for (i = 0; i < req->n; i++) {
+            if (!(data_in[i] >= 0 && data_in[i] < ORC_N_MODULES)) {
+                return 1;
+            }
+        }
+        if (req->n == 0) {
+            orc_rt_activate((int)req->module, at > now ? at : now);
+        }
+        for (i = 0; i < req->n; i++) {
+            orc_rt_activate((int)data_in[i], at > now ? at : now);
+        }
+        return 0;
+    }
+    case OP_KILL:
+        orc_rt_kill((int)req->module);
+        return 0;
+    case OP_RESET:
+        orc_rt_reset_ports((int)req->module);
+        return 0;
+    default:
+        return 4;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    pthread_t threads[ORC_RT_MAX_PROCESSORS], automaton;
+    int fd, p, warned = 0, status = 0;
+    orc_request req;
+    static double answer[MAX_ANSWER];
+    if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
+        fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
+                argv[0]);
+        return 2;
+    }
+    fd = atoi(argv[2]);
+    if (orc_io_open(argv[4]) != 0) {
+        fprintf(stderr, "orccad_rt: the robot's I/O cannot start (%s)\n", argv[4]);
+        return 2;
+    }
+    if (orc_rt_setup() != 0) {
+        fprintf(stderr, "orccad_rt: the table exceeds the runtime's sizes\n");
+        return 2;
+    }
+    for (p = 0; p < ORC_N_PROCESSORS; p++) {
+        if (orc_rt_start_processor(&threads[p], p, &warned) != 0) {
+            fprintf(stderr, "orccad_rt: cannot start the thread of processor %d\n", p);
+            return 2;
+        }
+    }
+    /* the mission's automaton task: above every processor thread (its reactions start and
+     * stop their Module-Tasks, its observers' events are the most urgent) */
+    if (orc_rt_start_thread(&automaton, orc_automaton_task, NULL, 80, &warned) != 0) {
+        fprintf(stderr, "orccad_rt: cannot start the automaton task\n");
+        return 2;
+    }
+    if (!warned) { /* the commands' thread: above the plant server, below the processors */
+        struct sched_param command_param;
+        command_param.sched_priority = 70;
+        (void)pthread_setschedparam(pthread_self(), SCHED_FIFO, &command_param);
+    }
+    for (;;) {
+        uint32_t n, code;
+        if (orc_wire_read(fd, &req, sizeof req) != 0 || req.n > MAX_DOUBLES
+            || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {
+            break; /* the plant server is gone */
+        }
+        if (req.op == OP_QUIT) {
+            orc_wire_reply(fd, 0, 0, NULL);
+            break;
+        }
+        pthread_mutex_lock(&orc_rt_lock);
+        code = command(&req, answer, &n);
+        pthread_cond_broadcast(&orc_rt_changed);
+        pthread_mutex_unlock(&orc_rt_lock);
+        if (orc_wire_reply(fd, code, n, answer) != 0) {
+            status = 3;
+            break;
+        }
+    }
+    orc_rt_stop();
+    for (p = 0; p < ORC_N_PROCESSORS; p++) {
+        pthread_join(threads[p], NULL);
+    }
+    pthread_join(automaton, NULL);
+    return status;
+}
