@@ -27,6 +27,8 @@ SPLIT = frozenset({
     "tests/verify/test_spin.py::test_spin_agrees",
     "tests/verify/test_check_cli.py::test_check_proves_the_missions",
     "tests/sil/test_lockstep.py::test_lockstep_ends_as_the_executive",
+    "tests/sil/test_automaton.py::"
+    "test_the_c_automaton_reacts_as_the_python_reactor_reaction_by_reaction",
 })
 
 _DOC_PAGE = re.compile(r"\[([^:\]]+\.md):")

@@ -269,10 +269,10 @@ class RealtimeRun(MissionRun):
         """The sites the automaton task restarted in this reaction have fresh Module-Tasks in
         the controller already: their previous proxies write no parameter any more (a type-1
         update of the previous run, applied in the same reaction, is dropped with it)."""
-        phases = self._phases()
-        for site in self._managed_sites:
-            if site.start_signal in outputs and self._phase.get(site.number, 0) > 0 \
-                    and phases.get(site.number, 0) > 0:
+        starting = [site for site in self._managed_sites if site.start_signal in outputs]
+        phases = self._phases() if starting else {}
+        for site in starting:
+            if self._phase.get(site.number, 0) > 0 and phases.get(site.number, 0) > 0:
                 for name in site.modules:
                     compute = self.plan.tcs.module(name).compute
                     if isinstance(compute, RemoteModule):

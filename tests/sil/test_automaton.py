@@ -53,24 +53,26 @@ def twin(monkeypatch):
     return _Twin
 
 
-@pytest.mark.parametrize("file,mission,inject", [
-    ("arm_recovery.orc", None, "TrackPID.TrackingLost@2.5"),
-    ("arm_interrupts.orc", "ArmInterrupts", None),
-    ("arm_interrupts.orc", "ArmInterruptsTight", None),
-    ("arm_retune.orc", None, None),
-    ("auv_waypoints.orc", None, "Waypoint([15, 0, 5])@0.5"),  # a valued input, run-time args
+@pytest.mark.parametrize("file,mission,inject,until_s", [
+    ("arm_recovery.orc", None, "TrackPID.TrackingLost@2.5", None),
+    ("arm_interrupts.orc", "ArmInterrupts", None, None),
+    ("arm_interrupts.orc", "ArmInterruptsTight", None, None),
+    ("arm_retune.orc", None, None, None),
+    ("auv_waypoints.orc", None, "Waypoint([15, 0, 5])@0.5", 60.0),  # valued, run-time args
 ])
 def test_the_c_automaton_reacts_as_the_python_reactor_reaction_by_reaction(twin, file, mission,
-                                                                          inject):
+                                                                          inject, until_s):
     injections = (parse_injection(inject),) if inject else ()
+    options = {"until_s": until_s} if until_s else {}
     with ControllerRuns(SilMode.LOCKSTEP, str(MISSIONS / file)) as runs:
-        got = report(session_of(file, mission, runs, injections=injections).execute())
+        got = report(session_of(file, mission, runs, injections=injections,
+                                **options).execute())
         assert isinstance(runs.automaton, _Twin) and runs.run is not None
         assert runs.run.reactor is runs.automaton
     reactions = twin.compared
     assert len(reactions) > 50  # every tick and every event, not a handful
     assert sum(1 for _, outputs in reactions if outputs) >= 2  # starts, ends, exceptions
-    assert got == executive_report(file, mission, injections=injections)
+    assert got == executive_report(file, mission, injections=injections, **options)
 
 
 def test_the_run_steps_the_controllers_automaton():
