@@ -51,7 +51,7 @@ mission's callbacks (:class:`~orccad_app.mission.observer.MissionObserver`) get 
 from __future__ import annotations
 
 import time
-from typing import Any, Iterable, Protocol
+from typing import Any, Iterable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
@@ -64,6 +64,7 @@ from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.lang.ast_robottask import ExceptionType
 from orccad_app.mission.injection import Injection, typed_injection
+from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.result import (ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult,
@@ -74,7 +75,8 @@ from orccad_app.robottask.binding import ArgumentError, plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind
 
-__all__ = ["MissionRun", "MissionReactor", "Terminated", "check_run_budget", "DEFAULT_UNTIL_NS", "run_horizon_s", "INTERRUPTED",
+__all__ = ["MissionRun", "MissionReactor", "Terminated", "check_run_budget", "DEFAULT_UNTIL_NS",
+           "run_horizon_s", "INTERRUPTED",
            "TERMINATED"]
 
 _CONTROL = EventClass.CONTROL
@@ -97,30 +99,6 @@ class ReactionError(OrccadError):
 
 _RUN_FAILURES = (DeadlockError, PlantDivergenceError, ComputeError, UpdateError)
 _LOCATED_FAILURES = (ArgumentError, ReactionError)
-
-
-class MissionReactor(Protocol):
-    """What a run steps: :class:`~orccad_app.reactive.runtime.Reactor` (the Python runtime),
-    or another runtime of the plan's automaton with its interface (the controller's C
-    automaton in ``orccad sil``)."""
-
-    state: int
-    status: str
-    reason: str | None
-
-    def step(self, inputs: Any = frozenset(), clock_ns: int | None = None) -> Any:
-        """One instant: the step (``outputs``, ``valued``, ``status``, ``target``)."""
-
-    def values(self, step: Any) -> dict[str, Any]:
-        """The values of ``step``'s valued outputs."""
-
-    @property
-    def finished(self) -> bool:
-        """The program has terminated."""
-
-    @property
-    def labels(self) -> frozenset:
-        """The labels of the current state."""
 
 
 class _Link(Observer):
