@@ -373,11 +373,6 @@ class ControllerAutomaton:
         reply = self._controller.request_words(Op.REACT, _WORD.pack(clock) + bytes(body))
         return self._reacted(reply)
 
-    @property
-    def request_words(self) -> int:
-        """The words of one reaction's request (the clock, then every input's)."""
-        return self._request_words
-
     def input_words(self, name: str, value: Any, at_ns: int) -> bytes:
         """The ``OP_INPUT`` data raising input ``name`` (with ``value``) at ``at_ns``: the
         instant, then the inputs' words of a reaction."""

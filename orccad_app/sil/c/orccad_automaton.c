@@ -41,18 +41,6 @@ static int value_words(const orccad_signal_info *info)
     }
 }
 
-static int64_t int_word(const double *word)
-{
-    int64_t value;
-    memcpy(&value, word, sizeof value);
-    return value;
-}
-
-static void put_int(double *word, int64_t value)
-{
-    memcpy(word, &value, sizeof value);
-}
-
 /* The words of one value into the struct at `at` (its kind's C type). */
 static void decode(const orccad_signal_info *info, char *at, const double *word)
 {
@@ -66,12 +54,12 @@ static void decode(const orccad_signal_info *info, char *at, const double *word)
         memcpy(at, word, (size_t)value_words(info) * sizeof(double));
         break;
     case ORCCAD_BOOL: {
-        bool value = int_word(word) != 0;
+        bool value = orc_word_int(word) != 0;
         memcpy(at, &value, sizeof value);
         break;
     }
     case ORCCAD_STRING: {
-        int value = (int)int_word(word);
+        int value = (int)orc_word_int(word);
         memcpy(at, &value, sizeof value);
         break;
     }
@@ -95,13 +83,13 @@ static void encode(const orccad_signal_info *info, const char *at, double *word)
     case ORCCAD_BOOL: {
         bool value;
         memcpy(&value, at, sizeof value);
-        put_int(word, value ? 1 : 0);
+        orc_word_set_int(word, value ? 1 : 0);
         break;
     }
     case ORCCAD_STRING: {
         int value;
         memcpy(&value, at, sizeof value);
-        put_int(word, value);
+        orc_word_set_int(word, value);
         break;
     }
     default:
@@ -121,23 +109,23 @@ int orc_automaton_react(const double *request, uint32_t n, double *reply, uint32
     }
     for (i = 0; i < ORC_A_UP(INPUT_COUNT); i++) {
         const orccad_signal_info *info = &ORC_A(inputs)[i];
-        bool present = int_word(&request[at]) != 0;
+        bool present = orc_word_int(&request[at]) != 0;
         memcpy(in + info->present_offset, &present, sizeof present);
         if (present && info->kind != ORCCAD_PURE) {
             decode(info, in + info->value_offset, &request[at + 1]);
         }
         at += 1 + (uint32_t)value_words(info);
     }
-    status = ORC_A(step)(&memory, int_word(&request[0]), &inputs.s, &outputs.s);
+    status = ORC_A(step)(&memory, orc_word_int(&request[0]), &inputs.s, &outputs.s);
     for (i = 0; i < ORC_A_UP(OUTPUT_COUNT); i++) {
         const orccad_signal_info *info = &ORC_A(outputs)[i];
         bool present = false;
         if (status >= 0) {
             memcpy(&present, out + info->present_offset, sizeof present);
         }
-        put_int(&reply[put], present ? 1 : 0);
+        orc_word_set_int(&reply[put], present ? 1 : 0);
         for (w = 0; w < value_words(info); w++) {
-            put_int(&reply[put + 1 + w], 0);
+            orc_word_set_int(&reply[put + 1 + w], 0);
         }
         if (present) {
             emitted += 1;
@@ -147,11 +135,11 @@ int orc_automaton_react(const double *request, uint32_t n, double *reply, uint32
         }
         put += 1 + (uint32_t)value_words(info);
     }
-    put_int(&reply[0], status);
-    put_int(&reply[1], status >= 0 ? outputs.s.status : status);
-    put_int(&reply[2], memory.state);
-    put_int(&reply[3], memory.reason);
-    put_int(&reply[4], emitted);
+    orc_word_set_int(&reply[0], status);
+    orc_word_set_int(&reply[1], status >= 0 ? outputs.s.status : status);
+    orc_word_set_int(&reply[2], memory.state);
+    orc_word_set_int(&reply[3], memory.reason);
+    orc_word_set_int(&reply[4], emitted);
     *n_reply = put;
     return 0;
 }

@@ -17,10 +17,24 @@
 #define ORCCAD_AUTOMATON_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "orccad_automaton_binding.h"
 
 #define ORC_REACT_HEAD_WORDS 5
+
+/* An int64 word of a reaction (its bits in the 8-byte slot), read and written. */
+static inline int64_t orc_word_int(const double *word)
+{
+    int64_t value;
+    memcpy(&value, word, sizeof value);
+    return value;
+}
+
+static inline void orc_word_set_int(double *word, int64_t value)
+{
+    memcpy(word, &value, sizeof value);
+}
 
 /* Start (or restart) the mission: the automaton's initial state. */
 void orc_automaton_reset(void);

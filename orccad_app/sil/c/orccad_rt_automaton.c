@@ -44,18 +44,6 @@ static const int adjusts[][5] = ORC_AUTOMATON_ADJUSTS;
 static const int adjust_offsets[] = ORC_AUTOMATON_ADJUST_OFFSETS;
 static const double adjust_values[] = ORC_AUTOMATON_ADJUST_VALUES;
 
-static int64_t int_word(const double *word)
-{
-    int64_t value;
-    memcpy(&value, word, sizeof value);
-    return value;
-}
-
-static void set_int(double *word, int64_t value)
-{
-    memcpy(word, &value, sizeof value);
-}
-
 void orc_automaton_start(void)
 {
     started = 1;
@@ -89,18 +77,18 @@ static int event_pending(void)
 static void take_inputs(int64_t clock)
 {
     int q = 0, i;
-    for (; q < n_queued && int_word(&queued[q][0]) <= clock; q++) {
+    for (; q < n_queued && orc_word_int(&queued[q][0]) <= clock; q++) {
         int meets = 0;
         for (i = 0; i < ORC_AUTOMATON_N_INPUTS; i++) {
             int at = input_slots[i][0];
-            meets |= int_word(&queued[q][at]) != 0 && int_word(&request[at]) != 0;
+            meets |= orc_word_int(&queued[q][at]) != 0 && orc_word_int(&request[at]) != 0;
         }
         if (meets) {
             break;
         }
         for (i = 0; i < ORC_AUTOMATON_N_INPUTS; i++) {
             int at = input_slots[i][0];
-            if (int_word(&queued[q][at]) != 0) {
+            if (orc_word_int(&queued[q][at]) != 0) {
                 memcpy(&request[at], &queued[q][at], (size_t)(1 + input_slots[i][1]) * sizeof(double));
             }
         }
@@ -145,7 +133,7 @@ static void adjust(void)
 {
     int a, i;
     for (a = 0; a < ORC_AUTOMATON_N_ADJUSTS; a++) {
-        if (int_word(&reply[adjusts[a][1]]) == 0 || !first_running(adjusts[a][0])) {
+        if (orc_word_int(&reply[adjusts[a][1]]) == 0 || !first_running(adjusts[a][0])) {
             continue;
         }
         for (i = adjusts[a][3]; i < adjusts[a][3] + adjusts[a][4]; i++) {
@@ -163,7 +151,7 @@ static void lifecycle(int64_t release_ns)
     int s, i;
     for (s = 0; s < ORC_AUTOMATON_N_SITES; s++) {
         int old = site_phase[s], phase = orc_automaton_phase(s), start = sites[s][1];
-        int restart = old > 0 && phase > 0 && start >= 0 && int_word(&reply[start]) != 0;
+        int restart = old > 0 && phase > 0 && start >= 0 && orc_word_int(&reply[start]) != 0;
         int starting = phase > 0 && (old == 0 || restart);
         int first = sites[s][2], count = sites[s][3];
         site_phase[s] = phase;
@@ -195,12 +183,12 @@ static void react(int64_t clock)
     int i;
     uint32_t n = 0;
     memset(request, 0, sizeof request);
-    set_int(&request[0], clock);
+    orc_word_set_int(&request[0], clock);
     for (i = 0; i < ORC_AUTOMATON_N_EVENTS; i++) {
         int64_t events = orc_rt_events(event_inputs[i][0]);
         if (events > consumed[i]) {
             consumed[i] = events;
-            set_int(&request[event_inputs[i][1]], 1);
+            orc_word_set_int(&request[event_inputs[i][1]], 1);
         }
     }
     take_inputs(clock);
@@ -209,7 +197,7 @@ static void react(int64_t clock)
         return;
     }
     last_clock = clock;
-    failed = int_word(&reply[0]) < 0;
+    failed = orc_word_int(&reply[0]) < 0;
     if (!failed) {
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
         adjust();
@@ -233,7 +221,7 @@ void *orc_automaton_task(void *unused)
                 tick += 1;
             }
             if (!failed && (event_pending()
-                            || (n_queued > 0 && int_word(&queued[0][0]) <= since))) {
+                            || (n_queued > 0 && orc_word_int(&queued[0][0]) <= since))) {
                 react(since > last_clock ? since : last_clock); /* an event's instant */
             }
             next = epoch + tick * ORC_AUTOMATON_TICK_NS;
