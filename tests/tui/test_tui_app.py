@@ -119,7 +119,9 @@ async def test_an_arm_run_goes_live_to_its_report_and_exports_its_trace(tmp_path
 
 @pilot_test
 async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_recovers():
-    app = OrccadApp([], selected="missions/arm_recovery.orc", speed=2.0, run_now=True)
+    # half speed: TrackPID's 4 s last 8 s of wall time, so a screen lagging behind the run on
+    # a loaded machine still shows TrackPID running when the key is pressed
+    app = OrccadApp([], selected="missions/arm_recovery.orc", speed=0.5, run_now=True)
     requested = []
     async with app.run_test(size=SIZE, message_hook=lambda m: isinstance(
             m, InputRequested) and requested.append(m)) as pilot:
@@ -144,7 +146,7 @@ async def test_a_key_raises_a_declared_input_during_the_run_and_the_mission_reco
 @pilot_test
 async def test_keys_after_the_declared_inputs_raise_observer_events():
     # missions/arm_pid.orc declares no input: keys 1-3 raise TrackPID's observer events
-    app = OrccadApp([], selected="missions/arm_pid.orc", speed=1.0, run_now=True)
+    app = OrccadApp([], selected="missions/arm_pid.orc", speed=0.5, run_now=True)
     async with app.run_test(size=SIZE) as pilot:
         await pilot.pause()
         run = app.screen
