@@ -193,4 +193,10 @@ def _run(args: argparse.Namespace) -> int:
     if timings is not None:
         controller["timing"] = [_timing_dict(t) for t in timings]
         lines += _timing_lines(timings)
+        lost = runs.job_records_lost()
+        if args.trace is not None:
+            controller["job_records_lost"] = lost
+        if lost:
+            lines.append(f"Trace: {lost} job records lost (the plant server fell behind the "
+                         "controller's ring of job records)")
     return render(args, report, {"controller": controller}, tuple(lines))

@@ -14,7 +14,8 @@ from orccad_app.robottask.labels import Phase
 
 __all__ = ["MISSION_HOOKS", "MissionObserver"]
 
-MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception", "on_state")
+MISSION_HOOKS = ("on_reaction", "on_task_start", "on_task_end", "on_exception", "on_state",
+                 "on_warning")
 """Mission-level callbacks an observer may define besides the executive's."""
 
 
@@ -40,3 +41,7 @@ class MissionObserver(Observer):
     def on_state(self, t_ns: int, state: int, phases: dict[int, Phase]) -> None:
         """The automaton entered ``state`` at ``t_ns`` (after the reaction's task starts and
         ends); ``phases`` maps the run site of every running Robot-Task to its phase."""
+
+    def on_warning(self, t_ns: int, source: str, message: str) -> None:
+        """The run warns about itself at ``t_ns``: something its records miss (``source``:
+        who says it, e.g. ``sil``); a trace's log shows it."""

@@ -53,9 +53,11 @@ from orccad_app.sil.build import C_DIR
 from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
                                       Op)
 from orccad_app.sil.emit import ModuleTable
+from orccad_app.sil.job_trace import JobTrace
 from orccad_app.sil.lockstep import RemoteSite, controller_for
 from orccad_app.sil.remote import RemoteModule
-from orccad_app.sil.shared import REACTION_RING, ReactionsLost, SharedMemory
+from orccad_app.sil.shared import (JOB_RING, REACTION_RING, JobRecords, ReactionsLost,
+                                   SharedMemory)
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
 
@@ -174,6 +176,7 @@ class RealtimeRun(MissionRun):
                           if port.type != "event"])
                         for m, entry in enumerate(table.entries)]
         self._next_ping = 0
+        self._jobs = JobTrace(self.sim.hooks, table)
         # before the instant's reactions: at t = 0 the epoch and the first sensors are there
         # before the automaton activates anything (a trajectory's clock then starts with the
         # plant's), and at every exchange the events are read before the instant's tick
@@ -188,6 +191,7 @@ class RealtimeRun(MissionRun):
         now = self.kernel.now
         if now == 0:
             self._shared.set_epoch(time.monotonic_ns())
+            self._shared.want_jobs(self._jobs.wanted)  # before the first release
         self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = self.sim.plants
         shared = self._shared
@@ -205,6 +209,7 @@ class RealtimeRun(MissionRun):
         if now == 0:  # the automaton task starts once the first sensors are there: the
             self._controller.request(Op.EPOCH)  # Module-Tasks it activates read them
         self._apply_reactions()
+        self._hand_jobs(shared.jobs())
         for m, name, ports in self._writes:  # each job's outputs, to the write listeners
             if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
                 continue
@@ -322,9 +327,32 @@ class RealtimeRun(MissionRun):
         gc.disable()  # server is a plant falling behind the wall clock
         try:
             with _fifo(_PLANT_FIFO_PRIORITY):
-                return super().run()
+                result = super().run()
         finally:
             gc.enable()
+        self._end_jobs()
+        return result
+
+    def _end_jobs(self) -> None:
+        """The job records up to the run's end handed on (the controller records no more)."""
+        self._shared.want_jobs(False)
+        self._hand_jobs(self._shared.jobs(), end_ns=self.kernel.now)
+
+    def _hand_jobs(self, batch: JobRecords, end_ns: int | None = None) -> None:
+        """The controller's job records to the observers (:class:`JobTrace`); a warning to
+        them when the ring was overrun (the records lost are counted, the run goes on)."""
+        if batch.lost:
+            message = (f"{batch.lost} job records lost from the trace: the plant server fell "
+                       f"more than {JOB_RING} records behind the controller")
+            for hook in self._hooks["on_warning"]:
+                hook(self.kernel.now, "sil", message)
+        self._jobs.hand(batch, end_ns)
+
+    @property
+    def job_records_lost(self) -> int:
+        """Job records the controller overwrote in the shared memory's ring before the
+        plant server could hand them to the trace (0 unless it fell far behind)."""
+        return self._jobs.lost
 
     def timings(self) -> list[ModuleTiming]:
         """What was measured per Module-Task (read once the run has ended), the runtime

@@ -124,6 +124,13 @@ class ControllerRuns:
 
         return self.run.timings() if isinstance(self.run, RealtimeRun) else None
 
+    def job_records_lost(self) -> int:
+        """The real-time run's job records lost from its trace (0 in lockstep, where the
+        executive traces the jobs itself)."""
+        from orccad_app.sil.realtime import RealtimeRun
+
+        return self.run.job_records_lost if isinstance(self.run, RealtimeRun) else 0
+
     def close(self) -> None:
         """End and reap the controller (and remove its shared memory)."""
         self._stack.close()

@@ -12,7 +12,10 @@ server and by the controller (``orccad_app/sil/c/orccad_rt.c`` holds the same la
   response max [ns] (double), unused]`` then its output slots ``[present, v0 … v7]``;
 - per Module-Task, a ring of its last release latenesses [ns] (doubles);
 - a ring of the automaton task's last :data:`REACTION_RING` reactions, each the words of its
-  request then of its reply (``orccad_automaton.h``); header word 2 counts those published.
+  request then of its reply (``orccad_automaton.h``); header word 2 counts those published;
+- a ring of the Module-Tasks' last :data:`JOB_RING` job records (:class:`JobRecord`, 8 words
+  each), written only while header word 3 is 1 (:meth:`SharedMemory.want_jobs`: a trace
+  observes the run); header word 4 counts those published.
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ import numpy as np
 
 from orccad_app.sil.layout import MAX_DIM, MAX_PORTS
 
-__all__ = ["SharedMemory", "Mirror", "LATENESS_RING", "REACTION_RING", "ReactionsLost"]
+__all__ = ["SharedMemory", "Mirror", "JobRecord", "JobRecords", "LATENESS_RING", "REACTION_RING",
+           "JOB_RING", "ReactionsLost"]
 
 HEADER_WORDS = 8
 ROBOT_WORDS = 1 + MAX_DIM
@@ -34,10 +38,49 @@ MODULE_HEAD = 8
 MODULE_WORDS = MODULE_HEAD + MAX_PORTS * (1 + MAX_DIM)
 LATENESS_RING = 16384
 REACTION_RING = 4096
+JOB_RING = 16384
+"""Job records the ring holds: 16 s of the arm's 1 kHz jobs (about 1000 a second), far
+beyond a plant server's stall; 1 MiB of shared memory, touched only by a traced run."""
+JOB_WORDS = 8
+_OVERRUN, _MISSED = 1, 2
 
 
 class ReactionsLost(Exception):
     """The automaton task published more reactions than the ring holds since the last read."""
+
+
+@dataclass(frozen=True)
+class JobRecord:
+    """One job of a Module-Task as the controller measured it (``orc_io_job``), or one of its
+    releases skipped (an overrun); instants [ns] from the run's t = 0, -1 where not reached.
+
+    :param module: the Module-Task's index in the module table.
+    :param job: the job's index (0-based, over the run); of an overrun, the unfinished job's.
+    :param release_ns: its release (of an overrun: the release skipped).
+    :param start_ns: its compute began.
+    :param compute_end_ns: its compute ended.
+    :param finish_ns: its outputs written (-1: aborted, its Module-Task killed).
+    :param missed: it finished after its deadline (the period).
+    :param overrun: this is a skipped release, not a job.
+    """
+
+    module: int
+    job: int
+    release_ns: int
+    start_ns: int
+    compute_end_ns: int
+    finish_ns: int
+    missed: bool
+    overrun: bool
+
+
+@dataclass(frozen=True)
+class JobRecords:
+    """The job records published since the last read, oldest first, and how many were
+    overwritten in the ring before they could be read."""
+
+    records: list[JobRecord]
+    lost: int
 
 
 @dataclass(frozen=True)
@@ -63,7 +106,8 @@ class SharedMemory:
         self.robot_ports, self.modules = robot_ports, modules
         self.reaction_words = reaction_words
         words = (HEADER_WORDS + robot_ports * ROBOT_WORDS + modules * MODULE_WORDS
-                 + modules * LATENESS_RING + REACTION_RING * reaction_words)
+                 + modules * LATENESS_RING + REACTION_RING * reaction_words
+                 + JOB_RING * JOB_WORDS)
         where = "/dev/shm" if os.path.isdir("/dev/shm") else None
         fd, self.path = tempfile.mkstemp(prefix="orccad-sil-", dir=where)
         try:
@@ -77,7 +121,9 @@ class SharedMemory:
         self._modules = self._robot + robot_ports * ROBOT_WORDS
         self._rings = self._modules + modules * MODULE_WORDS
         self._reactions = self._rings + modules * LATENESS_RING
+        self._jobs = self._reactions + REACTION_RING * reaction_words
         self._read_reactions = 0
+        self._read_jobs = 0
 
     def set_epoch(self, monotonic_ns: int) -> None:
         """The instant of t = 0 [ns, CLOCK_MONOTONIC]."""
@@ -143,6 +189,33 @@ class SharedMemory:
             raise ReactionsLost(int(self.ints[2]) - first - REACTION_RING)
         self._read_reactions = count
         return found
+
+    def want_jobs(self, wanted: bool) -> None:
+        """Whether the controller records its jobs' life cycle (:meth:`jobs`) from its next
+        release on."""
+        self.ints[3] = int(wanted)
+
+    def jobs(self) -> JobRecords:
+        """The job records published since the last call, oldest first; those the
+        controller overwrote before this read are counted as lost (never raises: a trace
+        short of some jobs says so, the run goes on)."""
+        count = int(self.ints[4])
+        first = max(self._read_jobs, count - JOB_RING)
+        rows = self.ints[self._jobs:self._jobs + JOB_RING * JOB_WORDS].reshape(JOB_RING,
+                                                                                 JOB_WORDS)
+        numbers = np.arange(first, count)
+        copied = rows[numbers % JOB_RING].copy()
+        # a record is intact when the writer had not begun to overwrite its slot by the end
+        # of the copy: the writer of record `after` overwrites record `after - JOB_RING`
+        after = int(self.ints[4])
+        intact = min(count, max(first, after - JOB_RING + 1))
+        copied = copied[intact - first:]
+        lost = intact - self._read_jobs
+        self._read_jobs = count
+        records = [JobRecord(int(r[0]), int(r[2]), int(r[3]), int(r[4]), int(r[5]), int(r[6]),
+                             bool(r[1] & _MISSED), bool(r[1] & _OVERRUN))
+                   for r in copied.tolist()]
+        return JobRecords(records, lost)
 
     def unlink(self) -> None:
         """Remove the file once both sides have mapped it: nothing is left in ``/dev/shm``

@@ -20,6 +20,8 @@ that also observes the mission run it is attached to — never reaching into it:
   its type-1 exceptions updates (``/params/<module>/<param>``, then each update);
 - **phases and state**: at each change of the automaton's state, ``/mission/state`` (the
   statements it waits at) and ``/mission/phase/<Task>`` for every task whose phase changed;
+- **warnings**: the run's warnings about itself (``on_warning``: a real-time run's job records
+  lost) on ``/log``;
 - **verdicts**: with ``verdicts`` (a function giving every property's verdict on the run so far:
   the property monitor, wired by the caller), ``/properties/<name>`` every
   ``verdict_period_ns`` (default 100 ms, at least 1/1000 of the run's horizon: the evaluation
@@ -31,7 +33,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from orccad_app.trace.mcap_writer import TopicWriter
+from orccad_app.trace.mcap_writer import WARNING, TopicWriter
 from orccad_app.trace.recorder import TraceRecorder, plain_value
 from orccad_app.trace.state_topics import VerdictSample
 
@@ -164,6 +166,10 @@ class RunTopicsRecorder(TraceRecorder):
             if self._task_phase.get(task) != phase:
                 self._task_phase[task] = phase
                 self.topics.phase(t_ns, task, phase)
+
+    def on_warning(self, t_ns: int, source: str, message: str) -> None:
+        """The run's warning about itself, on ``/log``."""
+        self.topics.log(t_ns, WARNING, source, message)
 
     def close(self) -> None:
         """The final frames (the plants are at the run's last instant) and verdicts, then

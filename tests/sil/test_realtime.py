@@ -305,3 +305,134 @@ def test_a_constant_type_1_update_is_applied_by_the_automaton_task():
     rms = expected["robot_tasks"][1]["tracking_error"]["rms"]
     got = track.errors.summary()["rms"]
     assert track.name == "TrackPID" and abs(got - rms) <= 0.25 * rms, (got, rms)
+
+
+_JOB_EVENTS = ("release", "start", "compute_end", "finish", "overrun")
+
+
+def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
+    """arm_pid for 0.5 s with a CSV and an MCAP trace: each active Module-Task's jobs, as the
+    controller's threads measured them, are in the trace as in ``orccad run``'s — releases,
+    starts, compute ends and finishes with job indices increasing by one, each job's events in
+    order (start after release, finish after start), in time order per Module-Task, on the
+    placement's processor, about one job per period; the MCAP trace has ``/orccad/finish``."""
+    import csv
+
+    from mcap.reader import make_reader
+
+    from orccad_app.trace.writers import open_trace
+
+    periods_ns = {"TrackPID.traj": 1_000_000, "TrackPID.ctrl": 1_000_000,
+                  "TrackPID.jl": 5_000_000}
+    table = tmp_path / "rt.csv"
+    mcap = tmp_path / "rt.mcap"
+
+    # one run, whatever the machine's load: the threads' jobs are counted loosely below, and a
+    # stalled plant server delays the records' reading, not the jobs
+    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
+        session = session_of("arm_pid.orc", runs=runs, until_s=0.5, trace=str(table))
+        session.record(open_trace(mcap))
+        result = session.execute().result
+        lost = runs.job_records_lost()
+    assert lost == 0
+    track = result.robot_tasks[0]  # (a stalled machine may lose track: ended earlier)
+    span_ns = (500_000_000 if track.end_ns is None else track.end_ns) - track.start_ns
+    jobs: dict[str, list[dict]] = {}
+    with open(table, newline="") as stream:
+        for row in csv.DictReader(stream):
+            if row["event"] in _JOB_EVENTS:
+                jobs.setdefault(row["module"], []).append(row)
+    assert set(periods_ns) <= set(jobs), sorted(jobs)
+    for module, rows in jobs.items():
+        times = [int(row["time_ns"]) for row in rows]
+        assert times == sorted(times), module  # in time order per Module-Task
+        by_job: dict[int, dict[str, int]] = {}
+        for row in rows:
+            if row["event"] != "overrun":
+                by_job.setdefault(int(row["job"]), {})[row["event"]] = int(row["time_ns"])
+            if row["event"] in ("start", "compute_end"):
+                assert json.loads(row["value"]) == "cpu0"
+            if row["event"] == "finish":
+                finish = json.loads(row["value"])
+                assert finish["response_ns"] == int(row["time_ns"]) - by_job[
+                    int(row["job"])]["release"]
+        indices = sorted(by_job)
+        assert indices == list(range(indices[0], indices[0] + len(indices))), module
+        for job, at in by_job.items():
+            assert "release" in at, (module, job)
+            if "start" in at:
+                assert at["start"] >= at["release"]
+            if "finish" in at:
+                assert at["finish"] >= at["compute_end"] >= at["start"]
+        finished = [job for job, at in by_job.items() if "finish" in at]
+        assert len(finished) >= len(by_job) - 1  # all but one cut by the run's end
+        if module in periods_ns:  # loosely: the machine may skip releases
+            assert len(finished) >= 0.5 * span_ns / periods_ns[module], module
+    with open(mcap, "rb") as stream:
+        topics = {channel.topic for _, channel, _ in make_reader(stream).iter_messages()}
+    assert {"/orccad/release", "/orccad/start", "/orccad/finish"} <= topics
+
+
+def test_lost_job_records_are_counted_and_the_rest_kept_in_order():
+    """The shared memory's ring of job records, written as the controller writes it: past
+    JOB_RING - 1 records between two reads the oldest are lost — counted, the newest kept in
+    order — and the next read goes on from there."""
+    from orccad_app.sil.shared import JOB_RING, SharedMemory
+
+    shared = SharedMemory(robot_ports=1, modules=1, reaction_words=4)
+    try:
+        start = shared._jobs
+
+        def write(count):
+            for number in range(int(shared.ints[4]), int(shared.ints[4]) + count):
+                at = start + (number % JOB_RING) * 8
+                shared.ints[at:at + 8] = [0, 0, number, number * 10, -1, -1, -1, 0]
+                shared.ints[4] += 1
+
+        write(5)
+        first = shared.jobs()
+        assert first.lost == 0 and [r.job for r in first.records] == [0, 1, 2, 3, 4]
+        write(JOB_RING + 7)
+        second = shared.jobs()
+        # the oldest slot kept may be the one the controller writes next: left out as lost
+        assert second.lost == 8
+        assert [r.job for r in second.records] == list(range(13, JOB_RING + 12))
+        write(3)
+        assert [r.job for r in shared.jobs().records] == [JOB_RING + 12, JOB_RING + 13,
+                                                         JOB_RING + 14]
+    finally:
+        shared.close()
+
+
+def test_job_records_reach_the_observers_in_time_order_per_module_task():
+    """A release skipped while job 0 runs is recorded at once, job 0 at its finish (in a later
+    read): the observers get job 0's release, start, the overrun, its compute end and finish,
+    in time order; job 1's events wait for a later record, then go at the run's end (the
+    events after it dropped)."""
+    from types import SimpleNamespace
+
+    from orccad_app.executive.hooks import Hooks
+    from orccad_app.executive.observer import EventLog
+    from orccad_app.sil.job_trace import JobTrace
+    from orccad_app.sil.shared import JobRecord, JobRecords
+
+    log = EventLog()
+    table = SimpleNamespace(entries=[SimpleNamespace(name="T.ctrl", processor=0)],
+                            processors=("cpu0",))
+    trace = JobTrace(Hooks([log]), table)
+    assert trace.wanted
+    skipped = JobRecord(0, 0, 1_000, -1, -1, -1, False, True)
+    job0 = JobRecord(0, 0, 0, 200, 1_400, 1_500, True, False)
+    job1 = JobRecord(0, 1, 2_000, 2_100, 2_200, 3_100, False, False)
+    trace.hand(JobRecords([skipped], 0))
+    assert log.events == []  # held: job 0's record may come with earlier events
+    trace.hand(JobRecords([job0, job1], 0))
+    assert log.events == [("on_release", 0, "T.ctrl", 0), ("on_start", 200, "T.ctrl", 0, "cpu0"),
+                          ("on_overrun", 1_000, "T.ctrl", 0),
+                          ("on_compute_end", 1_400, "T.ctrl", 0, "cpu0"),
+                          ("on_finish", 1_500, "T.ctrl", 0, 1_500, True),
+                          ("on_release", 2_000, "T.ctrl", 1)]
+    trace.hand(JobRecords([], 3), end_ns=2_500)
+    assert log.events[6:] == [("on_start", 2_100, "T.ctrl", 1, "cpu0"),
+                              ("on_compute_end", 2_200, "T.ctrl", 1, "cpu0")]
+    assert trace.lost == 3

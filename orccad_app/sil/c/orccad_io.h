@@ -32,4 +32,21 @@ void orc_io_lateness(int m, double lateness_ns);
 void orc_io_reaction(const double *request, unsigned n_request, const double *reply,
                      unsigned n_reply);
 
+/* One job of a Module-Task as measured, for a trace: instants [ns] on the run's clock (from
+ * its t = 0), -1 where not reached. */
+typedef struct {
+    long long job;            /* its index, 0-based, counted over the run */
+    long long release_ns;     /* its release (of an overrun: the release skipped) */
+    long long start_ns;       /* its compute begins (its inputs read) */
+    long long compute_end_ns; /* its compute ends: it writes its outputs */
+    long long finish_ns;      /* its outputs written (-1: aborted, its Module-Task killed) */
+    int missed;               /* finished after its deadline (the period) */
+    int overrun;              /* 1: a release skipped while job `job` was unfinished */
+} orc_job;
+/* Record Module-Task m's job (at its finish or abort) or a skipped release (at once); called
+ * under the runtime's lock, in order per Module-Task, only while orc_io_jobs_wanted()
+ * (SIL: a ring in the shared memory, which the plant server hands to the trace). */
+int orc_io_jobs_wanted(void);
+void orc_io_job(int m, const orc_job *job);
+
 #endif

@@ -6,7 +6,9 @@
  * (double), unused] then its output slots [present, v0 .. v7]; per Module-Task a ring of
  * its last release latenesses [ns]; a ring of the automaton's last reactions (header word 2:
  * how many were published), each the words of its request then of its reply
- * (orccad_automaton.h). C99 + POSIX. */
+ * (orccad_automaton.h); a ring of the Module-Tasks' last job records (header word 3: 1 when
+ * the plant server wants them, word 4: how many were published), each [module, flags
+ * (1 overrun, 2 missed), job, release, start, compute end, finish, unused]. C99 + POSIX. */
 #define _POSIX_C_SOURCE 200809L
 #include <fcntl.h>
 #include <stdint.h>
@@ -26,6 +28,8 @@
 #define LATENESS_RING 16384
 #define REACTION_RING 4096
 #define REACTION_WORDS (ORC_AUTOMATON_IN_WORDS + ORC_AUTOMATON_OUT_WORDS)
+#define JOB_RING 16384
+#define JOB_WORDS 8
 #define READ_SPIN_TRIES 64
 #define READ_PAUSE_NS 20000L
 #define READ_GIVE_UP_TRIES (READ_SPIN_TRIES + 5000)
@@ -160,6 +164,30 @@ void orc_io_reaction(const double *request, unsigned n_request, const double *re
                                          + (*count % REACTION_RING) * REACTION_WORDS];
     memcpy(entry, request, n_request * sizeof(double));
     memcpy(entry + ORC_AUTOMATON_IN_WORDS, reply, n_reply * sizeof(double));
+    __sync_synchronize();
+    *count += 1;
+}
+
+int orc_io_jobs_wanted(void)
+{
+    return ((volatile int64_t *)shm_words)[3] != 0;
+}
+
+void orc_io_job(int m, const orc_job *job)
+{
+    volatile int64_t *count = &shm_words[4];
+    int64_t *entry = &shm_words[HEADER_WORDS + ORC_N_ROBOT_PORTS * ROBOT_WORDS
+                                + ORC_N_MODULES * (MODULE_WORDS + LATENESS_RING)
+                                + REACTION_RING * REACTION_WORDS
+                                + (*count % JOB_RING) * JOB_WORDS];
+    entry[0] = m;
+    entry[1] = (job->overrun ? 1 : 0) | (job->missed ? 2 : 0);
+    entry[2] = job->job;
+    entry[3] = job->release_ns;
+    entry[4] = job->start_ns;
+    entry[5] = job->compute_end_ns;
+    entry[6] = job->finish_ns;
+    entry[7] = 0;
     __sync_synchronize();
     *count += 1;
 }

@@ -18,7 +18,8 @@
  * rather than in clock_nanosleep, so that another thread's write wakes it at once. Robot ports go through the I/O functions
  * of orccad_io.h: over the plant server's shared memory in SIL (orccad_io_shm.c), the
  * hardware's on a robot. Each job's measured timing (release lateness, overruns, deadline
- * misses, response time) and outputs are published through them too.
+ * misses, response time) and outputs are published through them too, and, while the I/O side
+ * wants them (a trace), each job's life cycle and each skipped release (orc_io_job).
  *
  * The mission's automaton is a task of its own (orccad_rt_automaton.c: it reacts at its
  * ticks and at the observers' events, and publishes each reaction through orc_io_reaction).
@@ -64,6 +65,9 @@ typedef struct {
     int at;                   /* the next input slot to read, or write to do */
     int waiting;              /* blocked on that read or write (a port protocol) */
     int64_t job_release_ns;   /* the current job's release */
+    int64_t job_start_ns;     /* its compute's start, end (-1: not yet), for the trace */
+    int64_t job_compute_end_ns;
+    int job_traced;           /* its life cycle is recorded (orc_io_jobs_wanted at release) */
     int computing;            /* its compute runs, outside the runtime's lock */
     unsigned generation;      /* changed by a kill or an activation: a job computing across
                                  one is aborted */
@@ -224,10 +228,42 @@ static int write_outputs(int m)
     return 1;
 }
 
+/* The trace's record of m's current job (finish_ns -1: aborted), instants from t = 0. */
+static void record_job(int m, int64_t finish_ns, int missed)
+{
+    const rt_task *t = &tasks[m];
+    orc_job job;
+    job.job = t->released - 1;
+    job.release_ns = t->job_release_ns - epoch_ns;
+    job.start_ns = t->job_start_ns < 0 ? -1 : t->job_start_ns - epoch_ns;
+    job.compute_end_ns = t->job_compute_end_ns < 0 ? -1 : t->job_compute_end_ns - epoch_ns;
+    job.finish_ns = finish_ns < 0 ? -1 : finish_ns - epoch_ns;
+    job.missed = missed;
+    job.overrun = 0;
+    orc_io_job(m, &job);
+}
+
+/* The release of m at release_ns skipped (an overrun), its current job unfinished. */
+static void record_overrun(int m, int64_t release_ns)
+{
+    orc_job job;
+    if (!orc_io_jobs_wanted()) {
+        return;
+    }
+    job.job = tasks[m].released - 1;
+    job.release_ns = release_ns - epoch_ns;
+    job.start_ns = job.compute_end_ns = job.finish_ns = -1;
+    job.missed = 0;
+    job.overrun = 1;
+    orc_io_job(m, &job);
+}
+
 static void finish_job(int m)
 {
     rt_task *t = &tasks[m];
-    double response = (double)(now_ns() - t->job_release_ns);
+    int64_t now = now_ns();
+    double response = (double)(now - t->job_release_ns);
+    int missed = response > (double)ORC_MODULES[m].period_ns;
     if (is_observer(ORC_MODULES[m].kind) && ORC_INSTANCES[m].out[0].present) {
         t->events += 1; /* an observer's event (slot 0): counted for the plant server */
     }
@@ -235,8 +271,11 @@ static void finish_job(int m)
     if (response > t->response_max_ns) {
         t->response_max_ns = response;
     }
-    if (response > (double)ORC_MODULES[m].period_ns) {
+    if (missed) {
         t->misses += 1;
+    }
+    if (t->job_traced) {
+        record_job(m, now, missed);
     }
     orc_io_publish(m, &ORC_INSTANCES[m], t->released, t->overruns, t->misses, t->events,
                    t->response_max_ns);
@@ -252,11 +291,20 @@ static int advance(int m)
          * which a command waits for): the jobs of different processors overlap in time. */
         unsigned generation = t->generation;
         double t_s = (double)(t->job_release_ns - epoch_ns) * 1e-9;
+        int64_t compute_end = -1;
+        int traced = t->job_traced;
         t->computing = 1;
+        if (traced) {
+            t->job_start_ns = now_ns();
+        }
         pthread_mutex_unlock(&orc_rt_lock);
         orc_mt_compute(&ORC_INSTANCES[m], t_s);
+        if (traced) {
+            compute_end = now_ns(); /* before the lock: its wait is the write's, not compute */
+        }
         pthread_mutex_lock(&orc_rt_lock);
         t->computing = 0;
+        t->job_compute_end_ns = compute_end;
         pthread_cond_broadcast(&orc_rt_changed); /* a command may wait for it */
         if (t->generation != generation) {
             return 1; /* killed or activated anew meanwhile: the job is aborted */
@@ -283,11 +331,14 @@ static void release_due(int processor, int64_t now, int *released)
         }
         if (t->phase != JOB_IDLE) {
             t->overruns += 1;
+            record_overrun(m, release);
         } else {
             t->phase = JOB_READING;
             t->at = 0;
             t->waiting = 0;
             t->job_release_ns = release;
+            t->job_start_ns = t->job_compute_end_ns = -1;
+            t->job_traced = orc_io_jobs_wanted();
             t->released += 1;
             released[m] = 1;
             orc_io_lateness(m, (double)(now - release));
@@ -300,6 +351,7 @@ static void release_due(int processor, int64_t now, int *released)
         t->next_release_ns = release + period;
         while (t->next_release_ns <= now) { /* releases missed: overruns */
             t->overruns += 1;
+            record_overrun(m, t->next_release_ns);
             t->next_release_ns += period;
         }
     }
@@ -489,6 +541,9 @@ static void kill_task(int m)
 {
     rt_task *t = &tasks[m];
     t->generation += 1;
+    if (t->phase != JOB_IDLE && t->job_traced) {
+        record_job(m, -1, 0); /* aborted */
+    }
     if (t->phase != JOB_IDLE && t->waiting) {
         int reading = t->phase == JOB_READING;
         int c = reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
