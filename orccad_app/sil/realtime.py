@@ -13,7 +13,8 @@ the controller wrote, and applies, in order, the reactions the automaton task re
 (``MissionRun._apply``: start, kill, type-1 updates, fresh ports go to the controller over
 the socket); an input (``--inject``) goes to the automaton task as ``OP_INPUT`` with its
 instant. The outputs of the controller's last jobs go to the executive's write listeners (the
-trace, the task errors of the report).
+trace, the task errors of the report); while a trace listens, each job's measured life cycle
+(a ring in the shared memory) goes to the observers' job callbacks (:mod:`.job_trace`).
 Measured per Module-Task: releases, release lateness, overruns, deadline misses, response
 times. The heartbeat is a ``PING`` every 100 ms of the run.
 

@@ -39,8 +39,8 @@ MODULE_WORDS = MODULE_HEAD + MAX_PORTS * (1 + MAX_DIM)
 LATENESS_RING = 16384
 REACTION_RING = 4096
 JOB_RING = 16384
-"""Job records the ring holds: 16 s of the arm's 1 kHz jobs (about 1000 a second), far
-beyond a plant server's stall; 1 MiB of shared memory, touched only by a traced run."""
+"""Job records the ring holds: over 6 s of arm_pid's jobs (2600 a second), far beyond a
+plant server's stall; 1 MiB of shared memory, touched only by a traced run."""
 JOB_WORDS = 8
 _OVERRUN, _MISSED = 1, 2
 

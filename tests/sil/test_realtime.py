@@ -5,6 +5,7 @@ and leaves no process; without SCHED_FIFO a warning says why."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import signal
@@ -315,7 +316,8 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
     controller's threads measured them, are in the trace as in ``orccad run``'s — releases,
     starts, compute ends and finishes with job indices increasing by one, each job's events in
     order (start after release, finish after start), in time order per Module-Task, on the
-    placement's processor, about one job per period; the MCAP trace has ``/orccad/finish``."""
+    placement's processor, about one job per period; the MCAP trace has ``/orccad/finish``.
+    A ring overrun (simulated once: 5 records lost) is counted and warned on ``/log``."""
     import csv
 
     from mcap.reader import make_reader
@@ -332,9 +334,21 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
     with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
         session = session_of("arm_pid.orc", runs=runs, until_s=0.5, trace=str(table))
         session.record(open_trace(mcap))
+        shared = runs.run._shared
+        read = shared.jobs
+
+        def overrun_once():  # the ring's overrun as the plant server would find it, once
+            batch = read()
+            if shared.ints[4] > 1000 and not overrun_once.done:
+                overrun_once.done = True
+                return dataclasses.replace(batch, lost=batch.lost + 5)
+            return batch
+
+        overrun_once.done = False
+        shared.jobs = overrun_once
         result = session.execute().result
         lost = runs.job_records_lost()
-    assert lost == 0
+    assert lost == 5  # counted (the ring itself lost none), the mission went on
     track = result.robot_tasks[0]  # (a stalled machine may lose track: ended earlier)
     span_ns = (500_000_000 if track.end_ns is None else track.end_ns) - track.start_ns
     jobs: dict[str, list[dict]] = {}
@@ -369,8 +383,13 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
         if module in periods_ns:  # loosely: the machine may skip releases
             assert len(finished) >= 0.5 * span_ns / periods_ns[module], module
     with open(mcap, "rb") as stream:
-        topics = {channel.topic for _, channel, _ in make_reader(stream).iter_messages()}
-    assert {"/orccad/release", "/orccad/start", "/orccad/finish"} <= topics
+        messages = [(channel.topic, data) for _, channel, data in
+                    make_reader(stream).iter_messages()]
+    assert {"/orccad/release", "/orccad/start", "/orccad/finish"} <= {t for t, _ in messages}
+    warnings = [json.loads(m.data) for topic, m in messages if topic == "/log"
+                and b"job records lost" in m.data]
+    assert [(w["level"], w["name"]) for w in warnings] == [(3, "sil")]
+    assert warnings[0]["message"].startswith("5 job records lost from the trace")
 
 
 def test_lost_job_records_are_counted_and_the_rest_kept_in_order():
