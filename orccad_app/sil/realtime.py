@@ -178,6 +178,7 @@ class RealtimeRun(MissionRun):
                         for m, entry in enumerate(table.entries)]
         self._next_ping = 0
         self._jobs = JobTrace(self.sim.hooks, table)
+        self._jobs_wanted = False  # decided at t = 0, once the observers are known
         # before the instant's reactions: at t = 0 the epoch and the first sensors are there
         # before the automaton activates anything (a trajectory's clock then starts with the
         # plant's), and at every exchange the events are read before the instant's tick
@@ -192,7 +193,8 @@ class RealtimeRun(MissionRun):
         now = self.kernel.now
         if now == 0:
             self._shared.set_epoch(time.monotonic_ns())
-            self._shared.want_jobs(self._jobs.wanted)  # before the first release
+            self._jobs_wanted = self._jobs.wanted  # before the first release
+            self._shared.want_jobs(self._jobs_wanted)
         self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = self.sim.plants
         shared = self._shared
@@ -210,7 +212,8 @@ class RealtimeRun(MissionRun):
         if now == 0:  # the automaton task starts once the first sensors are there: the
             self._controller.request(Op.EPOCH)  # Module-Tasks it activates read them
         self._apply_reactions()
-        self._hand_jobs(shared.jobs())
+        if self._jobs_wanted:
+            self._hand_jobs(shared.jobs())
         for m, name, ports in self._writes:  # each job's outputs, to the write listeners
             if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
                 continue
@@ -336,8 +339,9 @@ class RealtimeRun(MissionRun):
 
     def _end_jobs(self) -> None:
         """The job records up to the run's end handed on (the controller records no more)."""
-        self._shared.want_jobs(False)
-        self._hand_jobs(self._shared.jobs(), end_ns=self.kernel.now)
+        if self._jobs_wanted:
+            self._shared.want_jobs(False)
+            self._hand_jobs(self._shared.jobs(), end_ns=self.kernel.now)
 
     def _hand_jobs(self, batch: JobRecords, end_ns: int | None = None) -> None:
         """The controller's job records to the observers (:class:`JobTrace`); a warning to

@@ -200,6 +200,8 @@ class SharedMemory:
         controller overwrote before this read are counted as lost (never raises: a trace
         short of some jobs says so, the run goes on)."""
         count = int(self.ints[4])
+        if count == self._read_jobs:
+            return JobRecords([], 0)
         first = max(self._read_jobs, count - JOB_RING)
         rows = self.ints[self._jobs:self._jobs + JOB_RING * JOB_WORDS].reshape(JOB_RING,
                                                                                  JOB_WORDS)

@@ -147,7 +147,8 @@ def test_the_runtime_runs_clean_under_thread_sanitizer(tmp_path, case):
     report, on blocking protocols between Module-Tasks (the processor's thread, the commands'
     thread, the automaton task), and on arm_interrupts (two processor threads whose jobs
     compute at the same time, outside the runtime's lock; a sporadic Module-Task released
-    across them; its observer's events read by the automaton task). (The ports alone run
+    across them; its observer's events read by the automaton task), the jobs' life cycle
+    recorded for the trace. (The ports alone run
     under AddressSanitizer and UndefinedBehaviorSanitizer in test_ports.py;
     ``ORCCAD_SIL_CFLAGS='-fsanitize=address,undefined -g'`` runs the whole controller so, by
     hand: too slow for every commit.)"""
@@ -156,8 +157,8 @@ def test_the_runtime_runs_clean_under_thread_sanitizer(tmp_path, case):
     mission = (["--mission", "ArmInterrupts", str(MISSIONS / "arm_interrupts.orc")]
                if case == "two_processors" else [_arm_pid_with(tmp_path, "asyn/syn", "syn/syn")])
     done = subprocess.run([sys.executable, "-m", "orccad_app", "sil", *mission, "--realtime",
-                           "--until", "0.4"], capture_output=True, text=True, timeout=180,
-                          env=env)
+                           "--until", "0.4", "--trace", str(tmp_path / "jobs.csv")],
+                          capture_output=True, text=True, timeout=180, env=env)
     if "cannot find -l" in done.stderr or "unexpected memory mapping" in done.stderr:
         pytest.skip(f"the compiler has no {sanitize} sanitizer here: {done.stderr[-200:]}")
     assert "Sanitizer" not in done.stderr and "runtime error" not in done.stderr, done.stderr
