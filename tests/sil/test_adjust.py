@@ -53,8 +53,9 @@ def _python(expr: ast.Expr) -> float | None:
 def test_computed_values_in_c_equal_the_mission_layers_bit_for_bit(tmp_path):
     """300 random update expressions over +, -, *, /, unary -, min, max, abs and clip (NaN,
     infinities, overflow, swapped clip bounds among them), compiled once with the
-    controller's helpers: each C value has the Python value's bits, and C refuses exactly
-    where the mission layer does."""
+    controller's helpers (under AddressSanitizer and UndefinedBehaviorSanitizer where the
+    compiler has them): each C value has the Python value's bits, and C refuses exactly where
+    the mission layer does."""
     rng = random.Random(7)
     offsets = {name: at for at, name in enumerate(PARAMS)}
     cases = []
@@ -73,12 +74,16 @@ def test_computed_values_in_c_equal_the_mission_layers_bit_for_bit(tmp_path):
               '        printf("%d %a\\n", ok, v);', "    }", "    return 0;", "}", ""]
     source = tmp_path / "values.c"
     source.write_text("\n".join(lines))
-    built = subprocess.run([compiler(), *CFLAGS, "-Wno-unused-function", "-I", str(C_DIR),
-                            str(source), "-o", str(tmp_path / "values"), "-lm"],
-                           capture_output=True, text=True, timeout=120)
+    command = [compiler(), *CFLAGS, "-I", str(C_DIR), str(source), "-o",
+               str(tmp_path / "values"), "-lm"]
+    sanitized = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g"]
+    built = subprocess.run([*command, *sanitized], capture_output=True, text=True, timeout=120)
+    if built.returncode != 0 and "-lasan" in built.stderr + built.stdout:  # no sanitizer here
+        built = subprocess.run(command, capture_output=True, text=True, timeout=120)
     assert built.returncode == 0, built.stderr
-    out = subprocess.run([str(tmp_path / "values")], capture_output=True, text=True,
-                         timeout=30).stdout.split("\n")
+    ran = subprocess.run([str(tmp_path / "values")], capture_output=True, text=True, timeout=60)
+    assert ran.returncode == 0 and "runtime error" not in ran.stderr, ran.stderr
+    out = ran.stdout.split("\n")
     checked = refused = 0
     for (expr, code), line in zip(cases, out):
         ok, text = line.split()
