@@ -25,22 +25,21 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 
 from orccad_app.codegen.generate import STATUS_CODES, CProgram
 from orccad_app.codegen.interface import CSignal
 from orccad_app.codegen.mission import generate_composed
 from orccad_app.codegen.static_types import CodegenError, Kind
 from orccad_app.diagnostics import OrccadError
-from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.plan import MissionPlan
 from orccad_app.reactive.automaton import RUNNING, Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
-from orccad_app.robottask.signals import RoleKind
+from orccad_app.sil.adjust import adjust_lines, c_adjustments
 from orccad_app.sil.controller import ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable
 
-__all__ = ["PREFIX", "CAdjust", "ControllerAutomaton", "CStep", "automaton_files",
-           "binding_header", "c_adjustments", "managed_sites",
+__all__ = ["PREFIX", "ControllerAutomaton", "CStep", "automaton_files",
+           "binding_header", "managed_sites",
            "mission_automaton", "reaction_words", "write_automaton"]
 
 PREFIX = "orc_mission"
@@ -132,115 +131,9 @@ def binding_header(program: CProgram, plan: MissionPlan, table: ModuleTable) -> 
         f"#define ORC_AUTOMATON_N_SITES {len(plan.sites)}",
         f"#define ORC_AUTOMATON_SITES {{{site_rows}}}",
         f"#define ORC_AUTOMATON_SITE_MODULES {{{site_modules}}}",
-        *_adjust_lines(program, plan, table),
+        *adjust_lines(c_adjustments(plan, table, managed_sites(plan)),
+                      {slot.name: slot.word for slot in _slots(interface.outputs, _HEAD_WORDS)}),
         "#endif", ""])
-
-
-@dataclass(frozen=True)
-class CAdjust:
-    """A type-1 update the real-time automaton task applies itself: a constant value on a
-    parameter that every update of its site sets to a constant (no computed value, no ramp,
-    whose order with the supervisor's writes would matter).
-
-    :param site: the run site's number.
-    :param exception: the type-1 exception.
-    :param module: the Module-Task's index in the table.
-    :param words: ``(offset, value)`` of each parameter word the update changes in the C
-        layout.
-    :param signal: the automaton output that applies it (``X.E.adjust``).
-    """
-
-    site: int
-    exception: str
-    module: int
-    words: tuple[tuple[int, float], ...]
-    signal: str
-
-
-def c_adjustments(plan: MissionPlan, table: ModuleTable) -> tuple[CAdjust, ...]:
-    """The type-1 updates of the managed sites that the automaton task applies (see
-    :class:`CAdjust`); the others are the supervisor's."""
-    from orccad_app.sil.layout import c_layout
-
-    found = []
-    managed = managed_sites(plan)
-    for site in plan.sites:
-        if site.number not in managed:
-            continue
-        updates = site.adjustments
-        variable = {(u.module, u.param) for u in updates.values() if not _constant(u)}
-        for exception, update in updates.items():
-            if not _constant(update) or (update.module, update.param) in variable:
-                continue
-            module = _fresh(site, update.module)
-            before = c_layout(module).params
-            try:
-                module.set_param(update.param, update.value)
-            except Exception:  # refused: the supervisor's update fails the run, located
-                continue
-            after = c_layout(module).params
-            words = tuple((at, new) for at, (old, new) in enumerate(zip(before, after))
-                          if old != new)
-            signal = next((name for name, role in plan.roles.by_signal.items()
-                           if role.kind is RoleKind.ADJUST and role.task == site.task
-                           and role.name == exception), None)
-            if signal is not None and _own_words(site, update, tuple(at for at, _ in words)):
-                found.append(CAdjust(site.number, exception, table.index(update.module),
-                                     words, signal))
-    return tuple(found)
-
-
-def _fresh(site: SiteModules, module: str) -> Any:
-    """A fresh Python instance of ``module`` of ``site`` (never a controller's proxy)."""
-    return SiteModules.fresh_computes(site)[module]
-
-
-def _own_words(site: Any, update: Any, offsets: tuple[int, ...]) -> bool:
-    """The parameter words at ``offsets`` depend on ``update``'s parameter alone (each other
-    numeric parameter of the Module-Task perturbed leaves them as they are): writing them
-    keeps what the other parameters' updates wrote."""
-    from orccad_app.sil.layout import c_layout
-
-    base = c_layout(_fresh(site, update.module)).params
-    for other, value in _fresh(site, update.module).params.items():
-        if other == update.param or isinstance(value, (bool, str)):
-            continue
-        probe = _fresh(site, update.module)
-        try:
-            probe.set_param(other, np.asarray(value, dtype=float) * 1.5 + 0.25)
-        except Exception:
-            try:
-                probe.set_param(other, float(value) * 1.5 + 0.25)
-            except Exception:
-                return False  # cannot tell: the supervisor applies it
-        if any(c_layout(probe).params[at] != base[at] for at in offsets):
-            return False
-    return True
-
-
-def _constant(update: Any) -> bool:
-    form = update.form
-    return form is None or (form.ramp is None and form.constant)
-
-
-def _adjust_lines(program: CProgram, plan: MissionPlan, table: ModuleTable) -> list[str]:
-    """``ORC_AUTOMATON_ADJUSTS``: per update the task applies, {site, the ADJUST output's
-    presence word in the reply, Module-Task, first word in the offset/value lists, count}."""
-    words = {slot.name: slot.word for slot in _slots(program.interface.outputs, _HEAD_WORDS)}
-    rows, offsets, values = [], [], []
-    for adjust in c_adjustments(plan, table):
-        rows.append(f"{{{adjust.site}, {words[adjust.signal]}, {adjust.module}, {len(offsets)}, "
-                    f"{len(adjust.words)}}}")
-        offsets += [str(at) for at, _ in adjust.words]
-        values += [repr(float(value)) for _, value in adjust.words]
-    return [
-        "/* The type-1 updates the task applies: {site, the ADJUST output's presence word in "
-        "the reply,",
-        " * Module-Task, first of its parameter words in the two lists below, how many}. */",
-        f"#define ORC_AUTOMATON_N_ADJUSTS {len(rows)}",
-        f"#define ORC_AUTOMATON_ADJUSTS {{{', '.join(rows) or '{0, 0, 0, 0, 0}'}}}",
-        f"#define ORC_AUTOMATON_ADJUST_OFFSETS {{{', '.join(offsets) or '0'}}}",
-        f"#define ORC_AUTOMATON_ADJUST_VALUES {{{', '.join(values) or '0.0'}}}"]
 
 
 def managed_sites(plan: MissionPlan) -> frozenset[int]:

@@ -51,6 +51,7 @@ class Op(IntEnum):
     EPOCH = 11
     REACT = 12
     INPUT = 13
+    PARAMS = 14
 
 
 class ControllerFailure(ComputeError):

@@ -289,7 +289,8 @@ def table_source(table: ModuleTable, source: str) -> str:
 RUNTIME_FILES = ("orccad_mt.h", "orccad_mt.c", "orccad_dynamics.h", "orccad_dynamics.c",
                  "orccad_port.h", "orccad_port.c", "orccad_wire.h", "orccad_wire.c",
                  "orccad_automaton.h", "orccad_automaton.c", "orccad_rt.h", "orccad_rt.c",
-                 "orccad_rt_automaton.c", "orccad_rt_main.c", "orccad_io.h", "orccad_io_shm.c")
+                 "orccad_rt_automaton.c", "orccad_adjust.h", "orccad_rt_main.c", "orccad_io.h",
+                 "orccad_io_shm.c")
 """The runtime library's files that ``orccad codegen --module-tasks`` writes beside the
 table (all generated: the user's ``orccad_io.c`` lives outside the folder)."""
 

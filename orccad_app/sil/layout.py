@@ -16,6 +16,7 @@ function other than joint tracking, a vector longer than the runtime's slots.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import IntEnum
@@ -25,7 +26,7 @@ import numpy as np
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CKind", "CLayout", "CPort", "NoCImplementation", "c_layout", "MAX_DIM",
+__all__ = ["CKind", "CLayout", "CPort", "NoCImplementation", "c_layout", "same_word", "MAX_DIM",
            "MAX_PARAMS", "THRUSTER_ARM_M", "AUV_THRUST_LIMITS_N"]
 
 MAX_DIM = 16
@@ -108,6 +109,11 @@ def _ports(instance: Any, direction: str) -> tuple[CPort, ...]:
             raise NoCImplementation(f"module kind {instance.kind.name!r}: port {port.name!r} "
                                     f"has {port.dim} components, the C runtime {MAX_DIM}")
     return ports
+
+
+def same_word(a: float, b: float) -> bool:
+    """Two parameter words are the same double, bit for bit (``0.0`` and ``-0.0`` differ)."""
+    return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
 
 
 def _floats(values: Any) -> list[float]:

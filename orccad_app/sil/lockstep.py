@@ -19,7 +19,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -43,6 +43,9 @@ class RemoteSite(SiteModules):
     table: Any = None
     managed: bool = False
     """The controller starts its Module-Tasks itself (its real-time automaton task)."""
+    c_owned: Mapping[str, frozenset[int]] = dataclasses.field(default_factory=dict)
+    """Per Module-Task, the parameter words the automaton task alone writes (its type-1
+    updates): the proxies never send them."""
 
     def fresh_computes(self, instance: Any = None) -> dict[str, Any]:
         shadows = super().fresh_computes(instance)
@@ -51,7 +54,8 @@ class RemoteSite(SiteModules):
         for name, shadow in shadows.items():
             index = table.index(name)
             proxies[name] = RemoteModule(self.controller, index, table.entries[index].layout,
-                                         shadow, start=not self.managed)
+                                         shadow, start=not self.managed,
+                                         c_owned=self.c_owned.get(name, frozenset()))
         return proxies
 
 

@@ -48,8 +48,9 @@ from orccad_app.executive.kernel import EventClass
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
-from orccad_app.sil.automaton import (ControllerAutomaton, c_adjustments, managed_sites,
-                                     mission_automaton, reaction_words)
+from orccad_app.sil.adjust import c_adjustments, c_owned_words
+from orccad_app.sil.automaton import (ControllerAutomaton, managed_sites, mission_automaton,
+                                     reaction_words)
 from orccad_app.sil.build import C_DIR
 from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
                                       Op)
@@ -161,7 +162,6 @@ class RealtimeRun(MissionRun):
         self._automaton = reactor
         self._table, self._controller, self._shared = table, controller, shared
         self._managed_sites = [site for site in plan.sites if site.number in managed_sites(plan)]
-        self._c_adjusts = {a.signal: a for a in c_adjustments(plan, table)}
         managed = frozenset(name for site in self._managed_sites for name in site.modules)
         self.sim = _ControllerSim(self.sim, controller, table, managed)  # type: ignore[assignment]
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
@@ -183,6 +183,11 @@ class RealtimeRun(MissionRun):
         # before the automaton activates anything (a trajectory's clock then starts with the
         # plant's), and at every exchange the events are read before the instant's tick
         self.kernel.schedule(0, _EXCHANGE, self._exchange)
+
+    @property
+    def table(self) -> ModuleTable:
+        """The controller's generated table (a Module-Task's index: ``table.index(name)``)."""
+        return self._table
 
     @property
     def shared_memory_path(self) -> str:
@@ -265,12 +270,7 @@ class RealtimeRun(MissionRun):
             except OrccadError as error:
                 raise ReactionError(error.message, error.location, error.notes) from None
             self._retire_restarted(step.outputs)
-            muted = self._mute_applied(step.outputs)
-            try:
-                self._apply(at_ns, inputs, step)
-            finally:
-                for proxy in muted:
-                    proxy.muted = False
+            self._apply(at_ns, inputs, step)
             if self.reactor.finished:
                 break
 
@@ -286,22 +286,6 @@ class RealtimeRun(MissionRun):
                     compute = self.plan.tcs.module(name).compute
                     if isinstance(compute, RemoteModule):
                         compute.retire()
-
-    def _mute_applied(self, outputs: tuple[str, ...]) -> list[RemoteModule]:
-        """The proxies whose type-1 update of this reaction the automaton task applied itself
-        (muted while the mission layer records it)."""
-        muted = []
-        for name in outputs:
-            adjust = self._c_adjusts.get(name)
-            if adjust is None:
-                continue
-            site = self._running_site(self.plan.sites[adjust.site].task)
-            if site is not None and site.number == adjust.site:
-                proxy = self.plan.tcs.module(self._table.entries[adjust.module].name).compute
-                if isinstance(proxy, RemoteModule):
-                    proxy.muted = True
-                    muted.append(proxy)
-        return muted
 
     def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its
@@ -420,10 +404,12 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
         shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
             sites, managed = [], managed_sites(plan)
+            owned = c_owned_words(c_adjustments(plan, table, managed), table)
             for site in plan.sites:
                 fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
                 sites.append(RemoteSite(**fields, controller=controller, table=table,
-                                        managed=site.number in managed))
+                                        managed=site.number in managed,
+                                        c_owned=owned if site.number in managed else {}))
             plan.sites = sites
             yield table, controller, shared
         finally:

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.sil.controller import ControllerFailure, ControllerProcess, Op
-from orccad_app.sil.layout import CLayout, c_layout
+from orccad_app.sil.layout import CLayout, c_layout, same_word
 
 __all__ = ["RemoteModule"]
 
@@ -31,10 +31,12 @@ class RemoteModule:
     :param shadow: the Python instance of this start (never computes).
     :param start: send the fresh start (``START``, then the run-time arguments); ``False``
         when the controller has started it itself (its real-time automaton task).
+    :param c_owned: the parameter words the controller's automaton task alone writes (its
+        type-1 updates, :mod:`orccad_app.sil.adjust`): never sent.
     """
 
     def __init__(self, controller: ControllerProcess, index: int, nominal: CLayout,
-                 shadow: Any, start: bool = True) -> None:
+                 shadow: Any, start: bool = True, c_owned: frozenset[int] = frozenset()) -> None:
         self._controller = controller
         self._index = index
         self._shadow = shadow
@@ -49,9 +51,7 @@ class RemoteModule:
         self._inputs = [(p.name, p.dim) for p in layout.inputs]
         self._outputs = [(p.name, p.type, p.dim) for p in layout.outputs]
         self._retired = False
-        self.muted = False
-        """Parameter writes stay with the shadow (the controller applies this update
-        itself)."""
+        self._c_owned = c_owned
         if not start:
             if layout.params != nominal.params:
                 raise ControllerFailure(f"module-task {index}: started by the controller with "
@@ -72,8 +72,23 @@ class RemoteModule:
         return self._shadow.params
 
     def _send_params(self, params: tuple[float, ...]) -> None:
-        if not (self._retired or self.muted):
+        if not self._retired:
             self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
+
+    def _send_changes(self, old: tuple[float, ...], new: tuple[float, ...]) -> None:
+        """The words that changed, each run of them one ``PARAM`` request, but those the
+        controller writes itself."""
+        at, size = 0, len(new)
+        while at < size and not self._retired:
+            if at in self._c_owned or same_word(old[at], new[at]):
+                at += 1
+                continue
+            end = at
+            while end < size and end not in self._c_owned and not same_word(old[end], new[end]):
+                end += 1
+            self._controller.request(Op.PARAM, self._index, values=list(new[at:end]),
+                                     offset=at)
+            at = end
 
     def init(self) -> None:
         """Activation: the C Module-Task resets its state."""
@@ -121,12 +136,12 @@ class RemoteModule:
         return self._shadow.get_param(name)
 
     def set_param(self, name: str, value: Any) -> None:
-        """A type-1 update: validated by the shadow, then the new parameter vector sent."""
+        """A type-1 update: validated by the shadow, then the parameter words it changed sent
+        (but those the controller writes itself)."""
         self._shadow.set_param(name, value)
         layout = c_layout(self._shadow)
-        if layout.params != self._layout.params:
-            self._send_params(layout.params)
-            self._layout = layout
+        self._send_changes(self._layout.params, layout.params)
+        self._layout = layout
 
     def __repr__(self) -> str:
         return f"<{self.kind.name} module in the controller process, entry {self._index}>"

@@ -165,28 +165,55 @@ def test_the_runtime_runs_clean_under_thread_sanitizer(tmp_path, case):
     assert done.returncode == 1 and "timeout" in done.stdout  # the run itself went on
 
 
-def test_a_type_1_ramp_is_stepped_in_the_controller():
-    """arm_retune: ``Lagging`` ramps ctrl.ki from 0 to 20 over 1 s; each step at the law's
-    release grid reaches the controller as a parameter write (about one per period), the last
-    one the ramp's end."""
+def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
+    """arm_retune: ``Drift`` sets ctrl.kp to min(kp * 1.5, kmax) (computed from the current
+    gain) and ``Lagging`` ramps ctrl.ki from 0 to 20 over 1 s: the automaton task computes
+    and writes both itself (no PARAM request from the plant server), the ramp stepped at the
+    law's releases. The law's parameter words, read from the controller at every heartbeat,
+    show kp compounding to its cap and ki on the ramp from its last start (within 10 ms of
+    the ramp's clock), then exactly at its end, as the executive computes it."""
     from orccad_app.sil.controller import Op
 
-    sent: list[tuple] = []
-    with ControllerRuns(SilMode.REALTIME, "arm_retune.orc") as runs:
-        session = session_of("arm_retune.orc", runs=runs, until_s=1.5)
-        request = runs.controller.request
+    ops: list[Op] = []
+    samples: list[tuple[int, tuple[float, ...]]] = []
 
-        def spy(op, module=0, t_s=0.0, values=(), offset=0):
-            if op is Op.PARAM:
-                sent.append(tuple(values))
-            return request(op, module, t_s, values, offset)
+    def run():
+        ops.clear()
+        samples.clear()
+        with ControllerRuns(SilMode.REALTIME, "arm_retune.orc") as runs:
+            session = session_of("arm_retune.orc", runs=runs, until_s=1.5)
+            _spied(runs, ops)
+            request, realtime_run = runs.controller.request, runs.run
+            law = realtime_run.table.index("TrackSoft.ctrl")
 
-        runs.controller.request = spy
-        result = session.execute().result
-    assert any(e.update is not None and e.update.ramp is not None for e in result.exceptions)
-    ki = [values for values in sent if values]  # parameter vectors sent (kp and ki steps)
-    assert len(ki) > 500  # the ramp's steps, one per 1 ms release within 1 s
-    assert len(set(ki)) > 500
+            def sample(op, *args, **kwargs):
+                if op is Op.PING:
+                    samples.append((realtime_run.kernel.now, tuple(request(Op.PARAMS, law))))
+                return request(op, *args, **kwargs)
+
+            runs.controller.request = sample
+            return (session.execute().result,)
+
+    (result,) = on_a_real_time_machine(run)
+    assert Op.PARAM not in ops and Op.START not in ops
+    drifts = [e.update.new for e in result.exceptions if e.name == "Drift"]
+    assert drifts[:6] == [150.0, 225.0, 337.5, 506.25, 759.375, 800.0]
+    assert all(words[2:5] == (words[2],) * 3 for _, words in samples)  # kp on the 3 joints
+    assert samples[-1][1][2] == 800.0
+    ramps = [e.time_ns for e in result.exceptions if e.name == "Lagging"]
+    assert ramps and ramps[0] < 1_000_000_000
+    on_ramp = 0
+    for at_ns, words in samples:
+        starts = [t for t in ramps if t <= at_ns]
+        if not starts or any(abs(t - at_ns) <= 10_000_000 for t in ramps):
+            continue  # before the ramp, or a ramp (re)starting about now
+        since_s = (at_ns - starts[-1]) / 1e9
+        if since_s >= 1.0 + 0.010:
+            assert words[8] == 0.0 + (20.0 - 0.0) * 1.0, (at_ns, words[8])  # its end
+        elif since_s > 0.020:
+            on_ramp += 1
+            assert abs(words[8] - 20.0 * since_s) <= 20.0 * 0.010, (at_ns, words[8], since_s)
+    assert on_ramp >= 5
 
 
 def test_a_sporadic_module_task_is_released_by_its_producers_writes():

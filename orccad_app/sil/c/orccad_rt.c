@@ -342,6 +342,7 @@ static void release_due(int processor, int64_t now, int *released)
             t->released += 1;
             released[m] = 1;
             orc_io_lateness(m, (double)(now - release));
+            orc_automaton_release(m, release - epoch_ns);
         }
         if (ORC_MODULES[m].sporadic) { /* the next release comes from an interrupt */
             t->last_release_ns = release;
@@ -554,7 +555,6 @@ static void kill_task(int m)
     t->waiting = 0;
 }
 
-/* Module-Task m activated: its first release at release_ns. */
 /* Until Module-Task m's compute (outside the lock) has ended: a command touching its memory
  * waits for it. */
 static void wait_compute(int m)
@@ -564,6 +564,7 @@ static void wait_compute(int m)
     }
 }
 
+/* Module-Task m activated: its first release at release_ns. */
 static void activate(int m, int64_t release_ns)
 {
     wait_compute(m);
@@ -608,6 +609,11 @@ void orc_rt_set_param(int m, int offset, double value)
 {
     wait_compute(m);
     (void)orc_mt_set_param(&ORC_INSTANCES[m], offset, &value, 1);
+}
+
+double orc_rt_get_param(int m, int offset)
+{
+    return ORC_INSTANCES[m].p[offset];
 }
 
 uint32_t orc_rt_set_params(int m, int offset, const double *values, int n)

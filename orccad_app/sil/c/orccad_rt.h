@@ -31,8 +31,9 @@ void orc_rt_kill(int m);
 void orc_rt_reset_ports(int m);
 void orc_rt_activate(int m, int64_t release_ns);
 /* Parameter word `offset` of Module-Task m set to `value` (a type-1 update; waits for its
- * compute). */
+ * compute); its current value. */
 void orc_rt_set_param(int m, int offset, double value);
+double orc_rt_get_param(int m, int offset);
 
 /* The commands (orccad_rt_main.c): a parameter write (0, or 2 when refused); INIT; the
  * jobs deadlocked, as [module, connection, reading] triples into `cycle` (the number of
@@ -53,6 +54,9 @@ int orc_rt_start_thread(pthread_t *thread, void *(*body)(void *), void *arg, int
 
 /* The automaton task (orccad_rt_automaton.c). Its thread's body: */
 void *orc_automaton_task(void *unused);
+/* A job of Module-Task m is released at `release_ns` [ns since t = 0], before it reads: the
+ * type-1 ramps on its parameters take their step. */
+void orc_automaton_release(int m, int64_t release_ns);
 /* OP_EPOCH: the run's t = 0 is set, the task starts reacting at its ticks. */
 void orc_automaton_start(void);
 /* OP_INPUT: inputs for the first reaction at or after their instant (`n` words: the instant

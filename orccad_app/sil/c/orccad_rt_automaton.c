@@ -7,15 +7,21 @@
  * event's instant. A reaction's inputs are the events the observers' jobs fired since the
  * previous one (ORC_AUTOMATON_EVENTS: observer Module-Task -> the automaton input it raises)
  * and the inputs queued by the supervisor (OP_INPUT: the operator's, `--inject`'s), due at
- * their instant; an input already present in the reaction waits for the next one. Each
- * reaction — its request's and its reply's words, orccad_automaton.h — is published through
- * orc_io_reaction (SIL: a ring in the shared memory, from which the plant server applies the
- * Robot-Tasks' lifecycle and rebuilds the report). A negative step (a run-time error of the
- * mission) is published and ends the reactions. C99 + POSIX threads; no allocation. */
+ * their instant; an input already present in the reaction waits for the next one. After a
+ * reaction the task applies what it decided, as the mission layer does: the type-1 updates
+ * (constant, computed, ramps stepped at the Module-Task's releases: orccad_app/sil/adjust.py)
+ * and the Robot-Tasks' lifecycle (starts, kills, activations) of the sites without run-time
+ * arguments. Each reaction — its request's and its reply's words, orccad_automaton.h — is
+ * published through orc_io_reaction (SIL: a ring in the shared memory, from which the
+ * supervisor rebuilds the report and applies what is left to it). A negative step (a run-time
+ * error of the mission) is published and ends the reactions. C99 + POSIX threads; no
+ * allocation. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <string.h>
 #include <time.h>
 
+#include "orccad_adjust.h"
 #include "orccad_automaton.h"
 #include "orccad_io.h"
 #include "orccad_rt.h"
@@ -38,11 +44,44 @@ static int64_t last_clock = -1;
 static const int sites[][7] = ORC_AUTOMATON_SITES;
 static const int site_modules[] = ORC_AUTOMATON_SITE_MODULES;
 static int site_phase[ORC_AUTOMATON_N_SITES + 1];
-/* The type-1 updates the task applies (constant values): {site, the ADJUST output's presence
- * word in the reply, Module-Task, first of its parameter words, how many}. */
-static const int adjusts[][5] = ORC_AUTOMATON_ADJUSTS;
+/* The type-1 updates the task applies (orccad_app/sil/adjust.py): {site, the ADJUST output's
+ * presence word in the reply, Module-Task, form (ADJUST_*), first of its parameter words,
+ * how many}; a ramp's duration [ns]; a ramp's state: on, its instant [ns since t = 0], ends. */
+enum { ADJUST_CONSTANT, ADJUST_COMPUTED, ADJUST_RAMP };
+static const int adjusts[][6] = ORC_AUTOMATON_ADJUSTS;
 static const int adjust_offsets[] = ORC_AUTOMATON_ADJUST_OFFSETS;
 static const double adjust_values[] = ORC_AUTOMATON_ADJUST_VALUES;
+static const int64_t adjust_durations[] = ORC_AUTOMATON_ADJUST_DURATIONS;
+static struct {
+    int on;
+    int64_t t0_ns;
+    double start, end;
+} ramps[ORC_AUTOMATON_N_ADJUSTS + 1];
+
+/* Update a's computed value (which 0), or its ramp's start (0) and end (1), from the current
+ * parameter words; *ok = 0 when the computation refuses. */
+static double adjust_value(int a, int which, int *ok)
+{
+    (void)ok;
+    switch (2 * a + which) {
+    ORC_AUTOMATON_ADJUST_VALUE_CASES
+    default:
+        break;
+    }
+    return 0.0;
+}
+
+/* v is a value update a's parameter takes (its declared range, finite). */
+static int adjust_valid(int a, double v)
+{
+    (void)v;
+    switch (a) {
+    ORC_AUTOMATON_ADJUST_CHECK_CASES
+    default:
+        break;
+    }
+    return 1;
+}
 
 void orc_automaton_start(void)
 {
@@ -127,17 +166,87 @@ static int first_running(int s)
     return 1;
 }
 
-/* The constant type-1 updates the reaction emitted, written into their Module-Task's
- * parameters (between two of its jobs). */
-static void adjust(void)
+static void write_param(int a, double value)
 {
-    int a, i;
+    int i;
+    for (i = adjusts[a][4]; i < adjusts[a][4] + adjusts[a][5]; i++) {
+        orc_rt_set_param(adjusts[a][2], adjust_offsets[i], value);
+    }
+}
+
+/* The ramps on update a's parameter stop (a new update of it, or its task's run ended). */
+static void stop_ramps(int module, int offset)
+{
+    int r;
+    for (r = 0; r < ORC_AUTOMATON_N_ADJUSTS; r++) {
+        if (ramps[r].on && adjusts[r][2] == module
+            && (offset < 0 || adjust_offsets[adjusts[r][4]] == offset)) {
+            ramps[r].on = 0;
+        }
+    }
+}
+
+/* Update a applied in the reaction at `clock` [ns since t = 0], as the mission layer applies
+ * it (TypeOneUpdates.apply): a constant's words; a computed value, checked; a ramp's ends
+ * computed and checked, its start written at once, its steps at the releases to come. A
+ * value refused is not written (the supervisor ends the run with the reason). */
+static void apply_update(int a, int64_t clock)
+{
+    int i, ok = 1, form = adjusts[a][3];
+    double value, end = 0.0;
+    if (adjusts[a][5] > 0) {
+        stop_ramps(adjusts[a][2], adjust_offsets[adjusts[a][4]]);
+    }
+    if (form == ADJUST_CONSTANT) {
+        for (i = adjusts[a][4]; i < adjusts[a][4] + adjusts[a][5]; i++) {
+            orc_rt_set_param(adjusts[a][2], adjust_offsets[i], adjust_values[i]);
+        }
+        return;
+    }
+    value = adjust_value(a, 0, &ok);
+    if (form == ADJUST_RAMP) {
+        end = adjust_value(a, 1, &ok);
+        ok = ok && adjust_valid(a, end);
+    }
+    if (!ok || !adjust_valid(a, value)) {
+        return;
+    }
+    write_param(a, value);
+    if (form == ADJUST_RAMP) {
+        ramps[a].on = 1;
+        ramps[a].t0_ns = clock;
+        ramps[a].start = value;
+        ramps[a].end = end;
+    }
+}
+
+/* The type-1 updates the reaction emitted, in output order, applied to their Module-Task's
+ * parameters (between two of its jobs). */
+static void adjust(int64_t clock)
+{
+    int a;
     for (a = 0; a < ORC_AUTOMATON_N_ADJUSTS; a++) {
-        if (orc_word_int(&reply[adjusts[a][1]]) == 0 || !first_running(adjusts[a][0])) {
+        if (orc_word_int(&reply[adjusts[a][1]]) != 0 && first_running(adjusts[a][0])) {
+            apply_update(a, clock);
+        }
+    }
+}
+
+void orc_automaton_release(int m, int64_t release_ns)
+{
+    int a;
+    for (a = 0; a < ORC_AUTOMATON_N_ADJUSTS; a++) {
+        int64_t since = release_ns - ramps[a].t0_ns, duration = adjust_durations[a];
+        double fraction, value;
+        if (!ramps[a].on || adjusts[a][2] != m || since <= 0) {
             continue;
         }
-        for (i = adjusts[a][3]; i < adjusts[a][3] + adjusts[a][4]; i++) {
-            orc_rt_set_param(adjusts[a][2], adjust_offsets[i], adjust_values[i]);
+        /* the executive's step: min(1, dt / D), both exact as doubles */
+        fraction = since >= duration ? 1.0 : (double)since / (double)duration;
+        value = ramps[a].start + (ramps[a].end - ramps[a].start) * fraction;
+        ramps[a].on = since < duration;
+        if (adjust_valid(a, value)) {
+            write_param(a, value);
         }
     }
 }
@@ -155,6 +264,9 @@ static void lifecycle(int64_t release_ns)
         int starting = phase > 0 && (old == 0 || restart);
         int first = sites[s][2], count = sites[s][3];
         site_phase[s] = phase;
+        for (i = first; old > 0 && (phase == 0 || restart) && i < first + count; i++) {
+            stop_ramps(site_modules[i], -1); /* the run ended: its ramps stop */
+        }
         if (!sites[s][0]) {
             continue;
         }
@@ -200,7 +312,7 @@ static void react(int64_t clock)
     failed = orc_word_int(&reply[0]) < 0;
     if (!failed) {
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
-        adjust();
+        adjust(clock);
         lifecycle(at > now ? at : now);
     }
     orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);

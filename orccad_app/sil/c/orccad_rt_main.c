@@ -20,7 +20,7 @@
 #define MODULE_DOUBLES (ORC_MAX_PARAMS + ORC_MAX_PORTS * (ORC_MAX_DIM + 1))
 #define MAX_DOUBLES (MODULE_DOUBLES > ORC_AUTOMATON_IN_WORDS ? MODULE_DOUBLES \
                                                               : ORC_AUTOMATON_IN_WORDS)
-#define MAX_ANSWER (3 * ORC_RT_MAX_MODULES + ORC_HELLO_DOUBLES)
+#define MAX_ANSWER (3 * ORC_RT_MAX_MODULES + ORC_HELLO_DOUBLES + ORC_MAX_PARAMS)
 
 static double data_in[MAX_DOUBLES];
 
@@ -82,6 +82,12 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
         return 0;
     case OP_RESET:
         orc_rt_reset_ports((int)req->module);
+        return 0;
+    case OP_PARAMS: /* what the Module-Task computes with now (the type-1 updates applied) */
+        for (i = 0; i < (uint32_t)ORC_MODULES[req->module].n_params; i++) {
+            answer[i] = orc_rt_get_param((int)req->module, (int)i);
+        }
+        *n = i;
         return 0;
     default:
         return 4;

@@ -23,7 +23,8 @@ enum orc_op {
     OP_RESET = 10,   /* real time: the Module-Task's ports back to "before any write" */
     OP_EPOCH = 11,   /* real time: t = 0 is now (the I/O side's epoch) */
     OP_REACT = 12,   /* lockstep: one reaction of the mission's automaton (orccad_automaton.h) */
-    OP_INPUT = 13    /* real time: inputs for the automaton task at an instant (orccad_rt.h) */
+    OP_INPUT = 13,   /* real time: inputs for the automaton task at an instant (orccad_rt.h) */
+    OP_PARAMS = 14   /* real time: answer the Module-Task's current parameter words */
 };
 
 typedef struct {
