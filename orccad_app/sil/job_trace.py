@@ -8,8 +8,9 @@ life cycle and each release they skip (``orc_io_job``, a ring in the shared memo
 release, ``missed`` after the period), ``on_overrun`` (the unfinished job) — with the
 Module-Task's TCS name and its placement's processor, in time order per Module-Task: a job's
 events wait until a later job of the same Module-Task has been recorded (its release is later
-than anything still to come), the rest go at the end of the run. An aborted job (its
-Module-Task killed) has no ``on_finish``, as in the executive.
+than anything still to come) and until the run's clock has reached them (the plant server may
+be behind the controller's wall clock); the rest go at the end of the run, those after it
+dropped. An aborted job (its Module-Task killed) has no ``on_finish``, as in the executive.
 """
 
 from __future__ import annotations
@@ -41,6 +42,9 @@ class JobTrace:
         self._held: list[list[tuple[int, int, int, JobRecord]]] = [[] for _ in table.entries]
         """Per Module-Task, a heap of events ``(t_ns, order, kind, record)`` not yet handed
         on."""
+        self._settled = [-1] * len(table.entries)
+        """Per Module-Task, the release of its latest job recorded: no event still to come
+        is earlier [ns]."""
         self._order = 0
         self.lost = 0
         """Job records overwritten in the ring before the plant server read them."""
@@ -52,19 +56,20 @@ class JobTrace:
         return bool(hooks.on_release or hooks.on_start or hooks.on_compute_end
                     or hooks.on_finish or hooks.on_overrun)
 
-    def hand(self, batch: JobRecords, end_ns: int | None = None) -> None:
-        """Hand on the events of ``batch`` that no later record can precede; with ``end_ns``
-        (the run's end), every event held up to it, the later ones dropped."""
+    def hand(self, batch: JobRecords, now_ns: int, end: bool = False) -> None:
+        """Take ``batch`` and hand on the events held up to ``now_ns`` (the run's instant: a
+        plant server behind the wall clock holds the controller's later jobs back) that no
+        later record can precede; at the run's ``end``, every event up to ``now_ns``, the
+        later ones dropped."""
         self.lost += batch.lost
-        watermark: dict[int, int] = {}
+        settled = self._settled
         for record in batch.records:
             self._hold(record)
             if not record.overrun:
-                watermark[record.module] = record.release_ns
-        if end_ns is not None:
-            watermark = {m: end_ns for m, held in enumerate(self._held) if held}
-        for m, until in watermark.items():
-            self._emit(m, until, drop_after=end_ns is not None)
+                settled[record.module] = record.release_ns
+        for m, held in enumerate(self._held):
+            if held:
+                self._emit(m, now_ns if end else min(settled[m], now_ns), drop_after=end)
 
     def _hold(self, record: JobRecord) -> None:
         held = self._held[record.module]

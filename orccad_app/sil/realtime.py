@@ -325,9 +325,9 @@ class RealtimeRun(MissionRun):
         """The job records up to the run's end handed on (the controller records no more)."""
         if self._jobs_wanted:
             self._shared.want_jobs(False)
-            self._hand_jobs(self._shared.jobs(), end_ns=self.kernel.now)
+            self._hand_jobs(self._shared.jobs(), end=True)
 
-    def _hand_jobs(self, batch: JobRecords, end_ns: int | None = None) -> None:
+    def _hand_jobs(self, batch: JobRecords, end: bool = False) -> None:
         """The controller's job records to the observers (:class:`JobTrace`); a warning to
         them when the ring was overrun (the records lost are counted, the run goes on)."""
         if batch.lost:
@@ -335,7 +335,7 @@ class RealtimeRun(MissionRun):
                        f"more than {JOB_RING} records behind the controller")
             for hook in self._hooks["on_warning"]:
                 hook(self.kernel.now, "sil", message)
-        self._jobs.hand(batch, end_ns)
+        self._jobs.hand(batch, self.kernel.now, end)
 
     @property
     def job_records_lost(self) -> int:

@@ -388,6 +388,7 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
     for module, rows in jobs.items():
         times = [int(row["time_ns"]) for row in rows]
         assert times == sorted(times), module  # in time order per Module-Task
+        assert times[-1] <= 500_000_000  # none after the run's end (the plant server's clock)
         by_job: dict[int, dict[str, int]] = {}
         for row in rows:
             if row["event"] != "overrun":
@@ -454,8 +455,8 @@ def test_lost_job_records_are_counted_and_the_rest_kept_in_order():
 def test_job_records_reach_the_observers_in_time_order_per_module_task():
     """A release skipped while job 0 runs is recorded at once, job 0 at its finish (in a later
     read): the observers get job 0's release, start, the overrun, its compute end and finish,
-    in time order; job 1's events wait for a later record, then go at the run's end (the
-    events after it dropped)."""
+    in time order, once the run's clock has reached them; job 1's events wait for the run's
+    clock and a later record, then go at the run's end (the events after it dropped)."""
     from types import SimpleNamespace
 
     from orccad_app.executive.hooks import Hooks
@@ -471,15 +472,16 @@ def test_job_records_reach_the_observers_in_time_order_per_module_task():
     skipped = JobRecord(0, 0, 1_000, -1, -1, -1, False, True)
     job0 = JobRecord(0, 0, 0, 200, 1_400, 1_500, True, False)
     job1 = JobRecord(0, 1, 2_000, 2_100, 2_200, 3_100, False, False)
-    trace.hand(JobRecords([skipped], 0))
+    trace.hand(JobRecords([skipped], 0), now_ns=1_200)
     assert log.events == []  # held: job 0's record may come with earlier events
-    trace.hand(JobRecords([job0, job1], 0))
+    trace.hand(JobRecords([job0, job1], 0), now_ns=1_800)
     assert log.events == [("on_release", 0, "T.ctrl", 0), ("on_start", 200, "T.ctrl", 0, "cpu0"),
                           ("on_overrun", 1_000, "T.ctrl", 0),
                           ("on_compute_end", 1_400, "T.ctrl", 0, "cpu0"),
-                          ("on_finish", 1_500, "T.ctrl", 0, 1_500, True),
-                          ("on_release", 2_000, "T.ctrl", 1)]
-    trace.hand(JobRecords([], 3), end_ns=2_500)
+                          ("on_finish", 1_500, "T.ctrl", 0, 1_500, True)]
+    trace.hand(JobRecords([], 0), now_ns=2_050)  # the run's clock reaches job 1's release
+    assert log.events[5:] == [("on_release", 2_000, "T.ctrl", 1)]
+    trace.hand(JobRecords([], 3), now_ns=2_500, end=True)  # the run ends at 2.5 µs
     assert log.events[6:] == [("on_start", 2_100, "T.ctrl", 1, "cpu0"),
                               ("on_compute_end", 2_200, "T.ctrl", 1, "cpu0")]
     assert trace.lost == 3
