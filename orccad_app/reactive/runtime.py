@@ -23,7 +23,7 @@ from orccad_app.reactive.expr import Store, Unset, format_expr
 from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lowered import ACTION, DATA, INPUT, Step, lower
 
-__all__ = ["Reaction", "Reactor", "RelationViolation", "Step"]
+__all__ = ["AutomatonPosition", "Reaction", "Reactor", "RelationViolation", "Step"]
 
 
 class RelationViolation(OrccadError):
@@ -75,7 +75,27 @@ def _pre_read(automaton: Automaton | LazyAutomaton) -> tuple[ir.SignalDecl, ...]
     return tuple(found)
 
 
-class Reactor:
+class AutomatonPosition:
+    """Where a runtime of ``automaton`` is (``state``): what a state's number says of the
+    program, for every runtime that steps a compiled automaton (this module's
+    :class:`Reactor`, a controller's C automaton)."""
+
+    automaton: Automaton | LazyAutomaton
+    state: int
+
+    @property
+    def finished(self) -> bool:
+        """The program has terminated (after its ``on fatal`` block, if any)."""
+        return self.state == self.automaton.terminal
+
+    @property
+    def labels(self) -> frozenset:
+        """Labels of the marked regions the current state is in."""
+        labels = self.automaton.labels
+        return labels[self.state] if labels else frozenset()
+
+
+class Reactor(AutomatonPosition):
     """An automaton in execution: ``react`` (or the lean ``step``) performs one instant."""
 
     def __init__(self, automaton: Automaton | LazyAutomaton):
@@ -191,17 +211,6 @@ class Reactor:
         """The values of ``step``'s valued outputs (just after that step)."""
         values = self.store.values
         return {s.name: values.get(s) for s in step.valued}
-
-    @property
-    def finished(self) -> bool:
-        """The program has terminated (after its ``on fatal`` block, if any)."""
-        return self.state == self.automaton.terminal
-
-    @property
-    def labels(self) -> frozenset:
-        """Labels of the marked regions the current state is in."""
-        labels = self.automaton.labels
-        return labels[self.state] if labels else frozenset()
 
     def input_decl(self, name: str) -> ir.SignalDecl | None:
         return self._inputs.get(name)

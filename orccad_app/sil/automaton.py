@@ -34,6 +34,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.reactive.automaton import RUNNING, Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
+from orccad_app.reactive.runtime import AutomatonPosition
 from orccad_app.sil.adjust import adjust_lines, c_adjustments
 from orccad_app.sil.controller import ControllerProcess, Op
 from orccad_app.sil.emit import ModuleTable
@@ -213,7 +214,7 @@ def _slots(signals: tuple[CSignal, ...], first: int) -> tuple[_Slot, ...]:
     return tuple(slots)
 
 
-class ControllerAutomaton:
+class ControllerAutomaton(AutomatonPosition):
     """The C automaton of the controller, stepped as the mission layer steps its reactor
     (see the module docstring).
 
@@ -237,17 +238,6 @@ class ControllerAutomaton:
         self.status = RUNNING
         self.reason: str | None = None
         self.instant = 0
-
-    @property
-    def finished(self) -> bool:
-        """The program has terminated (after its ``on fatal`` block, if any)."""
-        return self.state == self.automaton.terminal
-
-    @property
-    def labels(self) -> frozenset:
-        """Labels of the marked regions the current state is in."""
-        labels = self.automaton.labels
-        return labels[self.state] if labels else frozenset()
 
     def values(self, step: CStep) -> dict[str, Any]:
         """The values of ``step``'s valued outputs."""
