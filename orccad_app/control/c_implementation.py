@@ -1,7 +1,7 @@
 """A Module-Task kind's C, provided by its plugin: :class:`CImplementation`.
 
 ``orccad sil`` and ``orccad codegen --module-tasks`` run every Module-Task in C. The built-in
-kinds have theirs in the runtime library (``orccad_app/sil/c/orccad_mt.c``); a plugin's kind
+kinds have theirs in the runtime library (``orccad_app/sil/c/orccad_mt_*.c``); a plugin's kind
 runs there when the kind says where its C is (:attr:`ModuleKind.c_implementation
 <orccad_app.control.module.ModuleKind.c_implementation>`), and is refused with its name and
 the reason otherwise. The contract (docs/deploy.md, "A plugin kind's C"): one C99 file that

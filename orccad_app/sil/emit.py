@@ -4,7 +4,7 @@ Every Module-Task of every Robot-Task the mission runs becomes one entry of ``OR
 its TCS name, its C kind, its slots, its nominal parameters (from the ``.orc`` file and the
 robot file, see :mod:`orccad_app.sil.layout`), its declared period and execution time, its
 processor and priority. The C kinds themselves are the runtime library's
-(``orccad_app/sil/c/orccad_mt.c``), compiled beside the table.
+(``orccad_app/sil/c/orccad_mt.c`` and ``orccad_mt_*.c``), compiled beside the table.
 
 Generation gap: the files this module writes are marked generated and rewritten at every
 generation; the hand-written I/O of a deployment (``orccad_io.c``, see docs/deploy.md) is
@@ -286,11 +286,13 @@ def table_source(table: ModuleTable, source: str) -> str:
             + _plugin_dispatch(plugin_kinds(table)))
 
 
-RUNTIME_FILES = ("orccad_mt.h", "orccad_mt.c", "orccad_dynamics.h", "orccad_dynamics.c",
-                 "orccad_port.h", "orccad_port.c", "orccad_wire.h", "orccad_wire.c",
-                 "orccad_automaton.h", "orccad_automaton.c", "orccad_rt.h", "orccad_rt.c",
-                 "orccad_rt_automaton.c", "orccad_adjust.h", "orccad_rt_main.c", "orccad_io.h",
-                 "orccad_io_shm.c")
+RUNTIME_FILES = ("orccad_mt.h", "orccad_mt_kinds.h", "orccad_mt.c", "orccad_mt_trajectory.c",
+                 "orccad_mt_laws.c", "orccad_mt_observers.c", "orccad_mt_auv.c",
+                 "orccad_dynamics.h", "orccad_dynamics.c", "orccad_port.h", "orccad_port.c",
+                 "orccad_wire.h", "orccad_wire.c", "orccad_automaton.h", "orccad_automaton.c",
+                 "orccad_rt.h", "orccad_rt_task.h", "orccad_rt.c", "orccad_rt_lifecycle.c",
+                 "orccad_rt_record.c", "orccad_rt_deadlock.c", "orccad_rt_automaton.c",
+                 "orccad_adjust.h", "orccad_rt_main.c", "orccad_io.h", "orccad_io_shm.c")
 """The runtime library's files that ``orccad codegen --module-tasks`` writes beside the
 table (all generated: the user's ``orccad_io.c`` lives outside the folder)."""
 

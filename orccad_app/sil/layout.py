@@ -1,11 +1,13 @@
 """The C layout of a Module-Task: which C kind runs it, its slots and its parameter vector.
 
 A Python module instance (what the executive would run) is described to the C runtime
-(``orccad_app/sil/c/orccad_mt.c``) by a :class:`CLayout`: the C kind, the input and output
-ports in the Python kind's port order with their dimensions and types, and the parameters as
-one vector of doubles whose offsets the C kind reads (the layouts are listed at the top of
-``orccad_mt.c``). The robot file's data a kind needs — joint limits, the actuator constraint —
-goes into the vector too: the C code never reads the robot file.
+(``orccad_app/sil/c/orccad_mt.c`` and its kinds' files) by a :class:`CLayout`: the C kind, the
+input and output ports in the Python kind's port order with their dimensions and types, and
+the parameters as one vector of doubles whose offsets the C kind reads (the layouts are listed
+in each kind's file: ``orccad_mt_trajectory.c``, ``orccad_mt_laws.c``,
+``orccad_mt_observers.c``, ``orccad_mt_auv.c``). The robot file's data a kind needs — joint
+limits, the actuator constraint — goes into the vector too: the C code never reads the robot
+file.
 
 :func:`c_layout` refuses, with the module kind's name and the reason, a kind that has no C
 implementation (:class:`NoCImplementation`): a plugin's kind whose plugin gives no C

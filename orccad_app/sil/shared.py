@@ -1,7 +1,7 @@
 """The shared memory of the real-time controller: robot ports and Module-Task mirrors.
 
 One file under ``/dev/shm`` (a temporary directory where there is none), mapped by the plant
-server and by the controller (``orccad_app/sil/c/orccad_rt.c`` holds the same layout), as
+server and by the controller (``orccad_app/sil/c/orccad_io_shm.c`` holds the same layout), as
 8-byte words:
 
 - a header of 8 words (word 1: the instant of the run's t = 0 on ``CLOCK_MONOTONIC`` [ns]);

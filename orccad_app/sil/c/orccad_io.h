@@ -1,4 +1,4 @@
-/* orccad_io.h: the robot's I/O as the real-time runtime (orccad_rt.c) uses it.
+/* orccad_io.h: the robot's I/O as the real-time runtime (orccad_rt*.c) uses it.
  *
  * Write these functions for your hardware to put the generated controller on a robot
  * (docs/deploy.md); `orccad sil --realtime` links orccad_io_shm.c, which implements them over

@@ -34,6 +34,11 @@
  * SCHED_FIFO too (priority 70) when the processor
  * threads do: a supervisor waiting for an answer holds the plant.
  *
+ * This file holds the Module-Tasks' state (orccad_rt_task.h), the port wiring, the jobs' state
+ * machine and the processor threads; the Robot-Tasks' lifecycle on a Module-Task is
+ * orccad_rt_lifecycle.c, the trace's job records orccad_rt_record.c, the deadlock search (a
+ * cycle of jobs blocked on each other's ports) orccad_rt_deadlock.c.
+ *
  * C99 + POSIX threads; no allocation after start, no recursion. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -49,31 +54,11 @@
 #include "orccad_mt.h"
 #include "orccad_port.h"
 #include "orccad_rt.h"
+#include "orccad_rt_task.h"
 
 #define MAX_MODULES ORC_RT_MAX_MODULES
 #define MAX_CONNECTIONS 256
 #define MAX_PROCESSORS ORC_RT_MAX_PROCESSORS
-
-/* The state of one Module-Task in the runtime, and of its current job. */
-typedef struct {
-    int active;
-    int64_t next_release_ns;  /* absolute, CLOCK_MONOTONIC; INT64_MAX: none due (sporadic) */
-    int64_t last_release_ns;  /* sporadic: the previous release (INT64_MIN: none yet) */
-    int64_t released, overruns, misses, events;
-    double response_max_ns;
-    int phase;                /* JOB_IDLE, JOB_READING (its inputs), JOB_WRITING */
-    int at;                   /* the next input slot to read, or write to do */
-    int waiting;              /* blocked on that read or write (a port protocol) */
-    int64_t job_release_ns;   /* the current job's release */
-    int64_t job_start_ns;     /* its compute's start, end (-1: not yet), for the trace */
-    int64_t job_compute_end_ns;
-    int job_traced;           /* its life cycle is recorded (orc_io_jobs_wanted at release) */
-    int computing;            /* its compute runs, outside the runtime's lock */
-    unsigned generation;      /* changed by a kill or an activation: a job computing across
-                                 one is aborted */
-} rt_task;
-
-enum { JOB_IDLE = 0, JOB_READING = 1, JOB_WRITING = 2 };
 
 pthread_mutex_t orc_rt_lock = PTHREAD_MUTEX_INITIALIZER;
 pthread_cond_t orc_rt_changed; /* a port, an interrupt or a command changed (monotonic) */
@@ -105,6 +90,16 @@ int64_t orc_rt_epoch_ns(void)
 int64_t orc_rt_events(int m)
 {
     return tasks[m].events;
+}
+
+rt_task *orc_rt_task(int m)
+{
+    return &tasks[m];
+}
+
+orc_port *orc_rt_port(int c)
+{
+    return &ports[c];
 }
 
 static struct timespec timespec_of(int64_t ns)
@@ -228,34 +223,10 @@ static int write_outputs(int m)
     return 1;
 }
 
-/* The trace's record of m's current job (finish_ns -1: aborted), instants from t = 0. */
-static void record_job(int m, int64_t finish_ns, int missed)
+int orc_rt_job_connection(int m)
 {
     const rt_task *t = &tasks[m];
-    orc_job job;
-    job.job = t->released - 1;
-    job.release_ns = t->job_release_ns - epoch_ns;
-    job.start_ns = t->job_start_ns < 0 ? -1 : t->job_start_ns - epoch_ns;
-    job.compute_end_ns = t->job_compute_end_ns < 0 ? -1 : t->job_compute_end_ns - epoch_ns;
-    job.finish_ns = finish_ns < 0 ? -1 : finish_ns - epoch_ns;
-    job.missed = missed;
-    job.overrun = 0;
-    orc_io_job(m, &job);
-}
-
-/* The release of m at release_ns skipped (an overrun), its current job unfinished. */
-static void record_overrun(int m, int64_t release_ns)
-{
-    orc_job job;
-    if (!orc_io_jobs_wanted()) {
-        return;
-    }
-    job.job = tasks[m].released - 1;
-    job.release_ns = release_ns - epoch_ns;
-    job.start_ns = job.compute_end_ns = job.finish_ns = -1;
-    job.missed = 0;
-    job.overrun = 1;
-    orc_io_job(m, &job);
+    return t->phase == JOB_READING ? input_of[m][t->at] : writes[first_write[m] + t->at];
 }
 
 static void finish_job(int m)
@@ -275,7 +246,7 @@ static void finish_job(int m)
         t->misses += 1;
     }
     if (t->job_traced) {
-        record_job(m, now, missed);
+        orc_rt_record_job(m, now, missed);
     }
     orc_io_publish(m, &ORC_INSTANCES[m], t->released, t->overruns, t->misses, t->events,
                    t->response_max_ns);
@@ -331,7 +302,7 @@ static void release_due(int processor, int64_t now, int *released)
         }
         if (t->phase != JOB_IDLE) {
             t->overruns += 1;
-            record_overrun(m, release);
+            orc_rt_record_overrun(m, release);
         } else {
             t->phase = JOB_READING;
             t->at = 0;
@@ -352,7 +323,7 @@ static void release_due(int processor, int64_t now, int *released)
         t->next_release_ns = release + period;
         while (t->next_release_ns <= now) { /* releases missed: overruns */
             t->overruns += 1;
-            record_overrun(m, t->next_release_ns);
+            orc_rt_record_overrun(m, t->next_release_ns);
             t->next_release_ns += period;
         }
     }
@@ -393,52 +364,6 @@ static int run_jobs(int processor)
         moved_any |= moved;
     }
     return moved_any;
-}
-
-/* The Module-Task whose operation alone releases m's job (-1: m's job does not wait), and
- * the connection and direction of the wait. */
-static int waits_for(int m, int *connection, int *reading)
-{
-    const rt_task *t = &tasks[m];
-    int c;
-    if (!t->active || t->phase == JOB_IDLE || !t->waiting) {
-        return -1;
-    }
-    *reading = t->phase == JOB_READING;
-    c = *reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
-    *connection = c;
-    if (*reading ? ports[c].reader_free : ports[c].writer_free) {
-        return -1; /* released already: it goes on at its thread's next look */
-    }
-    return *reading ? ORC_CONNECTIONS[c].src_module : ORC_CONNECTIONS[c].dst_module;
-}
-
-/* A cycle of jobs waiting on each other (the executive's deadlock, docs/executive.md): its
- * entries [module, connection, reading] into `cycle`; the number of doubles (0: none). */
-static uint32_t find_deadlock(double *cycle)
-{
-    int m;
-    for (m = 0; m < ORC_N_MODULES; m++) {
-        int at = m, steps, c, reading;
-        for (steps = 0; steps <= ORC_N_MODULES; steps++) {
-            at = waits_for(at, &c, &reading);
-            if (at < 0 || at == m) {
-                break;
-            }
-        }
-        if (at == m) {
-            uint32_t n = 0;
-            do {
-                int next = waits_for(at, &c, &reading);
-                cycle[n++] = (double)at;
-                cycle[n++] = (double)c;
-                cycle[n++] = (double)reading;
-                at = next;
-            } while (at != m);
-            return n;
-        }
-    }
-    return 0;
 }
 
 /* ---- processor threads ------------------------------------------------------------------- */
@@ -525,113 +450,7 @@ static int start_processor(pthread_t *thread, int processor, int *warned)
                                best < 79 ? 80 - best : 1, warned);
 }
 
-/* ---- the socket: commands and heartbeat --------------------------------------------------- */
-
-static void reset_ports(int m)
-{
-    int c;
-    for (c = 0; c < ORC_N_CONNECTIONS; c++) {
-        if (ORC_CONNECTIONS[c].src_module == m || ORC_CONNECTIONS[c].dst_module == m) {
-            orc_port_reset(&ports[c], ORC_CONNECTIONS[c].protocol);
-        }
-    }
-}
-
-/* Module-Task m killed: its unfinished job aborted, its wait on a port forgotten. */
-static void kill_task(int m)
-{
-    rt_task *t = &tasks[m];
-    t->generation += 1;
-    if (t->phase != JOB_IDLE && t->job_traced) {
-        record_job(m, -1, 0); /* aborted */
-    }
-    if (t->phase != JOB_IDLE && t->waiting) {
-        int reading = t->phase == JOB_READING;
-        int c = reading ? input_of[m][t->at] : writes[first_write[m] + t->at];
-        orc_port_cancel(&ports[c], reading);
-    }
-    t->active = 0;
-    t->phase = JOB_IDLE;
-    t->waiting = 0;
-}
-
-/* Until Module-Task m's compute (outside the lock) has ended: a command touching its memory
- * waits for it. */
-static void wait_compute(int m)
-{
-    while (tasks[m].computing) {
-        pthread_cond_wait(&orc_rt_changed, &orc_rt_lock);
-    }
-}
-
-/* Module-Task m activated: its first release at release_ns. */
-static void activate(int m, int64_t release_ns)
-{
-    wait_compute(m);
-    orc_mt_init(&ORC_INSTANCES[m]);
-    kill_task(m);
-    tasks[m].active = 1;
-    tasks[m].next_release_ns = release_ns;
-    if (ORC_MODULES[m].sporadic) { /* released by its first interrupt */
-        tasks[m].next_release_ns = INT64_MAX;
-        tasks[m].last_release_ns = INT64_MIN;
-    }
-}
-
-int orc_rt_active(int m)
-{
-    return tasks[m].active;
-}
-
-void orc_rt_fresh(int m)
-{
-    wait_compute(m);
-    orc_mt_load(&ORC_INSTANCES[m], &ORC_MODULES[m]);
-    orc_mt_init(&ORC_INSTANCES[m]);
-}
-
-void orc_rt_kill(int m)
-{
-    kill_task(m);
-}
-
-void orc_rt_reset_ports(int m)
-{
-    reset_ports(m);
-}
-
-void orc_rt_activate(int m, int64_t release_ns)
-{
-    activate(m, release_ns);
-}
-
-void orc_rt_set_param(int m, int offset, double value)
-{
-    wait_compute(m);
-    (void)orc_mt_set_param(&ORC_INSTANCES[m], offset, &value, 1);
-}
-
-double orc_rt_get_param(int m, int offset)
-{
-    return ORC_INSTANCES[m].p[offset];
-}
-
-uint32_t orc_rt_set_params(int m, int offset, const double *values, int n)
-{
-    wait_compute(m);
-    return orc_mt_set_param(&ORC_INSTANCES[m], offset, values, n) ? 2 : 0;
-}
-
-void orc_rt_init(int m)
-{
-    wait_compute(m);
-    orc_mt_init(&ORC_INSTANCES[m]);
-}
-
-uint32_t orc_rt_deadlock(double *cycle)
-{
-    return find_deadlock(cycle);
-}
+/* ---- set up and stop --------------------------------------------------------------------- */
 
 void orc_rt_take_epoch(void)
 {

@@ -1,7 +1,8 @@
-/* orccad_rt.h: what the real-time runtime's parts share (orccad_rt.c: the processor threads
- * and the commands; orccad_rt_automaton.c: the mission's automaton task). Part of the ORCCAD
- * runtime library; C99 + POSIX threads. Everything here is read and written under
- * orc_rt_lock. */
+/* orccad_rt.h: what the real-time runtime's parts share (orccad_rt.c: the processor threads;
+ * orccad_rt_lifecycle.c: the Robot-Tasks' lifecycle on the Module-Tasks; orccad_rt_deadlock.c:
+ * the deadlock search; orccad_rt_main.c: the commands; orccad_rt_automaton.c: the mission's
+ * automaton task). Part of the ORCCAD runtime library; C99 + POSIX threads. Everything here
+ * is read and written under orc_rt_lock. */
 #ifndef ORCCAD_RT_H
 #define ORCCAD_RT_H
 
@@ -22,9 +23,10 @@ int64_t orc_rt_now_ns(void);
 int64_t orc_rt_epoch_ns(void);
 int64_t orc_rt_events(int m);
 
-/* The Robot-Tasks' lifecycle on Module-Task m: active?; a fresh start (nominal parameters,
- * state reset; waits for its compute); killed (its unfinished job aborted); its ports back to
- * "before any write"; activated, its first release at `release_ns` (absolute). */
+/* The Robot-Tasks' lifecycle on Module-Task m (orccad_rt_lifecycle.c): active?; a fresh
+ * start (nominal parameters, state reset; waits for its compute); killed (its unfinished job
+ * aborted); its ports back to "before any write"; activated, its first release at
+ * `release_ns` (absolute). */
 int orc_rt_active(int m);
 void orc_rt_fresh(int m);
 void orc_rt_kill(int m);
@@ -35,10 +37,11 @@ void orc_rt_activate(int m, int64_t release_ns);
 void orc_rt_set_param(int m, int offset, double value);
 double orc_rt_get_param(int m, int offset);
 
-/* The commands (orccad_rt_main.c): a parameter write (0, or 2 when refused); INIT; the
- * jobs deadlocked, as [module, connection, reading] triples into `cycle` (the number of
- * doubles, 0: none); the I/O side's t = 0 taken; the runtime set up (-1: the table exceeds
- * its sizes); a processor's thread started; every thread told to stop. */
+/* The commands (orccad_rt_main.c): a parameter write (0, or 2 when refused); INIT (both
+ * orccad_rt_lifecycle.c); the jobs deadlocked, as [module, connection, reading] triples into
+ * `cycle` (the number of doubles, 0: none; orccad_rt_deadlock.c); the I/O side's t = 0 taken;
+ * the runtime set up (-1: the table exceeds its sizes); a processor's thread started; every
+ * thread told to stop. */
 uint32_t orc_rt_set_params(int m, int offset, const double *values, int n);
 void orc_rt_init(int m);
 uint32_t orc_rt_deadlock(double *cycle);
