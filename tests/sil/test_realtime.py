@@ -170,8 +170,8 @@ def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
     gain) and ``Lagging`` ramps ctrl.ki from 0 to 20 over 1 s: the automaton task computes
     and writes both itself (no PARAM request from the plant server), the ramp stepped at the
     law's releases. The law's parameter words, read from the controller at every heartbeat,
-    show kp compounding to its cap and ki on the ramp from its last start (within 10 ms of
-    the ramp's clock), then exactly at its end, as the executive computes it."""
+    show kp compounding to its cap and ki on the ramp from its last start (up to the plant
+    server's lateness ahead of it), then exactly at its end, as the executive computes it."""
     from orccad_app.sil.controller import Op
 
     ops: list[Op] = []
@@ -210,9 +210,12 @@ def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
         since_s = (at_ns - starts[-1]) / 1e9
         if since_s >= 1.0 + 0.010:
             assert words[8] == 0.0 + (20.0 - 0.0) * 1.0, (at_ns, words[8])  # its end
-        elif since_s > 0.020:
+        elif 0.020 < since_s < 0.980:
             on_ramp += 1
-            assert abs(words[8] - 20.0 * since_s) <= 20.0 * 0.010, (at_ns, words[8], since_s)
+            # the controller is ahead of the plant server's clock by its lateness (at most
+            # STALL_S on a machine that kept time), and steps at 1 ms releases
+            assert -20.0 * 0.002 <= words[8] - 20.0 * since_s <= 20.0 * (STALL_S + 0.002), \
+                (at_ns, words[8], since_s)
     assert on_ramp >= 5
 
 
