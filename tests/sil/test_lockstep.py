@@ -159,10 +159,10 @@ def test_the_command_writes_the_trace_and_json_of_orccad_run(tmp_path):
     import json
 
     mission = str(MISSIONS / "arm_recovery.orc")
-    common = ["--until", "3", "--inject", "TrackPID.TrackingLost@2.5", "--json"]
+    common = ["--until", "1.8", "--inject", "TrackPID.TrackingLost@1.6", "--json"]
     sil = _command("sil", mission, "--lockstep", *common, "--trace", str(tmp_path / "sil.mcap"))
     run = _command("run", mission, *common, "--trace", str(tmp_path / "run.mcap"))
-    assert sil.returncode == run.returncode == 1, sil.stderr  # a timeout at 3 s
+    assert sil.returncode == run.returncode == 1, sil.stderr  # a timeout at 1.8 s
     got, expected = json.loads(sil.stdout), json.loads(run.stdout)
     assert got.pop("controller")["mode"] == "lockstep"
     got.pop("wall_time_s"), expected.pop("wall_time_s")
