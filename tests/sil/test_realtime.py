@@ -82,11 +82,12 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
                 self.sent = True
                 os.kill(runs.controller.pid, signal.SIGKILL)
 
+    kill = Kill()
     with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
-        result = session_of("arm_pid.orc", runs=runs, observers=(Kill(),)).execute().result
-        assert _gone(runs.controller.pid)
-    assert result.status == "failed"
-    assert "killed by SIGKILL" in result.reason
+        result = session_of("arm_pid.orc", runs=runs, observers=(kill,)).execute().result
+        assert (result.status, kill.sent) == ("failed", True), result.reason
+        assert "killed by SIGKILL" in result.reason, result.reason
+        assert _gone(runs.controller.pid)  # reaped by the run, before the block's end
     assert _controllers_of(os.getpid()) == []
 
 
