@@ -91,9 +91,22 @@ def _wait_for_controller(parent: int, timeout_s: float = 60.0) -> int:
     raise AssertionError("the controller process did not start")
 
 
+def _wait_for_run(controller: int, timeout_s: float = 60.0) -> None:
+    """Until the controller has read 64 KiB of requests: the run is going (a controller
+    killed before it answered HELLO is a run that could not start, exit 2)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        io = Path(f"/proc/{controller}/io").read_text()
+        if int(io.split("rchar:")[1].split()[0]) >= 65536:
+            return
+        time.sleep(0.02)
+    raise AssertionError("the controller process started no run")
+
+
 def test_killing_the_controller_under_the_command_ends_it_failed_with_the_reason():
     command = _orccad(str(MISSIONS / "auv_survey.orc"), "--lockstep", "--json")
     controller = _wait_for_controller(command.pid)
+    _wait_for_run(controller)
     os.kill(controller, signal.SIGKILL)
     out, err = command.communicate(timeout=120)
     assert command.returncode == 1, err
@@ -117,7 +130,7 @@ def test_killing_the_plant_server_ends_the_controller_too():
 def test_ctrl_c_ends_the_run_with_its_report_and_no_process_left():
     command = _orccad(str(MISSIONS / "auv_survey.orc"), "--lockstep")
     controller = _wait_for_controller(command.pid)
-    time.sleep(0.5)
+    _wait_for_run(controller)
     command.send_signal(signal.SIGINT)
     out, err = command.communicate(timeout=120)
     assert command.returncode == 130, err
