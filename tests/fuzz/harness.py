@@ -9,10 +9,13 @@ cases every test run replays.
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import io
 import json
+import shutil
 import signal
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,7 +23,7 @@ from pathlib import Path
 from orccad_app.cli import main
 
 __all__ = ["Outcome", "run_orccad", "check_outcome", "strict_json", "save_case", "CORPUS",
-           "replay"]
+           "replay", "scratch_folder"]
 
 CORPUS = Path(__file__).resolve().parent / "corpus"
 
@@ -37,6 +40,14 @@ class Outcome:
     out: str
     err: str
     seconds: float
+
+
+def scratch_folder(prefix: str) -> Path:
+    """A new temporary folder for one generated case, removed when the test process ends (a
+    fuzz run makes hundreds: none is left in the temporary directory)."""
+    folder = Path(tempfile.mkdtemp(prefix=prefix))
+    atexit.register(shutil.rmtree, folder, True)
+    return folder
 
 
 def _alarm(signum, frame):

@@ -7,14 +7,13 @@ budget, exit status in {0, 1, 2}, strict JSON."""
 from __future__ import annotations
 
 import random
-import tempfile
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.fuzz.harness import CORPUS, check_outcome, replay, run_orccad
+from tests.fuzz.harness import CORPUS, check_outcome, replay, run_orccad, scratch_folder
 from tests.fuzz.missions import inject_specs, missions, mutated, scripts, task_missions
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -29,7 +28,7 @@ def _settings(examples: int):
 
 
 def _files(**texts: str) -> Path:
-    folder = Path(tempfile.mkdtemp(prefix="orccad-fuzz-"))
+    folder = scratch_folder("orccad-fuzz-")
     for name, text in texts.items():
         (folder / name.replace("_", ".")).write_text(text, encoding="utf-8", errors="replace")
     return folder

@@ -5,14 +5,13 @@ default run takes seconds; ``-m fuzz_long`` runs many more examples."""
 
 from __future__ import annotations
 
-import tempfile
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 
 from tests.fuzz.features import LIBRARY, feature_programs
-from tests.fuzz.harness import check_outcome, run_orccad
+from tests.fuzz.harness import check_outcome, run_orccad, scratch_folder
 from tests.fuzz.missions import mutated
 
 
@@ -22,7 +21,7 @@ def _settings(examples: int):
 
 
 def _folder(main: str, library: str) -> Path:
-    folder = Path(tempfile.mkdtemp(prefix="orccad-fuzz-features-"))
+    folder = scratch_folder("orccad-fuzz-features-")
     (folder / "m.orc").write_text(main, encoding="utf-8", errors="replace")
     (folder / "lib.orc").write_text(library, encoding="utf-8", errors="replace")
     return folder

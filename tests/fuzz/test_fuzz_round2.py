@@ -5,7 +5,6 @@ error, a hang or a silent change."""
 
 from __future__ import annotations
 
-import tempfile
 from decimal import Decimal
 from pathlib import Path
 
@@ -17,7 +16,7 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.overrides import parse_timing
 from orccad_app.reactive.lower import MAX_INLINED_NODES
 from tests.campaign.conftest import LEAK_SPEC
-from tests.fuzz.harness import check_outcome, run_orccad
+from tests.fuzz.harness import check_outcome, run_orccad, scratch_folder
 
 
 def _settings(examples: int):
@@ -36,7 +35,7 @@ def _repeated(depth: int, repeat: int) -> str:
 @_settings(12)
 @given(st.integers(1, 9), st.integers(1, 12))
 def test_sub_missions_run_with_repetition_stay_within_the_inlining_budget(depth, repeat):
-    folder = Path(tempfile.mkdtemp(prefix="orccad-fuzz-inline-"))
+    folder = scratch_folder("orccad-fuzz-inline-")
     path = folder / "m.orc"
     path.write_text(_repeated(depth, repeat), encoding="utf-8")
     outcome = run_orccad(["compile", str(path), "-m", f"L{depth}", "--format", "json"],
