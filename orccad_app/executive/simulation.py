@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from enum import Enum
 from typing import Any, Callable, Iterable
 
 from orccad_app.diagnostics import OrccadError
@@ -39,7 +40,7 @@ from orccad_app.executive.task_runtime import ModuleTaskRuntime
 from orccad_app.tcs.graph import TCS
 from orccad_app.tcs.module_task import PhysicalResource
 
-__all__ = ["Simulation", "RunStats"]
+__all__ = ["Simulation", "RunStats", "TimingSource"]
 
 _CONTROL = EventClass.CONTROL
 
@@ -55,6 +56,17 @@ class _SignalCallback(Observer):
         self._callback(t_ns, name, value)
 
 
+class TimingSource(Enum):
+    """Where a run's timing statistics come from."""
+
+    SIMULATED = "simulated"
+    """The executive's timing model: every figure of :class:`RunStats`."""
+    MEASURED = "measured"
+    """A real-time controller's threads (``orccad sil --realtime``): jobs, overruns, deadline
+    misses and the longest response time per Module-Task are measured there; the rest
+    (response-time means, preemptions, blocking, processor loads) is not."""
+
+
 @dataclass(frozen=True, slots=True)
 class RunStats:
     """Statistics at the end of the last run segment.
@@ -66,6 +78,7 @@ class RunStats:
     :param bus: the bus's, if any connection crosses it.
     :param sporadic: per sporadic Module-Task, its interrupts and releases.
     :param reactions: per automaton reaction server (``automaton@cpu0``), its reactions.
+    :param timing: simulated, or measured on a real-time controller's threads.
     """
 
     time_ns: int
@@ -75,6 +88,7 @@ class RunStats:
     bus: BusStats | None
     sporadic: dict[str, SporadicStats] = field(default_factory=dict)
     reactions: dict[str, TaskStats] = field(default_factory=dict)
+    timing: TimingSource = TimingSource.SIMULATED
 
 
 class Simulation:

@@ -45,6 +45,7 @@ from orccad_app.codegen.generate import CProgram
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
+from orccad_app.executive.simulation import TimingSource
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
@@ -319,6 +320,7 @@ class RealtimeRun(MissionRun):
         finally:
             gc.enable()
         self._end_jobs()
+        result.stats = dataclasses.replace(result.stats, timing=TimingSource.MEASURED)
         return result
 
     def _end_jobs(self) -> None:

@@ -11,6 +11,9 @@ JSON keys (docs/design.md, *Command line*):
   (completed), ``response_time_max_s``, ``response_time_mean_s``, ``deadline_misses``,
   ``preemptions``, ``blocking_s``; a sporadic one also ``sporadic``: ``min_interarrival_s``,
   ``interrupts``, ``released``, ``deferred``, ``coalesced``, ``min_gap_s``;
+- ``timing``, only when ``measured`` (a real-time controller's threads, ``orccad sil
+  --realtime``; absent: the executive's timing model): there ``response_time_mean_s``,
+  ``preemptions``, ``blocking_s`` and the processors' ``load`` are ``null``, not measured;
 - ``processors``, keyed by name: ``load`` (busy fraction, context switches included);
 - ``bus``: ``messages``, ``busy_ratio``, ``classes``: per message class (``port_data``: the
   connections' data, request and reply messages; ``event``: observers' signals to an automaton
@@ -42,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.diagnostics import arguments_text
+from orccad_app.executive.simulation import TimingSource
 from orccad_app.mission.result import MissionStatus, RunResult
 from orccad_app.trace.recorder import plain_value
 
@@ -86,15 +90,17 @@ def lateness_summary(samples: list[float]) -> dict[str, float]:
 
 def _modules(result: RunResult) -> dict[str, dict[str, Any]]:
     found = {}
+    simulated = result.stats.timing is TimingSource.SIMULATED
     for name, stats in result.stats.tasks.items():
         task = result.modules[name]
         found[name] = {
             "processor": task.processor, "period_s": task.period_ns / 1e9,
             "wcet_s": task.wcet_ns / 1e9, "jobs": stats.completed,
             "response_time_max_s": stats.response_max_ns / 1e9,
-            "response_time_mean_s": stats.response_mean_ns / 1e9,
-            "deadline_misses": stats.deadline_misses, "preemptions": stats.preemptions,
-            "blocking_s": stats.blocking_ns / 1e9}
+            "response_time_mean_s": stats.response_mean_ns / 1e9 if simulated else None,
+            "deadline_misses": stats.deadline_misses,
+            "preemptions": stats.preemptions if simulated else None,
+            "blocking_s": stats.blocking_ns / 1e9 if simulated else None}
         sporadic = result.stats.sporadic.get(name)
         if sporadic is not None:
             found[name]["sporadic"] = {
@@ -159,7 +165,8 @@ def report_dict(result: RunResult,
         "wall_time_s": result.wall_time_s,
         "robot_tasks": [record.as_dict() for record in result.robot_tasks],
         "modules": _modules(result),
-        "processors": {name: {"load": stats.load}
+        "processors": {name: {"load": stats.load
+                              if result.stats.timing is TimingSource.SIMULATED else None}
                        for name, stats in result.stats.processors.items()},
         "bus": {"messages": bus.messages if bus else 0,
                 "busy_ratio": bus.busy_ratio if bus else 0.0,
@@ -171,6 +178,8 @@ def report_dict(result: RunResult,
         "outputs": _outputs(result),
         "injections": _injections(result, injections),
     }
+    if result.stats.timing is TimingSource.MEASURED:
+        report["timing"] = TimingSource.MEASURED.value
     if result.lateness_s is not None:
         report["lateness_s"] = lateness_summary(result.lateness_s)
     return report
@@ -208,10 +217,11 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
     for name, m in report["modules"].items():
         if not m["jobs"]:
             continue
+        mean, preempted = m["response_time_mean_s"], m["preemptions"]
         lines.append(f"  {name:<28} {m['processor']:<6} {_ms(m['period_s']):>6} "
                      f"{_ms(m['wcet_s']):>6} {m['jobs']:>6} {_ms(m['response_time_max_s']):>9} "
-                     f"{_ms(m['response_time_mean_s']):>9} {m['deadline_misses']:>6} "
-                     f"{m['preemptions']:>7}")
+                     f"{'—' if mean is None else _ms(mean):>9} {m['deadline_misses']:>6} "
+                     f"{'—' if preempted is None else preempted:>7}")
     for name, m in report["modules"].items():
         sporadic = m.get("sporadic")
         if sporadic:
@@ -303,8 +313,12 @@ def format_report(result: RunResult, injections: Iterable[InjectionRecord] = ())
         lines += _output_lines(report)
     lines.append("Module-Tasks (times in ms):")
     lines += _module_lines(report)
-    loads = ", ".join(f"{name} {p['load']:.1%}" for name, p in report["processors"].items())
-    lines.append(f"Processors: load {loads}")
+    if report.get("timing") != TimingSource.MEASURED.value:
+        loads = ", ".join(f"{name} {p['load']:.1%}" for name, p in report["processors"].items())
+        lines.append(f"Processors: load {loads}")
+    else:
+        lines.append("Processors: load not measured on the controller's threads (— above: "
+                     "not measured)")
     bus = report["bus"]
     lines.append(f"Bus: {bus['messages']} messages, busy {bus['busy_ratio']:.1%}")
     for name, label in (("port_data", "port data"), ("event", "event signals")):

@@ -140,6 +140,10 @@ def test_a_deadlock_on_the_real_time_threads_fails_the_run_naming_its_cycle(tmp_
     assert ("TrackPID.traj.qd (write, synF/asyn) waits for TrackPID.ctrl; TrackPID.ctrl.qd_dot "
             "(read, asyn/synF) waits for TrackPID.traj") in report["reason"]
     assert _controllers_of(os.getpid()) == []
+    # what the threads do not measure is not reported as a figure (the simulation's zeros)
+    assert report["timing"] == "measured"
+    assert {p["load"] for p in report["processors"].values()} == {None}
+    assert {m["response_time_mean_s"] for m in report["modules"].values()} == {None}
 
 
 @pytest.mark.parametrize("case", ["blocking", "two_processors"])
