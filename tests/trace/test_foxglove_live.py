@@ -16,8 +16,10 @@ import jsonschema
 import pytest
 from mcap.reader import make_reader
 
+# TrackPID runs 1 s (250 ms of wall time at --realtime 4) before Stop parks the arm: time for
+# a client to subscribe to its ports' channels, advertised when their first value comes
 ROOT_ARGS = [sys.executable, "-m", "orccad_app.cli", "run", "missions/arm_recovery.orc",
-             "--inject", "Stop@1.6", "--until", "4"]
+             "--inject", "Stop@2.5", "--until", "5"]
 
 
 def test_without_the_extra_the_run_says_what_to_install():
