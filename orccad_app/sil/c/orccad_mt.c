@@ -35,6 +35,29 @@ void orc_mt_set_out1(orc_mt *m, int slot, double v)
     orc_mt_set_out(m, slot, &v, 1);
 }
 
+void orc_mt_torque_bounds(const double *bounds, int dof, int j, double qdot, double *lo,
+                          double *hi)
+{
+    const double *tau_min = bounds, *tau_max = bounds + dof, *alpha = bounds + 2 * dof,
+                 *beta = bounds + 3 * dof;
+    double back_emf = beta[j] == 0.0 ? 0.0 : beta[j] * qdot, floor;
+    *lo = -alpha[j] - back_emf;
+    if (tau_min[j] > *lo) {
+        *lo = tau_min[j];
+    }
+    *hi = alpha[j] - back_emf;
+    if (tau_max[j] < *hi) {
+        *hi = tau_max[j];
+    }
+    floor = *lo < tau_max[j] ? *lo : tau_max[j];
+    if (!(*hi > floor)) {
+        *hi = floor;
+    }
+    if (!(*lo < *hi)) {
+        *lo = *hi;
+    }
+}
+
 /* ModuleInstance.task_time: seconds since the first job after init. */
 double orc_mt_task_time(double *state, double t_s)
 {

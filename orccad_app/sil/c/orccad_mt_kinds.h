@@ -13,6 +13,12 @@ void orc_mt_set_out1(orc_mt *m, int slot, double v);
 /* ModuleInstance.task_time: seconds since the first job after init; `state` holds
  * [t0 set, t0] (orccad_mt.c). */
 double orc_mt_task_time(double *state, double t_s);
+/* The torque interval [lo, hi] [N·m] the actuator constraint allows joint j at velocity
+ * qdot (control/constraints.py: |tau + beta·qdot| <= alpha within [tau_min, tau_max], never
+ * empty); bounds = [tau_min, tau_max, alpha, beta], dof each (orccad_mt.c). The laws clamp
+ * to it, torque_saturation measures against it. */
+void orc_mt_torque_bounds(const double *bounds, int dof, int j, double qdot, double *lo,
+                          double *hi);
 /* An observer's job (plugins/orccad_observers/base.py): its value on slot 1; its event on
  * slot 0 when `holds`, only at the rising edge with the edge parameter p[0] (the state's s[0]
  * is "held"; orccad_mt_observers.c). */

@@ -54,27 +54,10 @@ static const double *backward(double *st, int dim, double t_s, const double *val
 static int clamp(int dof, const double *tau_unsat, const double *qdot, const double *bounds,
                  double *tau, double *sat_dir)
 {
-    const double *tau_min = bounds, *tau_max = bounds + dof, *alpha = bounds + 2 * dof,
-                 *beta = bounds + 3 * dof;
     int j, saturated = 0;
     for (j = 0; j < dof; j++) {
-        double u = tau_unsat[j], v, lo, hi, floor, back_emf, d;
-        back_emf = beta[j] == 0.0 ? 0.0 : beta[j] * qdot[j];
-        lo = -alpha[j] - back_emf;
-        if (tau_min[j] > lo) {
-            lo = tau_min[j];
-        }
-        hi = alpha[j] - back_emf;
-        if (tau_max[j] < hi) {
-            hi = tau_max[j];
-        }
-        floor = lo < tau_max[j] ? lo : tau_max[j];
-        if (!(hi > floor)) {
-            hi = floor;
-        }
-        if (!(lo < hi)) {
-            lo = hi;
-        }
+        double u = tau_unsat[j], v, lo, hi, d;
+        orc_mt_torque_bounds(bounds, dof, j, qdot[j], &lo, &hi);
         v = u > lo ? u : lo;
         if (!(v < hi)) {
             v = hi;

@@ -69,30 +69,13 @@ void orc_mt_joint_limits(orc_mt *m)
 void orc_mt_torque_saturation(orc_mt *m)
 {
     int dof = (int)m->p[2], j;
-    const double *tau_min = &m->p[3], *tau_max = &m->p[3 + dof], *alpha = &m->p[3 + 2 * dof],
-                 *beta = &m->p[3 + 3 * dof];
     double usage[ORC_MAX_DIM] = {0.0}, peak;
     if (!m->in[0].present) {
         return;
     }
     for (j = 0; j < dof; j++) {
-        double tau = m->in[0].v[j], qdot = m->in[1].present ? m->in[1].v[j] : 0.0;
-        double back_emf = beta[j] == 0.0 ? 0.0 : beta[j] * qdot, low, high, floor;
-        low = -alpha[j] - back_emf;
-        if (tau_min[j] > low) {
-            low = tau_min[j];
-        }
-        high = alpha[j] - back_emf;
-        if (tau_max[j] < high) {
-            high = tau_max[j];
-        }
-        floor = low < tau_max[j] ? low : tau_max[j];
-        if (!(high > floor)) {
-            high = floor;
-        }
-        if (!(low < high)) {
-            low = high;
-        }
+        double tau = m->in[0].v[j], qdot = m->in[1].present ? m->in[1].v[j] : 0.0, low, high;
+        orc_mt_torque_bounds(&m->p[3], dof, j, qdot, &low, &high);
         if (tau > 0) {
             usage[j] = high > 0 ? tau / high : HUGE_VAL;
         } else if (tau < 0) {
