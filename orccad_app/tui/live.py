@@ -23,8 +23,9 @@ from __future__ import annotations
 import math
 import threading
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
@@ -50,6 +51,14 @@ run, so frames follow the run's progress, not the wall clock (on a loaded machin
 rate would draw more frames per simulated second, each taking time from the run)."""
 
 """Name of each phase of a Robot-Task's RTA (docs/language.md: pre-conditions, then control)."""
+
+
+def _event(is_set: bool) -> threading.Event:
+    """A new event, set or not."""
+    event = threading.Event()
+    if is_set:
+        event.set()
+    return event
 
 
 class Pace:
@@ -81,17 +90,29 @@ class Pace:
                 self._paused_since = None
             self.factor = factor
             self._anchor = None
-        if factor == 0:
-            self._resumed.clear()
-        else:
-            self._resumed.set()
+            if factor == 0:
+                self._resumed.clear()
+            else:
+                self._resumed.set()
         if self.on_change is not None:
             self.on_change(factor)
 
     def stop(self) -> None:
         """Release a paused run for good (the run is being aborted)."""
-        self.stopped = True
-        self._resumed.set()
+        with self._lock:
+            self.stopped = True
+            self._resumed.set()
+
+    @contextmanager
+    def forking(self) -> Iterator[None]:
+        """Hold the pace while the calling thread forks: no other thread is then changing
+        it (its lock and event are never copied held), and the child has a whole state."""
+        with self._lock:
+            yield
+
+    def after_fork(self) -> None:
+        """In the child of a fork made under :meth:`forking`: the event anew, as it was."""
+        self._resumed = _event(self._resumed.is_set())
 
     @property
     def paused(self) -> bool:
@@ -303,9 +324,20 @@ class LiveObserver(Observer):
         else:
             self.pace.on_change = None
 
+    @contextmanager
+    def forking(self) -> Iterator[None]:
+        """Around ``os.fork()`` of the run's process: the UI's thread may be changing the
+        pace at that instant, and a lock held then would stay held in the child forever."""
+        with self.pace.forking():
+            yield
+
     def local(self) -> None:
-        """In the run's process: requests are applied here (:meth:`apply`)."""
+        """In the run's process, just forked under :meth:`forking`: requests are applied
+        here (:meth:`apply`); the events are made anew, as they were (another thread of the
+        parent may have been inside one when it forked)."""
         self._forward, self._remote, self.pace.on_change = None, False, None
+        self._screen_up = _event(self._screen_up.is_set())
+        self.pace.after_fork()
 
     def adopt(self, ended: RunEnded) -> None:
         """Take what the run's process reported at its end (the user's injections, the

@@ -142,8 +142,9 @@ def run_forked(execute: Callable[[], Any], observer: Any,
     requests_in, requests_pipe = Pipe(duplex=False)
     requests_out = _Requests(requests_pipe)
     observer.forward(requests_out.send)  # requests made from now on wait in the pipe
-    pid = os.fork()
-    if pid == 0:  # the child
+    with observer.forking():  # no lock of the run's is copied held by the UI's thread
+        pid = os.fork()
+    if pid == 0:  # the child (its only thread)
         status = 1
         try:
             observer.local()

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import os
+import signal
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
@@ -157,3 +160,39 @@ def test_the_export_of_an_aborted_run_ends_where_the_run_ended(tmp_path):
     with exported.open() as rows:
         last = list(csv.reader(rows))[-1]
     assert int(last[0]) <= result.sim_time_ns  # nothing after the reaction that ended it
+
+
+def _kill_children() -> None:
+    """SIGKILL this process's children (a run's process that hung: the test failed)."""
+    me = os.getpid()
+    for path in Path(f"/proc/{me}/task").glob("*/children"):
+        for pid in path.read_text().split():
+            os.kill(int(pid), signal.SIGKILL)
+
+
+def test_a_run_forked_while_the_ui_changes_the_pace_never_inherits_its_lock_held():
+    """The run's process is forked while another thread (the UI's) changes the pace: the
+    child must never start with the pace's lock held, or it waits forever at its first
+    reaction (a TUI pilot once timed out waiting for a pause)."""
+    for attempt in range(12):
+        session = LiveSession("missions/arm_pid.orc", None, lambda update: None, speed=100.0,
+                              until_s=0.02, own_process=True)  # paced: the child waits
+        stop = threading.Event()
+
+        def change_the_pace(pace, stop):
+            while not stop.is_set():
+                pace.set(100.0)  # holds the pace's lock a moment
+
+        changer = threading.Thread(target=change_the_pace, args=(session.pace, stop),
+                                   daemon=True)
+        changer.start()
+        worker = threading.Thread(target=session.execute, daemon=True)
+        worker.start()
+        worker.join(timeout=30)
+        stop.set()
+        hung = worker.is_alive()
+        if hung:
+            _kill_children()
+        changer.join(timeout=30)
+        assert not hung, f"attempt {attempt}: the run's process never ended"
+        assert session.result.status.value == "timeout"  # its horizon, 20 ms
