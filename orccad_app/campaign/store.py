@@ -69,17 +69,26 @@ _STATUSES = RUN_STATUSES
 class CampaignStore:
     """The database of one campaign (see the module docstring)."""
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, *, read_only: bool = False) -> None:
+        """Open (or create) the database at ``path``; ``read_only``: only read an existing
+        one (a viewer: it never creates a table in a file, nor takes a write lock the
+        campaign writing it would wait for)."""
         self.path = str(path)
         if Path(self.path).exists():
             from orccad_app.pipeline import require_regular_file
 
             require_regular_file(self.path)  # never a FIFO or a device opened as SQLite
+        elif read_only:
+            raise OrccadError(f"{self.path}: no such campaign database")
         try:
-            self.db = sqlite3.connect(self.path)
-            self.db.execute("PRAGMA journal_mode=WAL")
-            self.db.execute("PRAGMA synchronous=NORMAL")
-            self.db.executescript(SCHEMA)
+            if read_only:
+                uri = Path(self.path).resolve().as_uri() + "?mode=ro"
+                self.db = sqlite3.connect(uri, uri=True)
+            else:
+                self.db = sqlite3.connect(self.path)
+                self.db.execute("PRAGMA journal_mode=WAL")
+                self.db.execute("PRAGMA synchronous=NORMAL")
+                self.db.executescript(SCHEMA)
             self._check_schema()
         except sqlite3.DatabaseError as error:
             raise OrccadError(f"{self.path}: not a campaign database ({error})") from None
@@ -88,6 +97,8 @@ class CampaignStore:
         """A database of another program (same table names, other columns) is refused."""
         for table, columns in COLUMNS.items():
             found = tuple(row[1] for row in self.db.execute(f"PRAGMA table_info({table})"))
+            if not found:
+                raise OrccadError(f"{self.path}: not a campaign database (no table {table})")
             if found != columns:
                 raise OrccadError(f"{self.path}: not a campaign database (its table {table} "
                                   f"has the columns {', '.join(found)}; a campaign's has "

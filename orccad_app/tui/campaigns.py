@@ -19,6 +19,7 @@ that replays it.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import signal
@@ -198,9 +199,7 @@ def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
     from orccad_app.campaign.stats import estimates, summarize
     from orccad_app.campaign.store import CampaignStore
 
-    if not Path(db).is_file():
-        raise OrccadError(f"{db}: no such campaign database")
-    store = CampaignStore(db)
+    store = CampaignStore(db, read_only=True)
     try:
         meta = store.meta()
         if "spec" not in meta or "file" not in meta:
@@ -247,6 +246,33 @@ class FalsifySnapshot:
     histogram: list[Bin] = field(default_factory=list)
 
 
+def _has_studies(path: str) -> bool:
+    """Whether SQLite file ``path`` has optuna's tables yet (``False``: no table at all, a
+    study being created); a file with other tables, or not SQLite, is refused."""
+    import sqlite3
+
+    from orccad_app.pipeline import require_regular_file
+
+    require_regular_file(path)
+    try:
+        with contextlib.closing(sqlite3.connect(Path(path).resolve().as_uri() + "?mode=ro",
+                                                uri=True)) as db:
+            tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
+    except sqlite3.DatabaseError as error:
+        raise OrccadError(f"{path}: not an optuna study database ({error})") from None
+    if tables and "studies" not in tables:
+        raise OrccadError(f"{path}: not an optuna study database (no table studies)")
+    return bool(tables)
+
+
+def _read_only_url(path: str) -> str:
+    """SQLAlchemy's URL of SQLite file ``path`` opened read-only (any characters in it)."""
+    from sqlalchemy.engine import URL
+
+    return URL.create("sqlite", database=Path(path).resolve().as_uri(),
+                      query={"mode": "ro", "uri": "true"}).render_as_string(hide_password=False)
+
+
 def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget: int,
                run_seed: int = 0) -> FalsifySnapshot:
     """The trials of the falsification of ``prop`` kept in SQLite file ``study``
@@ -262,10 +288,12 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     except ImportError:
         raise OrccadError("falsification needs optuna: pip install 'orccad[falsify]'") from None
     spec = load_spec(spec_path)
-    if not Path(study).is_file():
+    if not Path(study).is_file() or not _has_studies(study):
         return FalsifySnapshot(study, prop, 0, budget, None, None)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
-    storage = f"sqlite:///{study}"
+    # read-only, no table created: a reader that creates optuna's tables races the command
+    # creating them in the same file, which then fails ("table studies already exists")
+    storage = optuna.storages.RDBStorage(_read_only_url(study), skip_table_creation=True)
     names = [name for name in optuna.get_all_study_names(storage)
              if f"-{prop}-" in name]
     if not names:

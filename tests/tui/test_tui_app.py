@@ -41,10 +41,12 @@ def _text(screen, selector: str) -> str:
     return console.export_text()
 
 
-async def _until(pilot, condition, timeout: float = 30.0) -> None:
+async def _until(pilot, condition, timeout: float = 30.0, describe=None) -> None:
+    """Wait until ``condition()``; ``describe()`` says what was seen instead, on a timeout."""
     start = time.monotonic()
     while not condition():
-        assert time.monotonic() - start < timeout, "timed out waiting for the UI"
+        assert time.monotonic() - start < timeout, \
+            f"timed out waiting for the UI{': ' + describe() if describe else ''}"
         await pilot.pause(0.05)
     await pilot.pause(0.1)  # let a screen just pushed finish mounting (its Header's title)
 
@@ -187,7 +189,8 @@ async def test_pause_and_speed_keys_drive_the_pacing(tmp_path):
         await pilot.press("space")
         assert run.session.pace.label == "paused"
         # the run (in its own process) stops at its next reaction and shows where it stopped
-        await _until(pilot, lambda: run.last is not None and run.last.speed == "paused")
+        await _until(pilot, lambda: run.last is not None and run.last.speed == "paused",
+                     describe=lambda: f"last frame {run.last and (run.last.time_ns, run.last.speed)}")
         now = run.last.time_ns
         await pilot.pause(0.2)
         assert run.last.time_ns == now

@@ -6,6 +6,7 @@ the same way."""
 from __future__ import annotations
 
 import os
+import sqlite3
 
 import pytest
 
@@ -14,7 +15,8 @@ from orccad_app.campaign.spec import load_spec
 from orccad_app.campaign.stats import clopper_pearson
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.tui.app import OrccadApp
-from orccad_app.tui.campaigns import Bin, histogram
+from orccad_app.diagnostics import OrccadError
+from orccad_app.tui.campaigns import Bin, histogram, read_campaign, read_study
 from orccad_app.tui.screens.campaign import CampaignScreen, histogram_text
 from orccad_app.tui.screens.run import RunScreen
 
@@ -142,7 +144,10 @@ async def test_a_falsification_shows_its_trials_and_replays_the_worst(tmp_path, 
         await pilot.press("s")
         assert screen.process.args[:2] == ["falsify", MISSION]
         await _until(pilot, lambda: screen.state == "finished" and screen.snapshot is not None
-                     and screen.snapshot.trials == 2, timeout=WAIT_S)
+                     and screen.snapshot.trials == 2, timeout=WAIT_S, describe=lambda: (
+                         f"state {screen.state}, trials "
+                         f"{screen.snapshot and screen.snapshot.trials}, exit status "
+                         f"{screen.process.returncode}: {screen.process.error_text()[-400:]}"))
         snapshot = screen.snapshot
         assert snapshot.best == min(c.robustness for c in snapshot.candidates)
         status = _text(screen, "#campaign-status")
@@ -153,3 +158,25 @@ async def test_a_falsification_shows_its_trials_and_replays_the_worst(tmp_path, 
         run = _run_screen(app)
         assert run.session.setting == snapshot.candidates[0].setting
         await _until(pilot, lambda: run.finished)  # 0.5 s at 1×
+
+
+def test_reading_a_database_never_writes_it(tmp_path):
+    """The screen reads a campaign's or a study's database while the command writes it. A
+    reader that created the tables raced the command creating them (optuna: "table studies
+    already exists" ended a falsification at its start), and changed a file it was only shown."""
+    pytest.importorskip("optuna")
+    new = tmp_path / "new.db"  # a study being created: no table yet
+    new.touch()
+    assert read_study(str(new), SPEC, "bounded", 0.5, budget=2).trials == 0
+    assert new.stat().st_size == 0
+    other = tmp_path / "other.db"
+    with sqlite3.connect(other) as db:
+        db.execute("CREATE TABLE t (x)")
+    before = other.read_bytes()
+    with pytest.raises(OrccadError, match=r"not a campaign database \(no table campaign\)"):
+        read_campaign(str(other))
+    with pytest.raises(OrccadError, match=r"not an optuna study database \(no table studies\)"):
+        read_study(str(other), SPEC, "bounded", 0.5, budget=2)
+    assert other.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.db", "other.db"]
+
