@@ -1,95 +1,22 @@
 """Turn the lark parse tree of ``plan.lark`` into the dataclass AST of :mod:`.ast`.
 
-One method per grammar alias. Only :func:`orccad_app.lang.parser.parse` uses this module;
-nothing downstream ever sees a lark tree.
+One method per grammar alias: here the program, its declarations, statements and missions; the
+expressions' rules in :mod:`.transform_expr`, the temporal logic's in :mod:`.transform_formula`
+and the Robot-Tasks' in :mod:`.transform_rt` (mixins of :class:`ToAst`). Only
+:func:`orccad_app.lang.parser.parse` uses this module; nothing downstream ever sees a lark tree.
 """
 
 from __future__ import annotations
-
-import math
 
 from lark import Token, Transformer
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
+from orccad_app.lang.transform_expr import ExpressionRules, unescape as _unescape
+from orccad_app.lang.transform_formula import FormulaRules
 from orccad_app.lang.transform_rt import RobotTaskRules, duration_to_ns, rule as _rule
 
 __all__ = ["ToAst"]
-
-_ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\\": "\\", '"': '"', "0": "\0"}
-
-
-def _unescape(literal: str) -> str:
-    out, chars = [], iter(literal[1:-1])
-    for char in chars:
-        if char == "\\":
-            nxt = next(chars, "")
-            out.append(_ESCAPES.get(nxt, nxt))
-        else:
-            out.append(char)
-    return "".join(out)
-
-
-def _binary(op: str):
-    @_rule
-    def method(self, meta, left, right):
-        return ast.Binary(op=op, left=left, right=right, loc=self.loc(meta))
-    return method
-
-
-def _f_unary(op: str, bounded: bool = False):
-    if bounded:
-        @_rule
-        def method(self, meta, bounds, operand):
-            return ast.FUnary(op=op, operand=operand, loc=self.loc(meta), bounds=bounds)
-        return method
-
-    @_rule
-    def plain(self, meta, operand):
-        return ast.FUnary(op=op, operand=operand, loc=self.loc(meta))
-    return plain
-
-
-def _f_binary(op: str, bounded: bool = False):
-    if bounded:
-        @_rule
-        def method(self, meta, left, bounds, right):
-            return ast.FBinary(op=op, left=left, right=right, loc=self.loc(meta),
-                               bounds=bounds)
-        return method
-
-    @_rule
-    def plain(self, meta, left, right):
-        return ast.FBinary(op=op, left=left, right=right, loc=self.loc(meta))
-    return plain
-
-
-def _f_compare(op: str):
-    @_rule
-    def method(self, meta, left, right):
-        return ast.FCompare(op=op, left=left, right=right, loc=self.loc(meta))
-    return method
-
-
-def _s_arith(op: str):
-    @_rule
-    def method(self, meta, left, right):
-        return ast.SArith(op=op, left=left, right=right, loc=self.loc(meta))
-    return method
-
-
-def _f_predicate(predicate: str):
-    @_rule
-    def method(self, meta, name):
-        return ast.FPredicate(predicate=predicate, argument=str(name), loc=self.loc(meta))
-    return method
-
-
-def _f_status(status: str):
-    @_rule
-    def method(self, meta):
-        return ast.FStatus(status=status, loc=self.loc(meta))
-    return method
 
 
 def _simple(cls):
@@ -103,7 +30,7 @@ def _opt(token: Token | None) -> str | None:
     return None if token is None else str(token)
 
 
-class ToAst(RobotTaskRules, Transformer):
+class ToAst(RobotTaskRules, ExpressionRules, FormulaRules, Transformer):
     """The transformer; ``filename`` goes into every :class:`SourceLocation`."""
 
     def __init__(self, filename: str):
@@ -179,7 +106,6 @@ class ToAst(RobotTaskRules, Transformer):
     @_rule
     def combine_name(self, meta, token):
         if str(token) not in ("min", "max"):
-            from orccad_app.diagnostics import OrccadError
             raise OrccadError(f"unknown combine operator '{token}' (expected + * min max and "
                               "or)", self.tloc(token))
         return str(token)
@@ -207,202 +133,6 @@ class ToAst(RobotTaskRules, Transformer):
     @_rule
     def output_decl(self, meta, *items):
         return self._signals(ast.Direction.OUTPUT, items)
-
-    # ------------------------------------------------------------------ expressions
-
-    @_rule
-    def name(self, meta, token):
-        return ast.Name(name=str(token), loc=self.tloc(token))
-
-    @_rule
-    def number(self, meta, token):
-        text = str(token)
-        value = int(text) if token.type == "INT" else float(text)
-        return ast.Number(value=value, text=text, loc=self.tloc(token))
-
-    @_rule
-    def duration(self, meta, token):
-        return ast.DurationLit(duration_ns=self.ns(token), text=" ".join(str(token).split()),
-                               loc=self.tloc(token))
-
-    @_rule
-    def string(self, meta, token):
-        return ast.String(value=_unescape(str(token)), loc=self.tloc(token))
-
-    @_rule
-    def true(self, meta):
-        return ast.Bool(value=True, loc=self.loc(meta))
-
-    @_rule
-    def false(self, meta):
-        return ast.Bool(value=False, loc=self.loc(meta))
-
-    @_rule
-    def pi(self, meta):
-        return ast.Number(value=math.pi, text="pi", loc=self.loc(meta))
-
-    @_rule
-    def last_value(self, meta, token):
-        return ast.LastValue(signal=str(token), loc=self.loc(meta))
-
-    @_rule
-    def pre_signal(self, meta, token):
-        return ast.PreSignal(signal=str(token), loc=self.loc(meta))
-
-    @_rule
-    def pre_value(self, meta, token):
-        return ast.PreValue(signal=str(token), loc=self.loc(meta))
-
-    @_rule
-    def vector(self, meta, *items):
-        items = () if items == (None,) else items
-        return ast.Vector(items=tuple(items), loc=self.loc(meta))
-
-    @_rule
-    def call_expr(self, meta, name, args):
-        return ast.Call(func=str(name), args=args, loc=self.loc(meta))
-
-    @_rule
-    def param_ref(self, meta, module, param):
-        return ast.ParamRef(module=str(module), param=str(param), loc=self.loc(meta))
-
-    @_rule
-    def paren(self, meta, expr):
-        return expr
-
-    @_rule
-    def neg(self, meta, operand):
-        loc = self.loc(meta)
-        if isinstance(operand, ast.Number) and operand.text[:1] != "-":
-            return ast.Number(value=-operand.value, text="-" + operand.text, loc=loc)
-        return ast.Unary(op="-", operand=operand, loc=loc)
-
-    @_rule
-    def not_(self, meta, operand):
-        return ast.Unary(op="not", operand=operand, loc=self.loc(meta))
-
-    or_, and_ = _binary("or"), _binary("and")
-    lt, le, gt, ge, eq, ne = (_binary(op) for op in ("<", "<=", ">", ">=", "==", "!="))
-    add, sub, mul, div = (_binary(op) for op in ("+", "-", "*", "/"))
-
-    @_rule
-    def call_args(self, meta, *args):
-        return () if args == (None,) else tuple(args)
-
-    @_rule
-    def named_arg(self, meta, name, value):
-        return ast.Arg(name=str(name), value=value, loc=self.loc(meta))
-
-    @_rule
-    def positional_arg(self, meta, value):
-        return ast.Arg(name=None, value=value, loc=self.loc(meta))
-
-    @_rule
-    def call(self, meta, name, args):
-        return ast.Call(func=str(name), args=args, loc=self.loc(meta))
-
-    @_rule
-    def observer(self, meta, name, args):
-        return ast.Call(func=str(name), args=args or (), loc=self.loc(meta))
-
-    @_rule
-    def port_ref(self, meta, component, port):
-        return ast.PortRef(component=str(component), port=str(port), loc=self.loc(meta))
-
-    # ------------------------------------------------------------------ temporal logic
-
-    @_rule
-    def property_(self, meta, name, formula):
-        mission, prop = name
-        return ast.Property(mission=mission, name=prop, formula=formula, loc=self.loc(meta))
-
-    @_rule
-    def assume(self, meta, name, formula):
-        mission, prop = name
-        return ast.Assumption(mission=mission, name=prop, formula=formula, loc=self.loc(meta))
-
-    @_rule
-    def qualified_name(self, meta, mission, name):
-        return (str(mission), str(name))
-
-    @_rule
-    def simple_name(self, meta, name):
-        return (None, str(name))
-
-    @_rule
-    def f_signal(self, meta, token):
-        return ast.FSignal(name=str(token), loc=self.tloc(token))
-
-    @_rule
-    def f_true(self, meta):
-        return ast.FBool(value=True, loc=self.loc(meta))
-
-    @_rule
-    def f_false(self, meta):
-        return ast.FBool(value=False, loc=self.loc(meta))
-
-    @_rule
-    def f_paren(self, meta, formula):
-        return formula
-
-    f_done, f_failed, f_aborted = (_f_status(s) for s in ("done", "failed", "aborted"))
-    f_active, f_started, f_ended, f_raised = (
-        _f_predicate(p) for p in ("active", "started", "ended", "raised"))
-    f_not, f_next, f_previously = (_f_unary(op) for op in ("not", "next", "previously"))
-    f_always, f_eventually, f_never, f_once, f_historically = (
-        _f_unary(op, bounded=True) for op in ("always", "eventually", "never", "once",
-                                              "historically"))
-    f_iff, f_implies, f_or, f_and = (_f_binary(op) for op in ("<->", "->", "or", "and"))
-    f_until, f_since = (_f_binary(op, bounded=True) for op in ("until", "since"))
-
-    # ------------------------------------------------------------------ signal atoms (STL)
-
-    f_lt, f_le, f_gt, f_ge = (_f_compare(op) for op in ("<", "<=", ">", ">="))
-    s_add, s_sub, s_mul, s_div = (_s_arith(op) for op in "+-*/")
-
-    @_rule
-    def interval(self, meta, low, high):
-        where = self.loc(meta)
-        for bound in (low, high):
-            if not math.isfinite(bound):
-                raise OrccadError(f"time bound {bound} s is not finite", where)
-        if low < 0:
-            raise OrccadError(f"time bound {low:g} s is negative: write [a, b] with "
-                              "0 <= a <= b", where)
-        if high < low:
-            raise OrccadError(f"empty time interval [{low:g}, {high:g}]: write [a, b] with "
-                              "a <= b", where)
-        return ast.Interval(low_s=low, high_s=high, loc=where)
-
-    @_rule
-    def s_bound(self, meta, token):
-        if token.type == "DURATION":
-            return duration_to_ns(str(token), self.tloc(token)) / 1e9
-        return float(token)
-
-    @_rule
-    def s_port(self, meta, robot, port, index):
-        return ast.SPort(robot=str(robot), port=str(port),
-                         index=None if index is None else int(index), loc=self.loc(meta))
-
-    @_rule
-    def s_number(self, meta, token):
-        value = float(token)
-        if not math.isfinite(value):
-            raise OrccadError(f"number {token} is not finite", self.tloc(token))
-        return ast.SNumber(value=value, loc=self.tloc(token))
-
-    @_rule
-    def s_pi(self, meta):
-        return ast.SNumber(value=math.pi, loc=self.loc(meta))
-
-    @_rule
-    def s_call(self, meta, func, *args):
-        return ast.SCall(func=str(func), args=tuple(args), loc=self.loc(meta))
-
-    @_rule
-    def s_neg(self, meta, operand):
-        return ast.SNeg(operand=operand, loc=self.loc(meta))
 
     # ------------------------------------------------------------------ statements
 
