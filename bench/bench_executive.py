@@ -49,8 +49,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_run  # noqa: E402
 from bench_run import _host, run_bare  # noqa: E402  (the same-law bare loop)
 
+from orccad_app.mission.budget import run_horizon_s  # noqa: E402
 from orccad_app.mission.plan import plan_mission  # noqa: E402
-from orccad_app.mission.run import MissionRun, run_horizon_s  # noqa: E402
+from orccad_app.mission.run import MissionRun  # noqa: E402
 from orccad_app.pipeline import load, select_mission  # noqa: E402
 from orccad_app.properties import PropertyMonitor  # noqa: E402
 

@@ -22,20 +22,12 @@ automaton reacts, in zero time, at every instant where one of them can matter:
 Reactions are events of class ``CONTROL``: a reaction at ``t`` sees the outputs of jobs that
 finished at ``t`` and its activations release at ``t``.
 
-**What a reaction does.** The labels of the new state say which Robot-Task instance runs and in
-which :class:`~orccad_app.robottask.labels.Phase` (its
-:class:`~orccad_app.robottask.labels.PhaseLabel`): phase 1 runs no module, phase 2 the
-measuring modules (measurement pre-conditions), phase 3 every module. Modules are activated (``init()`` then a
-release now) and killed (the unfinished job aborted) to match; ``X.start`` on a site already
-running restarts its modules; every run of a Robot-Task starts with fresh module instances
-(nominal parameters, no state, even when the same plan is run again) and fresh ports (its
-channels reset, :meth:`~orccad_app.executive.simulation.Simulation.reset_ports`). An output whose role
-(:class:`~orccad_app.robottask.signals.SignalRoles`) is an adjustment of X's type-1 exception E
-applies E's update to the running module (computed in that instant, a ramp stepped at the
-module's releases: :mod:`~orccad_app.mission.updates`; a refused value ends the run
-``failed``); one whose role is a raised exception records it. The run stops when the mission
-terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``), on a run-time
-failure (deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
+**What a reaction does.** From the labels of the new state, the Robot-Tasks' Module-Tasks are
+activated, killed, restarted (fresh module instances and ports) and retuned (type-1 updates),
+and the raised exceptions recorded: :mod:`~orccad_app.mission.lifecycle`. The run stops when
+the mission terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``; its
+default and the run's cost budget: :mod:`~orccad_app.mission.budget`), on a run-time failure
+(deadlock, diverging plant, failing module: ``failed``) or on Ctrl-C (``aborted``).
 
 **Plant extensions and faults.** A robot type whose ``plant_extension()`` returns a
 :class:`~orccad_app.control.plant_extension.PlantExtension` gets it attached to its plant
@@ -62,26 +54,21 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
-from orccad_app.lang.ast_robottask import ExceptionType
+from orccad_app.mission.budget import DEFAULT_UNTIL_NS, check_run_budget
 from orccad_app.mission.injection import Injection, typed_injection
+from orccad_app.mission.lifecycle import RobotTaskLifecycle
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.observer import MISSION_HOOKS
-from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.result import (ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult,
-                                       TaskOutcome)
+from orccad_app.mission.plan import MissionPlan
+from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
 from orccad_app.reactive.runtime import Reactor
-from orccad_app.robottask.binding import ArgumentError, plain_arguments
-from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
-from orccad_app.robottask.signals import RoleKind
+from orccad_app.robottask.binding import ArgumentError
+from orccad_app.robottask.labels import Phase
 
-__all__ = ["MissionRun", "MissionReactor", "Terminated", "check_run_budget", "DEFAULT_UNTIL_NS",
-           "run_horizon_s", "INTERRUPTED",
-           "TERMINATED"]
+__all__ = ["MissionRun", "MissionReactor", "Terminated", "INTERRUPTED", "TERMINATED"]
 
 _CONTROL = EventClass.CONTROL
-DEFAULT_UNTIL_NS = 60_000_000_000
-"""Default simulated-time limit of a run [ns] (60 s)."""
 INTERRUPTED = _INTERRUPTED = "interrupted (Ctrl-C)"
 TERMINATED = _TERMINATED = "interrupted (SIGTERM)"
 
@@ -118,7 +105,7 @@ class _Link(Observer):
         return port == "e"
 
 
-class MissionRun:
+class MissionRun(RobotTaskLifecycle):
     """One run of a planned mission. See the module docstring.
 
     :param plan: the mission's plan (:func:`~orccad_app.mission.plan.plan_mission`).
@@ -389,108 +376,6 @@ class MissionRun:
         if self.reactor.finished:
             self.kernel.stop()
 
-    def _phases(self) -> dict[int, Phase]:
-        phases: dict[int, Phase] = {}
-        for label in self.reactor.labels:
-            if isinstance(label, PhaseLabel):
-                phases[label.site] = max(phases.get(label.site, label.phase), label.phase)
-            elif isinstance(label, RtLabel):
-                phases.setdefault(label.site, Phase.SYNCHRONIZING)
-        return phases
-
-    def _running_site(self, task: str) -> SiteModules | None:
-        for site in self.plan.sites:
-            if site.task == task and self._phase.get(site.number, Phase.IDLE) is not Phase.IDLE:
-                return site
-        return None
-
-    def _exceptions(self, now: int, outputs: tuple[str, ...]) -> dict[str, str | None]:
-        """Record the exceptions of this reaction; return raised name -> task."""
-        raised: dict[str, str | None] = {}
-        for name in outputs:
-            role = self._roles.get(name)
-            if role is None or role.name is None:
-                continue
-            if role.kind is RoleKind.ADJUST and role.task is not None:
-                site = self._running_site(role.task)
-                update = (self._adjust.get(site.number, site.adjustments).get(role.name)
-                          if site is not None else None)
-                try:
-                    change = None if update is None else self._updates.apply(update, role.name)
-                except UpdateError:  # the exception happened; its update ends the run
-                    self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task))
-                    raise
-                self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task, change))
-            elif role.kind is RoleKind.RAISED:
-                kind, task = self._origin(role.name)
-                raised[role.name] = task
-                self._record(ExceptionRecord(now, role.name, kind, task))
-        return raised
-
-    def _origin(self, exception: str) -> tuple[ExceptionType, str | None]:
-        """The type of ``exception`` and the running task that raised it (``None`` and type 2
-        for the mission's own ``Timeout``)."""
-        raisers = {r.task: r.type for r in self._roles.raisers.get(exception, ())}
-        for site in self.plan.sites:
-            if self._phase.get(site.number, Phase.IDLE) is not Phase.IDLE and \
-                    site.task in raisers:
-                return raisers[site.task], site.task
-        return ExceptionType.ABORT, None
-
-    def _record(self, record: ExceptionRecord) -> None:
-        self.exceptions.append(record)
-        for hook in self._hooks["on_exception"]:
-            hook(record)
-
-    def _update_sites(self, now: int, emitted: set[str], raised: dict[str, str | None],
-                      phases: dict[int, Phase], values: dict[str, Any]) -> None:
-        for site in self.plan.sites:
-            number = site.number
-            old = self._phase.get(number, Phase.IDLE)
-            new = phases.get(number, Phase.IDLE)
-            restart = old > 0 and new > 0 and site.start_signal in emitted
-            if old > 0 and (new == 0 or restart):
-                self._end_task(now, site, _outcome(site, emitted, raised))
-            starting = new > 0 and (old == 0 or restart)
-            if starting:
-                self._start_task(now, site, values)
-            active = self._active[number]
-            wanted = site.wanted(new)
-            stop = [m for m in site.modules if m in active and (restart or m not in wanted)]
-            if stop:
-                self.sim.kill(stop, at_ns=now)
-                active.difference_update(stop)
-            if starting:  # fresh ports: nothing the previous run wrote is read again
-                self.sim.reset_ports(site.modules, at_ns=now)
-            start = [m for m in wanted if m not in active]
-            if start:
-                self.sim.activate(start, at_ns=now)
-                self._updates.activated(start, now)
-                active.update(start)
-        self._phase = phases
-
-    def _start_task(self, now: int, site: SiteModules, values: dict[str, Any]) -> None:
-        instance = site.bound(values)  # the run-time arguments' values, checked
-        for name, compute in site.fresh_computes(instance).items():  # no state, no update
-            self.sim.replace_compute(name, compute)
-        self._adjust[site.number] = site.adjustments_of(instance)
-        args = plain_arguments(instance.params)
-        record = RobotTaskRecord(site.task, site.number, now, error_unit=site.error_unit,
-                                 args=args)
-        self._running[site.number] = record
-        self.records.append(record)
-        for hook in self._hooks["on_task_start"]:
-            hook(now, site.task, site.number, args)
-
-    def _end_task(self, now: int, site: SiteModules,
-                  outcome: tuple[TaskOutcome, str | None]) -> None:
-        self._updates.stop(site.modules)
-        record = self._running.pop(site.number)
-        record.end_ns = now
-        record.end, record.exception = outcome
-        for hook in self._hooks["on_task_end"]:
-            hook(now, site.task, site.number, record.outcome)
-
     # -- running -----------------------------------------------------------------------------
 
     def run(self) -> RunResult:
@@ -530,42 +415,3 @@ class MissionRun:
             return MissionStatus.FAILED, reactor.reason
         return (MissionStatus.TIMEOUT,
                 f"the mission was still running at {self.until_ns / 1e9:g} s")
-
-
-MAX_RUN_EVENTS = 50_000_000
-"""Most reactions and Module-Task jobs one run may cost, counted before it starts (every
-Module-Task released over the whole horizon, an upper bound): a 1 us period costs about 50 s
-and 1.4 GB per simulated second, so the period's gcd alone is no budget."""
-
-
-def check_run_budget(plan: MissionPlan, until_ns: int) -> None:
-    """Refuse a run of ``plan`` up to ``until_ns`` that would cost more than
-    :data:`MAX_RUN_EVENTS` reactions and jobs (before any of it is built)."""
-    reactions = until_ns // plan.tick_ns if plan.tick_ns else 0
-    jobs = sum(until_ns // task.period_ns for task in plan.tcs.module_tasks
-               if task.period_ns > 0)
-    if reactions + jobs > MAX_RUN_EVENTS:
-        fastest = min((task.period_ns for task in plan.tcs.module_tasks), default=0)
-        raise OrccadError(
-            f"this run would cost up to {reactions + jobs:.3g} reactions and Module-Task jobs "
-            f"({until_ns / 1e9:g} s simulated, the fastest period {fastest} ns, reactions every "
-            f"{plan.tick_ns} ns): more than the {MAX_RUN_EVENTS:.3g} a run may cost; shorten "
-            "--until or lengthen the periods")
-
-
-def run_horizon_s(plan: MissionPlan, default_s: float) -> float:
-    """The default simulated-time limit of ``plan`` [s] (:meth:`MissionPlan.run_horizon_s`)."""
-    return plan.run_horizon_s(default_s)
-
-
-def _outcome(site: SiteModules, emitted: set[str],
-             raised: dict[str, str | None]) -> tuple[TaskOutcome, str | None]:
-    """How the run of ``site`` ended, and the exception that ended it if one did."""
-    if site.good_end_signal in emitted:
-        return TaskOutcome.GOOD_END, None
-    for exception, origin in raised.items():
-        if origin == site.task:
-            return TaskOutcome.RAISED, exception
-    if "Timeout" in raised:
-        return TaskOutcome.RAISED, "Timeout"
-    return TaskOutcome.KILLED, None

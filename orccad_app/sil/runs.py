@@ -26,8 +26,9 @@ from pathlib import Path
 from typing import Any
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.mission.budget import check_run_budget
 from orccad_app.mission.plan import MissionPlan
-from orccad_app.mission.run import MissionRun, check_run_budget
+from orccad_app.mission.run import MissionRun
 from orccad_app.session import RunOptions
 from orccad_app.codegen.generate import CProgram
 from orccad_app.reactive.automaton import Automaton
