@@ -32,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.diagnostics import OrccadError
     from orccad_app.pipeline import load
     from orccad_app.reactive.compiler import compile_program
-    from orccad_app.reactive.lower import mission_interface
+    from orccad_app.reactive.declarations import mission_interface
     from orccad_app.robottask.rta import rta_program
 
     refuse_overwriting(args.output, args.file)

@@ -8,7 +8,8 @@ data); mixing both in one condition is an error that suggests nesting two ``if``
 
 Statements that involve Robot-Tasks (``run``, ``try``, ``on fatal``) belong to the
 application level and are lowered by :mod:`orccad_app.robottask` when it is there; here they
-are reported as not available.
+are reported as not available. Signal declarations are lowered by :mod:`.declarations`;
+the size of a mission once its sub-missions are inlined is budgeted by :mod:`.inlining`.
 """
 
 from __future__ import annotations
@@ -19,42 +20,11 @@ from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.lang import ast
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
-from orccad_app.lang.walk import nodes
+from orccad_app.reactive.declarations import mission_interface, signal_decl
+from orccad_app.reactive.inlining import MAX_INLINED_NODES, inlined_size
 from orccad_app.reactive.labels import MissionLabel
 
-__all__ = ["lower_mission", "mission_interface", "Lowerer", "Scope", "not_yet",
-           "MAX_INLINED_NODES", "inlined_size"]
-
-MAX_INLINED_NODES = 200_000
-"""Most syntax nodes a mission may have once its sub-missions are inlined (``run mission``
-copies the sub-mission's body): sub-missions that run each other twice or ten times expand
-2 kB of source to 10⁶–10⁹ copies; the expansion is counted before it is built."""
-
-
-def inlined_size(program: ast.Program, mission: ast.Mission, limit: int = MAX_INLINED_NODES
-                 ) -> int:
-    """The syntax nodes of ``mission`` with every ``run mission`` replaced by the sub-mission's
-    (counted once per mission, in time linear in the source; a cycle is left to the lowering,
-    which reports it). The count stops growing past ``limit``."""
-    sizes: dict[str, int] = {}
-
-    def size(target: ast.Mission, stack: tuple[str, ...]) -> int:
-        if target.name in sizes:
-            return sizes[target.name]
-        total = 0
-        for node in nodes(target):
-            total += 1
-            if isinstance(node, ast.RunMission):
-                inner = program.mission(node.mission)
-                if inner is not None and inner.name not in stack:
-                    total += size(inner, (*stack, inner.name))
-            if total > limit:
-                break
-        sizes[target.name] = total
-        return total
-
-    return size(mission, (mission.name,))
-
+__all__ = ["lower_mission", "Lowerer", "Scope", "not_yet"]
 
 
 @dataclass
@@ -78,66 +48,6 @@ class Scope:
     def child(self) -> "Scope":
         return Scope(parent=self)
 
-
-def _kind(direction: ast.Direction) -> str:
-    return {ast.Direction.INPUT: ir.INPUT, ast.Direction.OUTPUT: ir.OUTPUT}.get(direction, ir.LOCAL)
-
-
-def mission_interface(program: ast.Program, mission: ast.Mission | None) -> tuple[tuple, tuple]:
-    """The mission's input and output declarations: file-level first, in source order.
-
-    With ``mission`` None, the file-level declarations only.
-    """
-    inputs: list[ir.SignalDecl] = []
-    outputs: list[ir.SignalDecl] = []
-    seen: dict[str, SourceLocation] = {}
-    own = mission.signals if mission is not None else ()
-    for decl in (*program.signals, *own):
-        if decl.name in seen:
-            raise OrccadError(f"signal '{decl.name}' is declared twice (first at "
-                              f"{seen[decl.name]})", decl.loc)
-        seen[decl.name] = decl.loc
-        lowered = signal_decl(decl, _kind(decl.direction))
-        (inputs if lowered.kind == ir.INPUT else outputs).append(lowered)
-    return tuple(inputs), tuple(outputs)
-
-
-_COMBINE_TYPES = {"+": ("int", "float", "vector", "string"), "*": ("int", "float"),
-                  "min": ("int", "float"), "max": ("int", "float"), "and": ("bool",),
-                  "or": ("bool",)}
-
-
-def _constant(e: ast.Expr, kind: str | None):
-    """The value of a constant initial-value expression, checked against the type."""
-    if isinstance(e, ast.Unary) and e.op == "-" and isinstance(e.operand, ast.Number):
-        value = -e.operand.value
-    elif isinstance(e, (ast.Number, ast.String, ast.Bool)):
-        value = e.value
-    elif isinstance(e, ast.Vector) and all(isinstance(i, ast.Number) for i in e.items):
-        value = tuple(float(i.value) for i in e.items)
-    else:
-        raise OrccadError("an initial value must be a constant (a number, string, boolean "
-                          "or vector of numbers)", e.loc)
-    ok = {"int": lambda v: isinstance(v, int) and not isinstance(v, bool),
-          "float": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
-          "bool": lambda v: isinstance(v, bool), "string": lambda v: isinstance(v, str),
-          "vector": lambda v: isinstance(v, tuple), "duration": lambda v: False}
-    if kind is None or not ok.get(kind, lambda v: True)(value):
-        raise OrccadError(f"initial value {value!r} does not fit the signal's type "
-                          f"{kind or '(pure)'}", e.loc)
-    return float(value) if kind == "float" else value
-
-
-def signal_decl(decl: ast.SignalDecl, kind: str) -> ir.SignalDecl:
-    """The kernel declaration of ``decl``: initial value and combine operator checked."""
-    init = None if decl.init is None else _constant(decl.init, decl.type)
-    if decl.combine is not None:
-        allowed = _COMBINE_TYPES[decl.combine]
-        if decl.type not in allowed:
-            raise OrccadError(f"'combine {decl.combine}' needs a signal of type "
-                              f"{' or '.join(allowed)}, not {decl.type or 'a pure signal'}",
-                              decl.loc)
-    return ir.SignalDecl(decl.name, kind, decl.type, decl.loc, init, decl.combine)
 
 
 def lower_mission(program: ast.Program, mission: ast.Mission,

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from orccad_app.campaign.spec import parse_spec
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.overrides import parse_timing
-from orccad_app.reactive.lower import MAX_INLINED_NODES
+from orccad_app.reactive.inlining import MAX_INLINED_NODES
 from tests.campaign.conftest import LEAK_SPEC
 from tests.fuzz.harness import check_outcome, run_orccad, scratch_folder
 

@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 from orccad_app.reactive import derived as d
 from orccad_app.reactive import ir
 from orccad_app.reactive.labels import MissionLabel
-from tests.reactive import reference as ref
+from tests.reactive.reference import terms as ref
 
 __all__ = ["INPUTS", "OUTPUTS", "programs", "input_sequences", "expand", "show_program"]
 

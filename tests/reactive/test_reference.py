@@ -40,9 +40,10 @@ from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import parse_script
-from tests.reactive import reference as ref
 from tests.reactive.conftest import mission
-from tests.reactive.reference import NotCoherent, ReferenceError_, ReferenceReactor
+from tests.reactive.reference import terms as ref
+from tests.reactive.reference.errors import NotCoherent, ReferenceError_
+from tests.reactive.reference.reactor import ReferenceReactor
 from tests.reactive.strategies import A, B, INPUTS, O1, O2, OUTPUTS, expand, input_sequences, \
     programs, show_program
 
