@@ -266,11 +266,11 @@ def _has_studies(path: str) -> bool:
 
 
 def _read_only_url(path: str) -> str:
-    """SQLAlchemy's URL of SQLite file ``path`` opened read-only (any characters in it)."""
-    from sqlalchemy.engine import URL
+    """SQLAlchemy's URL of SQLite file ``path`` opened read-only, any characters in it (the
+    database part is percent-decoded once by SQLAlchemy, then read as a URI by SQLite)."""
+    from urllib.parse import quote
 
-    return URL.create("sqlite", database=Path(path).resolve().as_uri(),
-                      query={"mode": "ro", "uri": "true"}).render_as_string(hide_password=False)
+    return f"sqlite:///{quote(Path(path).resolve().as_uri(), safe='/')}?mode=ro&uri=true"
 
 
 def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget: int,

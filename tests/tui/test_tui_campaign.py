@@ -180,3 +180,15 @@ def test_reading_a_database_never_writes_it(tmp_path):
     assert other.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["new.db", "other.db"]
 
+
+def test_a_study_is_read_whatever_characters_its_path_holds(tmp_path):
+    optuna = pytest.importorskip("optuna")
+    odd = tmp_path / "a b#c%d" / "s%2.db"
+    odd.parent.mkdir()
+    optuna.create_study(storage=f"sqlite:///{odd}", study_name="arm-bounded-0")
+    assert read_study(str(odd), SPEC, "bounded", 0.5, budget=2).trials == 0
+    text = odd.parent / "s.db"
+    text.write_text("not sqlite", encoding="utf-8")
+    with pytest.raises(OrccadError, match="not an optuna study database"):
+        read_study(str(text), SPEC, "bounded", 0.5, budget=2)
+
