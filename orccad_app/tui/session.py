@@ -21,7 +21,8 @@ from typing import TYPE_CHECKING, Any, Callable
 from orccad_app.diagnostics import OrccadError
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
-from orccad_app.tui.live import LiveObserver, LiveUpdate, Pace, SeenStates
+from orccad_app.tui.live import LiveObserver, LiveUpdate, SeenStates
+from orccad_app.tui.pace import Pace
 from orccad_app.tui.run_process import can_fork, run_forked
 
 if TYPE_CHECKING:

@@ -59,7 +59,8 @@ def plan_file_auv():
     from orccad_app.mission.plan import plan_mission
     from orccad_app.mission.run import MissionRun
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.tui.live import LiveObserver, Pace
+    from orccad_app.tui.live import LiveObserver
+    from orccad_app.tui.pace import Pace
 
     source = load(AUV)
     run = MissionRun(plan_mission(source, select_mission(source, None)), until_ns=10**9)

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from orccad_app.tui.live import Pace, sensor_ports
+from orccad_app.tui.live import sensor_ports
+from orccad_app.tui.pace import Pace
 from orccad_app.tui.session import LiveSession, check_file, check_text, inspect_file
 
 
