@@ -35,7 +35,7 @@ from orccad_app.campaign.adapter import RUN_STATUSES, PropertyResult, RunRecord
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CampaignStore", "SCHEMA", "COLUMNS"]
+__all__ = ["CampaignStore", "SCHEMA", "COLUMNS", "connect_read_only"]
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS campaign (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -66,6 +66,12 @@ COLUMNS = {
 _STATUSES = RUN_STATUSES
 
 
+def connect_read_only(path: str | Path) -> sqlite3.Connection:
+    """SQLite file ``path`` opened read-only (any characters in its name): nothing is ever
+    written to it, and no write lock is taken that a writer would wait for."""
+    return sqlite3.connect(Path(path).resolve().as_uri() + "?mode=ro", uri=True)
+
+
 class CampaignStore:
     """The database of one campaign (see the module docstring)."""
 
@@ -82,8 +88,7 @@ class CampaignStore:
             raise OrccadError(f"{self.path}: no such campaign database")
         try:
             if read_only:
-                uri = Path(self.path).resolve().as_uri() + "?mode=ro"
-                self.db = sqlite3.connect(uri, uri=True)
+                self.db = connect_read_only(self.path)
             else:
                 self.db = sqlite3.connect(self.path)
                 self.db.execute("PRAGMA journal_mode=WAL")

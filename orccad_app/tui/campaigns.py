@@ -251,12 +251,12 @@ def _has_studies(path: str) -> bool:
     study being created); a file with other tables, or not SQLite, is refused."""
     import sqlite3
 
+    from orccad_app.campaign.store import connect_read_only
     from orccad_app.pipeline import require_regular_file
 
     require_regular_file(path)
     try:
-        with contextlib.closing(sqlite3.connect(Path(path).resolve().as_uri() + "?mode=ro",
-                                                uri=True)) as db:
+        with contextlib.closing(connect_read_only(path)) as db:
             tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
     except sqlite3.DatabaseError as error:
         raise OrccadError(f"{path}: not an optuna study database ({error})") from None
