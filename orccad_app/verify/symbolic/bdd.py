@@ -79,7 +79,7 @@ class Manager:
         """One assignment of ``names`` satisfying ``node`` (which must not be false); the
         variables the node does not depend on are false."""
         names = list(names)
-        point = self.bdd.pick(node, care_vars=set(names) & self.support(node))
+        point = self.bdd.pick(node, care_vars=set(names) | self.support(node))
         assert point is not None, "pick from an empty set"
         return {name: bool(point.get(name, False)) for name in names}
 
