@@ -27,7 +27,7 @@ from orccad_app.verify.letters import Alphabet
 from orccad_app.verify.model import Model, build_model
 from orccad_app.verify.search import Instant, Lasso, find_lasso
 from orccad_app.verify.symbolic.checker import (SymbolicCheck, builtin_outcome,
-                                                property_outcome, symbolic_model)
+                                                property_outcome, release, symbolic_model)
 from orccad_app.verify.tableau import Tableau
 
 __all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable",
@@ -67,6 +67,20 @@ class MissionReport:
     @property
     def holds(self) -> bool:
         return all(o.holds for o in self.outcomes)
+
+    def summary(self, data: bool = True) -> str:
+        """The first line of the report: what was explored, by which engine (``data``: and
+        whether the counters are exact)."""
+        kind = "counters exact" if self.counters_exact else "data abstracted"
+        if self.abstracted_because:
+            kind += f": {self.abstracted_because}"
+        tail = f" ({kind})" if data else ""
+        if self.symbolic is not None:
+            why = f" ({self.engine_reason})" if self.engine_reason else ""
+            return (f"mission {self.composition.name}: symbolic{why}, {self.automaton_states} "
+                    f"control states, model {self.model_states} states{tail}")
+        return (f"mission {self.composition.name}: automaton {self.automaton_states} states, "
+                f"model {self.model_states} states / {self.model_steps} steps{tail}")
 
     @property
     def automaton_states(self) -> int:
@@ -187,10 +201,12 @@ AUTO_EXPLICIT_TRANSITIONS = 2_000
 
 def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool = True,
                   max_states: int = DEFAULT_MAX_STATES,
-                  progress: CheckProgress | None = None, engine: str = AUTO) -> MissionReport:
+                  progress: CheckProgress | None = None, engine: str = AUTO,
+                  counters: bool = True) -> MissionReport:
     """Compile ``mission`` in the composed view and check its properties; ``progress`` is told
     the states explored while compiling, then the properties done. ``engine``: see
-    :data:`ENGINES`."""
+    :data:`ENGINES`; ``counters``: track counters exactly where the engine can (the explicit
+    one), else abstract every data value."""
     if engine not in ENGINES:
         raise OrccadError(f"unknown checker engine '{engine}' (one of {', '.join(ENGINES)})")
     states = None if progress is None else progress.states
@@ -204,7 +220,7 @@ def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool 
             reason = (f"the explicit automaton has more than {AUTO_EXPLICIT_TRANSITIONS} "
                       "transitions")
         else:
-            return _check_explicit(program, mission, composition, builtins, progress)
+            return _check_explicit(program, mission, composition, builtins, progress, counters)
     report = _check_symbolic(program, mission, builtins, progress)
     report.engine_reason = reason
     return report
@@ -217,8 +233,9 @@ def _properties_total(program: ast.Program, mission: ast.Mission, builtins: bool
 
 
 def _check_explicit(program: ast.Program, mission: ast.Mission, composition: Composition,
-                    builtins: bool, progress: CheckProgress | None) -> MissionReport:
-    model = build_model(composition)
+                    builtins: bool, progress: CheckProgress | None,
+                    counters: bool = True) -> MissionReport:
+    model = build_model(composition, counters=counters)
     report = MissionReport(composition, model)
     total = _properties_total(program, mission, builtins)
     if builtins:
@@ -257,6 +274,7 @@ def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
                                                 PropertyOutcome, _script))
         if progress is not None:
             progress.properties(len(report.outcomes), total)
+    release(model, witness)
     return report
 
 

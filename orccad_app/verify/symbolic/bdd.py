@@ -36,6 +36,16 @@ class Manager:
         self.false: Node = self.bdd.false
         self._vars: dict[str, Node] = {}
 
+    def release(self, *holders: object) -> None:
+        """Drop every BDD node the ``holders`` (objects or containers) and this manager keep,
+        then the manager: CUDD insists that no node outlives it (``dd`` asserts it when the
+        manager is freed, also at interpreter exit)."""
+        for holder in holders:
+            _clear(holder)
+        self._vars.clear()
+        self.true = self.false = None
+        self.bdd = None
+
     def declare(self, name: str) -> Node:
         """The variable ``name`` (declared at the end of the order the first time)."""
         node = self._vars.get(name)
@@ -88,3 +98,14 @@ class Manager:
         for name, value in values.items():
             result = result & (self._vars[name] if value else ~self._vars[name])
         return result
+
+
+def _clear(holder: object) -> None:
+    """Empty ``holder``'s containers of nodes (its attributes, or itself if a container)."""
+    if isinstance(holder, (dict, list)):
+        holder.clear()
+        return
+    for name, value in list(vars(holder).items()):
+        if isinstance(value, (dict, list)):
+            value.clear()
+        setattr(holder, name, None)

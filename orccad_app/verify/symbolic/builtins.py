@@ -115,7 +115,7 @@ def _no_deadlock(model: SymbolicModel, witness: Witness) -> Violation | None:
         steps: tuple[Step, ...] = ()
         where_key = witness.key(pick_state(model, model.init))
     else:
-        run = shortest_run(model, m.bdd.let(model.functions, bottom))
+        run = shortest_run(model, model.compose(bottom))
         assert run is not None
         steps = _steps(witness, run)
         where_key = witness.automaton.keys[witness.model.control(steps[-1].target)]
@@ -154,7 +154,6 @@ def _bottom_component(model: SymbolicModel, stuck: Node) -> Node:
 
 
 def _tasks_end_first(model: SymbolicModel, witness: Witness) -> Violation | None:
-    m = model.m
     allowed = frozenset(s.number for s in model.composition.sites if s.on_fatal)
     everyone = _sites_outside(model, frozenset())
     ends = (model.status("done") | model.status("failed") | model.status("ended"))

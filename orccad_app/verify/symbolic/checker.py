@@ -31,7 +31,7 @@ from orccad_app.verify.symbolic.model import SymbolicModel
 from orccad_app.verify.symbolic.runs import holds_at
 from orccad_app.verify.symbolic.witness import Witness
 
-__all__ = ["SymbolicCheck", "symbolic_model", "builtin_outcome", "property_outcome"]
+__all__ = ["SymbolicCheck", "symbolic_model", "builtin_outcome", "property_outcome", "release"]
 
 
 @dataclass(frozen=True)
@@ -59,6 +59,14 @@ def symbolic_model(composition: Composition) -> tuple[SymbolicModel, Witness, Sy
     sizes = SymbolicCheck(model.count(control) // 2, model.count(reachable),
                           len(m.bdd), len(model.cur), circuit.walks, bool(_counters(composition)))
     return model, Witness(model), sizes
+
+
+def release(model: SymbolicModel, witness: Witness) -> None:
+    """Free the BDDs of a finished check (the report keeps none)."""
+    witness.symbolic = None  # type: ignore[assignment]
+    circuit = model.circuit
+    manager = model.m
+    manager.release(circuit, model)
 
 
 def _counters(composition: Composition) -> tuple:

@@ -106,8 +106,9 @@ class _Product:
     def _steps_into(self, target: Node) -> Node:
         """Steps (current variables, inputs, data, new bits) into ``target``."""
         m = self.m
-        moved = m.bdd.let(self.model.functions, target)
-        moved = m.rename(moved, dict(zip(self.bits, self.bits_next)))
+        moved = self.model.compose(target)
+        support = m.support(moved)
+        moved = m.rename(moved, {b: n for b, n in zip(self.bits, self.bits_next) if b in support})
         return moved & self.relation
 
     def pre(self, target: Node, edges: Node | None = None) -> Node:
@@ -142,22 +143,22 @@ class _Product:
 
     # ------------------------------------------------------------------ fair states
     def fair_states(self) -> Node:
+        """Emerson–Lei's greatest fixpoint, each set's constraint applied as soon as it is
+        computed (the rounds then converge in fewer passes)."""
         m = self.m
         z = self.reachable
         while True:
-            new = z
+            old = z
             for edges in self.sets or [m.true]:
-                target = self.pre(z, edges) & z
-                w = target
-                while True:
-                    more = w | (z & self.pre(w))
-                    if more == w:
-                        break
-                    w = more
-                new &= w
-            if new == z:
+                w = frontier = z & self.pre(z, edges)
+                while frontier != m.false:
+                    frontier = z & self.pre(frontier) & ~w
+                    w |= frontier
+                z = w
+                if z == m.false:
+                    return z
+            if z == old:
                 return z
-            z = new
 
     # ------------------------------------------------------------------ concrete runs
     def _pick_step(self, state: dict[str, bool], into: Node, edges: Node | None) -> dict:

@@ -22,7 +22,7 @@ from orccad_app.reactive import ir
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify import data
-from orccad_app.verify.symbolic.bdd import Manager, Node
+from orccad_app.verify.symbolic.bdd import Node
 from orccad_app.verify.symbolic.circuit import (BOOT, FAILED_BEFORE, TERM, Circuit, input_var,
                                                 next_name)
 
@@ -94,17 +94,21 @@ class SymbolicModel:
                 result = m.exists(names, result)
         return m.rename(result, self.to_cur)
 
+    def compose(self, states: Node) -> Node:
+        """``states`` one instant later, as a function of the current registers, inputs and
+        data tests (each register it reads replaced by its next-state function)."""
+        support = self.m.support(states)
+        functions = {r: f for r, f in self.functions.items() if r in support}
+        return self.m.bdd.let(functions, states) if functions else states
+
     def preimage(self, states: Node) -> Node:
         """The states with a step into ``states``."""
-        m = self.m
-        composed = m.bdd.let(self.functions, states)
-        return m.exists(self.free, composed & self.circuit.relations)
+        return self.m.exists(self.free, self.compose(states) & self.circuit.relations)
 
     def step_relation(self, source: Node, target: Node) -> Node:
         """The steps (current registers, inputs, data tests) from ``source`` into
         ``target`` (``target`` over the current registers)."""
-        m = self.m
-        return source & m.bdd.let(self.functions, target) & self.circuit.relations
+        return source & self.compose(target) & self.circuit.relations
 
     # ------------------------------------------------------------------ reachability
     def explore(self) -> Node:
