@@ -70,7 +70,7 @@ def mismatches(prep: Prepared) -> tuple[int, list[str]]:
             point.update({data_var(n): data.get(n, False) for n in range(len(prep.data_tests))})
             values = {k: (m.true if v else m.false) for k, v in point.items() if m.has(k)}
 
-            def holds(node):
+            def holds(node, values=values):
                 return m.bdd.let(values, node) == m.true
 
             if program.relations and not holds(circuit.relations):
