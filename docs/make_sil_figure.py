@@ -75,7 +75,7 @@ def lockstep() -> np.ndarray:
 
 
 def realtime() -> np.ndarray:
-    from orccad_app.sil.realtime import RealtimeRun, realtime as in_realtime
+    from orccad_app.sil.realtime.run import RealtimeRun, realtime as in_realtime
 
     samples: list[tuple[float, float]] = []
 

@@ -94,8 +94,7 @@ def test_every_imported_third_party_package_is_declared():
     assert not undeclared, f"imported but not declared in pyproject: {undeclared}"
 
 
-def _children_of_orccad_app() -> set[str]:
-    package = ROOT / "orccad_app"
+def _children_of_orccad_app(package: Path = ROOT / "orccad_app") -> set[str]:
     names = {p.stem for p in package.glob("*.py")} | {
         p.name for p in package.iterdir() if (p / "__init__.py").is_file()}
     return names - {"__init__"}
@@ -126,6 +125,18 @@ def test_the_import_contracts_name_every_part_of_the_core():
                  for m in _contract("plugins-through-the-api")["forbidden_modules"]}
     missing = children - forbidden - {"plugin_api", "__main__"}
     assert not missing, f"missing from plugins-through-the-api's forbidden_modules: {sorted(missing)}"
+
+
+def test_the_sil_packages_are_each_in_a_layer_by_job():
+    """orccad_app/sil is split by job (generate, build, controller, lockstep, realtime, runs):
+    a new module or package there must take its place in the 'sil-by-job' layers, so that
+    generating C never imports running it."""
+    children = _children_of_orccad_app(ROOT / "orccad_app" / "sil")
+    layered = set()
+    for layer in _contract("sil-by-job")["layers"]:
+        layered |= {name.strip() for name in layer.split("|")}
+    assert children - layered == set(), "not in any layer of the 'sil-by-job' contract"
+    assert children == layered, "a layer of 'sil-by-job' names nothing"
 
 
 def test_every_test_marked_slow_exists():

@@ -4,7 +4,7 @@ C99 of the composed mission automaton (see ``docs/deploy.md``).
 Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
 that runs the automaton on an input script and prints what ``orccad react --composed
 --jsonl`` prints; with ``--module-tasks``, the Module-Tasks' table ``orccad_modules.c`` and
-the C runtime, :mod:`orccad_app.sil.emit`) into the folder ``DIR`` (default: ``PREFIX``),
+the C runtime, :mod:`orccad_app.sil.generate.table`) into the folder ``DIR`` (default: ``PREFIX``),
 all or nothing.
 """
 
@@ -65,8 +65,8 @@ def run(args: argparse.Namespace) -> int:
         files[f"{prefix}_main.c"] = main_source(program)
     if args.module_tasks:
         from orccad_app.mission.plan import plan_mission
-        from orccad_app.sil.automaton import binding_header
-        from orccad_app.sil.emit import module_table, module_task_files
+        from orccad_app.sil.generate.automaton import binding_header
+        from orccad_app.sil.generate.table import module_table, module_task_files
 
         plan = plan_mission(source, mission)
         files.update(module_task_files(plan, args.file))

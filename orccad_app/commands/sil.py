@@ -7,7 +7,7 @@ controller process.
                     [every flag of orccad run but its --realtime FACTOR]
 
 The Module-Tasks of every Robot-Task the mission runs are emitted as C
-(:mod:`orccad_app.sil.emit`), compiled with the runtime library into the controller
+(:mod:`orccad_app.sil.generate.table`), compiled with the runtime library into the controller
 (:mod:`orccad_app.sil.build`) and started as their own process. The run goes through the run
 façade as ``orccad run``'s does (:class:`~orccad_app.sil.runs.ControllerRuns` makes its
 MissionRun), so the report, ``--json``, ``--trace``, ``--inject``, ``--inject-from``, ``--set``,
@@ -164,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, select_mission
     from orccad_app.session import RunSession
-    from orccad_app.sil.controller import DEFAULT_HEARTBEAT_S
+    from orccad_app.sil.controller.process import DEFAULT_HEARTBEAT_S
     from orccad_app.sil.runs import ControllerRuns, SilMode, refuse_in_realtime
 
     check_run_flags(args)

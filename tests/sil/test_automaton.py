@@ -14,7 +14,7 @@ import pytest
 from orccad_app.mission.injection import parse_injection
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.sil import runs as sil_runs
-from orccad_app.sil.automaton import ControllerAutomaton
+from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.runs import ControllerRuns, SilMode
 
 from tests.sil.helpers import MISSIONS, executive_report, report, session_of

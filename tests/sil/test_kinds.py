@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from orccad_app.mission.plan import SiteModules
-from orccad_app.sil.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
+from orccad_app.sil.generate.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
 from orccad_app.sil.lockstep import lockstep
-from orccad_app.sil.remote import RemoteModule
+from orccad_app.sil.controller.remote import RemoteModule
 
 from tests.sil.helpers import plan_of
 

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from orccad_app.sil.layout import NoCImplementation
+from orccad_app.sil.generate.layout import NoCImplementation
 from orccad_app.sil.lockstep import lockstep
 
 from tests.sil.helpers import MISSIONS, executive_report, sil_report

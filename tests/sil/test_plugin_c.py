@@ -15,7 +15,7 @@ from orccad_app.pipeline import load, select_mission
 from orccad_app.plugin_api import (REQUIRED, CImplementation, ModuleInstance, ModuleKind,
                                    ParamSpec, PortSpec, PluginHost, Timing, hookimpl)
 from orccad_app.session import RunOptions, RunSession
-from orccad_app.sil.layout import NoCImplementation
+from orccad_app.sil.generate.layout import NoCImplementation
 from orccad_app.sil.runs import ControllerRuns, SilMode
 
 from tests.sil.helpers import MISSIONS, report

@@ -177,7 +177,7 @@ def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
     law's releases. The law's parameter words, read from the controller at every heartbeat,
     show kp compounding to its cap and ki on the ramp from its last start (up to the plant
     server's lateness ahead of it), then exactly at its end, as the executive computes it."""
-    from orccad_app.sil.controller import Op
+    from orccad_app.sil.controller.process import Op
 
     ops: list[Op] = []
     samples: list[tuple[int, tuple[float, ...]]] = []
@@ -264,7 +264,7 @@ def test_the_automaton_is_a_task_of_the_controller():
     KILL or RESET request); the plant server applies each recorded reaction to its records in
     order, and an --inject reaches the task as an input at its instant (arm_pid: TrackingLost
     at 0.3 s ends the run failed, the Module-Tasks killed by the task)."""
-    from orccad_app.sil.controller import Op
+    from orccad_app.sil.controller.process import Op
 
     reactions: list[tuple[int, tuple[str, ...], tuple[str, ...]]] = []
     ops: list[Op] = []
@@ -298,7 +298,7 @@ def test_a_start_with_run_time_arguments_is_bound_by_the_supervisor():
     """auv_waypoints: GoTo's target is a run-time argument (the Waypoint's value): the plant
     server binds it and starts GoTo's Module-Tasks (START, PARAM, ACTIVATE), the automaton
     task having reacted to the injected value."""
-    from orccad_app.sil.controller import Op
+    from orccad_app.sil.controller.process import Op
 
     ops: list[Op] = []
     inject = (parse_injection("Waypoint([15, 0, 5])@0.5"),)
@@ -319,7 +319,7 @@ def test_a_constant_type_1_update_is_applied_by_the_automaton_task():
     into the law's parameters itself (no PARAM request from the plant server), the report
     records 600 -> 200, and the arm then tracks as the executive's run with kp = 200 does
     (the task error's RMS within 25 %)."""
-    from orccad_app.sil.controller import Op
+    from orccad_app.sil.controller.process import Op
 
     from tests.sil.helpers import executive_report
 
@@ -433,7 +433,7 @@ def test_lost_job_records_are_counted_and_the_rest_kept_in_order():
     """The shared memory's ring of job records, written as the controller writes it: past
     JOB_RING - 1 records between two reads the oldest are lost — counted, the newest kept in
     order — and the next read goes on from there."""
-    from orccad_app.sil.shared import JOB_RING, SharedMemory
+    from orccad_app.sil.realtime.shared import JOB_RING, SharedMemory
 
     shared = SharedMemory(robot_ports=1, modules=1, reaction_words=4)
     try:
@@ -469,8 +469,8 @@ def test_job_records_reach_the_observers_in_time_order_per_module_task():
 
     from orccad_app.executive.hooks import Hooks
     from orccad_app.executive.observer import EventLog
-    from orccad_app.sil.job_trace import JobTrace
-    from orccad_app.sil.shared import JobRecord, JobRecords
+    from orccad_app.sil.realtime.job_trace import JobTrace
+    from orccad_app.sil.realtime.shared import JobRecord, JobRecords
 
     log = EventLog()
     table = SimpleNamespace(entries=[SimpleNamespace(name="T.ctrl", processor=0)],

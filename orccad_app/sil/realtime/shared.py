@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from orccad_app.sil.layout import MAX_DIM, MAX_PORTS
+from orccad_app.sil.generate.layout import MAX_DIM, MAX_PORTS
 
 __all__ = ["SharedMemory", "Mirror", "JobRecord", "JobRecords", "LATENESS_RING", "REACTION_RING",
            "JOB_RING", "ReactionsLost"]

@@ -2,7 +2,7 @@
 
 :class:`ControllerProcess` starts the compiled controller (:mod:`orccad_app.sil.build`) with
 one end of a Unix ``socketpair`` as its file descriptor, checks that it runs the expected
-table (:attr:`~orccad_app.sil.emit.ModuleTable.digest`), and exchanges one request and one
+table (:attr:`~orccad_app.sil.generate.table.ModuleTable.digest`), and exchanges one request and one
 reply at a time (the frames of ``orccad_app/sil/c/orccad_lockstep.c``).
 
 Every reply is the controller's **heartbeat**: a controller that does not answer within

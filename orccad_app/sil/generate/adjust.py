@@ -20,7 +20,7 @@ update to the running Module-Task's parameter words in that reaction, as
 An update is the controller's only if every update of each parameter it writes or reads is
 the controller's too (otherwise the supervisor's writes and the controller's would race):
 its words are then the controller's alone (:attr:`CAdjust.offsets`), and the supervisor's
-proxies never send them (:class:`~orccad_app.sil.remote.RemoteModule`'s ``c_owned``). The
+proxies never send them (:class:`~orccad_app.sil.controller.remote.RemoteModule`'s ``c_owned``). The
 rest — a vector computed value, a parameter read or written by an update the controller
 cannot apply, a ramp on a sporadic Module-Task, a site with run-time arguments — stays with
 the supervisor (``PARAM`` requests).
@@ -38,8 +38,8 @@ import numpy as np
 from orccad_app.lang import ast
 from orccad_app.mission.plan import MissionPlan, ParamUpdate, SiteModules
 from orccad_app.robottask.signals import RoleKind
-from orccad_app.sil.emit import ModuleTable
-from orccad_app.sil.layout import c_layout, same_word
+from orccad_app.sil.generate.table import ModuleTable
+from orccad_app.sil.generate.layout import c_layout, same_word
 from orccad_app.tcs.phasing import Activation
 
 __all__ = ["AdjustForm", "CAdjust", "adjust_lines", "c_adjustments", "c_expression",
@@ -353,7 +353,7 @@ def adjust_lines(adjusts: tuple[CAdjust, ...], presence: Mapping[str, int]) -> l
             checks.append(f"    case {a}: return {adjust.check}; \\")
     durations = [str(adjust.duration_ns) + "LL" for adjust in adjusts]
     return [
-        "/* The type-1 updates the task applies (orccad_app/sil/adjust.py), in output order: "
+        "/* The type-1 updates the task applies (orccad_app/sil/generate/adjust.py), in output order: "
         "{site, the ADJUST",
         " * output's presence word in the reply, Module-Task, form (0 constant words, 1 "
         "computed, 2 ramp), first of its",

@@ -8,7 +8,7 @@ reacts at its ticks and at its observers' events, and records each reaction in t
 memory. This process is the **plant server and the mission's supervisor**: the executive's
 kernel paced to the wall clock (``MissionRun`` with ``realtime=1``) runs the MuJoCo plant but
 no Module-Task job and no reaction: every ``exchange_ns`` it brings the plant to now, writes
-the robot's sensors into the shared memory (:mod:`orccad_app.sil.shared`), applies the torques
+the robot's sensors into the shared memory (:mod:`.shared`), applies the torques
 the controller wrote, and applies, in order, the reactions the automaton task recorded
 (``MissionRun._apply``: start, kill, type-1 updates, fresh ports go to the controller over
 the socket); an input (``--inject``) goes to the automaton task as ``OP_INPUT`` with its
@@ -49,17 +49,17 @@ from orccad_app.executive.simulation import TimingSource
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.run import MissionRun, ReactionError
-from orccad_app.sil.adjust import c_adjustments, c_owned_words
-from orccad_app.sil.automaton import (ControllerAutomaton, managed_sites, mission_automaton,
-                                     reaction_words)
-from orccad_app.sil.build import C_DIR
-from orccad_app.sil.controller import (DEFAULT_HEARTBEAT_S, ControllerFailure, ControllerProcess,
-                                      Op)
-from orccad_app.sil.emit import ModuleTable
-from orccad_app.sil.job_trace import JobTrace
-from orccad_app.sil.lockstep import RemoteSite, controller_for
-from orccad_app.sil.remote import RemoteModule
-from orccad_app.sil.shared import (JOB_RING, REACTION_RING, JobRecords, ReactionsLost,
+from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.controller.automaton import ControllerAutomaton
+from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
+                                              ControllerProcess, Op)
+from orccad_app.sil.controller.remote import RemoteModule, RemoteSite
+from orccad_app.sil.generate.adjust import c_adjustments, c_owned_words
+from orccad_app.sil.generate.automaton import managed_sites, mission_automaton, reaction_words
+from orccad_app.sil.generate.library import C_DIR
+from orccad_app.sil.generate.table import ModuleTable
+from orccad_app.sil.realtime.job_trace import JobTrace
+from orccad_app.sil.realtime.shared import (JOB_RING, REACTION_RING, JobRecords, ReactionsLost,
                                    SharedMemory)
 
 __all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
@@ -395,7 +395,7 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
     removed when the block ends."""
     automaton = automaton or mission_automaton(plan)
     with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = controller_for(plan, source, build_dir or Path(scratch), automaton,
+        table, executable = build_controller(plan, source, build_dir or Path(scratch), automaton,
                                            "orccad_rt.c", (C_DIR / "orccad_io_shm.c",),
                                            ("-lm", "-pthread"))
     shared = SharedMemory(len(table.robot_ports), len(table.entries),
