@@ -51,6 +51,11 @@ _HOSTILE_NAMES = sorted(set("""
 _MISSION_NAMES = ["M", "Main", "Int", "Stdint", "Math", "Errno", "_Hidden", "OrccadX",
                   "NAN", "Linux", "A" * 70, "status"]
 
+#: ``--name`` prefixes near the generated and the driver's own identifiers (``json_string``,
+#: ``ck_add``, ``MAX_DURATION_NS``, ``phase_table``), or refused (a system header, ``_``)
+_PREFIXES = [None, None, "json", "parse", "run", "fail", "status", "max_duration", "ck", "cmp",
+             "phase", "a0", "main", "e", "Stdint", "_stdint", "int", "p" * 63]
+
 #: strings hostile to a C string literal or comment (as written in the program, escapes
 #: of the plan language included)
 _HOSTILE_STRINGS = ["*/", "/*", "/*/", "*/ int x; /*", "??/", "??=", "???", "\\\\", "\\\"",
@@ -72,8 +77,9 @@ def _renaming(draw) -> dict[str, str]:
 
 
 @st.composite
-def _cases(draw) -> tuple[str, str, bytes]:
-    """(mission, script, folder name): a generated mission renamed, with a string output."""
+def _cases(draw) -> tuple[str, str, bytes, str | None]:
+    """(mission, script, folder name, --name): a generated mission renamed, with a string
+    output."""
     renaming = draw(_renaming())
     mission = draw(missions())
     string = draw(st.sampled_from(_HOSTILE_STRINGS))
@@ -83,7 +89,7 @@ def _cases(draw) -> tuple[str, str, bytes]:
                               f'}} else {{ emit Text("{other}"); }}\n', 1)
     text = _WORD.sub(lambda m: renaming[m.group(1)], mission)
     script = _WORD.sub(lambda m: renaming[m.group(1)], draw(scripts()))
-    return text, script, draw(st.sampled_from(_FOLDERS))
+    return text, script, draw(st.sampled_from(_FOLDERS)), draw(st.sampled_from(_PREFIXES))
 
 
 def _build_and_compare(out: Path, source: str, script: Path) -> None:
@@ -114,7 +120,7 @@ def _codegen(examples: int):
               suppress_health_check=list(HealthCheck))
     @given(_cases())
     def run(case):
-        text, script_text, folder_name = case
+        text, script_text, folder_name, prefix = case
         base = scratch_folder("orccad-fuzz-codegen-")
         folder = os.path.join(os.fsencode(base), folder_name)
         os.makedirs(folder, exist_ok=True)
@@ -123,7 +129,8 @@ def _codegen(examples: int):
         script = base / "s.in"
         script.write_text(script_text, encoding="utf-8")
         out = base / "out"
-        outcome = run_orccad(["codegen", source, "--main", "-o", str(out)], budget_s=60)
+        name = ["--name", prefix] if prefix is not None else []
+        outcome = run_orccad(["codegen", source, "--main", "-o", str(out), *name], budget_s=60)
         check_outcome(outcome, budget_s=60)
         if outcome.status == 0:
             _build_and_compare(out, source, script)
