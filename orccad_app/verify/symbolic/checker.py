@@ -23,9 +23,9 @@ from orccad_app.verify.counterexample import Script, make_script
 from orccad_app.verify.formula import F, atoms, conj, from_ast, neg
 from orccad_app.verify.lasso import holds_on_lasso
 from orccad_app.verify.search import Instant, Lasso
-from orccad_app.verify.symbolic.bdd import Node
+from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.builtins import check_builtin_symbolic
-from orccad_app.verify.symbolic.circuit import build_circuit
+from orccad_app.reactive.circuit import build_circuit
 from orccad_app.verify.symbolic.ltl import SymbolicLasso, find_lasso_symbolic
 from orccad_app.verify.symbolic.model import SymbolicModel
 from orccad_app.verify.symbolic.runs import holds_at

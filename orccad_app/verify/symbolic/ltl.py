@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.verify.formula import F, subformulas
-from orccad_app.verify.symbolic.bdd import Node
-from orccad_app.verify.symbolic.circuit import BOOT, next_name
+from orccad_app.reactive.bdd import Node
+from orccad_app.reactive.circuit import BOOT, next_name
 from orccad_app.verify.symbolic.model import SymbolicModel
 
 __all__ = ["SymbolicLasso", "find_lasso_symbolic", "MAX_LASSO_ROUNDS"]

@@ -22,8 +22,8 @@ from orccad_app.reactive import ir
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify import data
-from orccad_app.verify.symbolic.bdd import Node
-from orccad_app.verify.symbolic.circuit import (BOOT, FAILED_BEFORE, TERM, Circuit, input_var,
+from orccad_app.reactive.bdd import Node
+from orccad_app.reactive.circuit import (BOOT, FAILED_BEFORE, TERM, Circuit, input_var,
                                                 next_name)
 
 __all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES"]
