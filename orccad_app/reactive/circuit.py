@@ -36,6 +36,7 @@ from orccad_app.reactive.prepare import (
     KNode, Prepared,
 )
 from orccad_app.reactive.bdd import Manager, Node
+from orccad_app.reactive.circuit_data import WIDTH, Arithmetic, is_exact
 
 __all__ = ["Circuit", "build_circuit", "register", "pre_bit", "input_var", "data_var",
            "BOOT", "TERM", "FAILED_BEFORE", "next_name", "MAX_FIXPOINT_WALKS"]
@@ -59,6 +60,11 @@ def input_var(index: int) -> str:
 
 def data_var(number: int) -> str:
     return f"d{number}"
+
+
+def counter_bit(k: int, bit: int) -> str:
+    """Bit ``bit`` of the ``k``-th tracked variable's register."""
+    return f"v{k}_{bit}"
 
 
 def next_name(name: str) -> str:
@@ -93,6 +99,9 @@ class Circuit:
     undecided: list[tuple[Node, SourceLocation, str]] = field(default_factory=list)
     relations: Node = None
     walks: int = 0
+    tracked: tuple[ir.VarDecl, ...] = ()
+    overflow: Node = None
+    """Where a tracked variable's value leaves its bits (the counters are then abstracted)."""
 
     def selected(self, lo: int, hi: int) -> Node:
         """Where a current register of the pauses ``[lo, hi)`` is set."""
@@ -120,6 +129,11 @@ class _Walk:
         self.evaluated: dict[int, Node] = {}
         self.undecided: list[tuple[Node, SourceLocation, str]] = []
         self.tested: set = set()             # signal keys some test reads
+        self.arithmetic = Arithmetic(self.m)
+        self.tracked = set(circuit.tracked)
+        self.values = {v: [self.m.var(counter_bit(k, i)) for i in range(self.arithmetic.width)]
+                       for k, v in enumerate(circuit.tracked)}
+        self.constraints: Node = self.m.true  # exact data tests: their outcome is their value
 
     # ------------------------------------------------------------------ tests
     def test(self, test: ir.Test, scope: dict, act: Rail) -> Rail:
@@ -140,6 +154,11 @@ class _Walk:
             number = self.prep.data_test_index[id(test)]
             self.evaluated[number] = self.evaluated.get(number, m.false) | act[0]
             v = m.var(data_var(number))
+            if self.tracked and is_exact(test.expr, self.tracked):
+                arithmetic = self.arithmetic
+                value = arithmetic.truth(arithmetic.evaluate(test.expr, self.values, act[0]))
+                self.constraints &= ~act[0] | v.equiv(value)
+                return value, ~value
             return v, ~v
         if kind is ir.PreRef:
             key = scope.get(test.signal, test.signal)
@@ -182,7 +201,15 @@ class _Walk:
     def _exit(self, node, depth, act, scope):
         return {node.code: act}
 
-    def _instant(self, node, depth, act, scope):  # nothing, assign
+    def _instant(self, node, depth, act, scope):  # nothing
+        return {0: act}
+
+    def _assign(self, node, depth, act, scope):
+        var = node.src.var
+        if var in self.tracked:
+            arithmetic = self.arithmetic
+            new = arithmetic.vector(arithmetic.evaluate(node.src.expr, self.values, act[0]))
+            self.values[var] = arithmetic.mux(act[0], new, self.values[var])
         return {0: act}
 
     def _local(self, node, depth, act, scope):
@@ -334,14 +361,15 @@ _GO: list = [None] * 13
 for _kind, _handler in ((SEQ, _Walk._seq), (PAUSE, _Walk._pause), (EMIT, _Walk._emit),
                         (PRESENT, _Walk._present), (LOOP, _Walk._loop), (PAR, _Walk._par),
                         (TRAP, _Walk._trap), (EXIT, _Walk._exit), (SUSPEND, _Walk._suspend),
-                        (ASSIGN, _Walk._instant), (LOCAL, _Walk._local), (MARK, _Walk._mark),
+                        (ASSIGN, _Walk._assign), (LOCAL, _Walk._local), (MARK, _Walk._mark),
                         (NOTHING, _Walk._instant)):
     _GO[_kind] = _handler
 
 
 # --------------------------------------------------------------------------- building
 
-def _declare(m: Manager, prep: Prepared) -> tuple[list[str], list[str], list[str]]:
+def _declare(m: Manager, prep: Prepared, tracked: tuple[ir.VarDecl, ...]
+             ) -> tuple[list[str], list[str], list[str]]:
     """Declare the variables in program order: each register beside its next copy, each
     input and data test at its first test."""
     registers: list[str] = []
@@ -355,6 +383,9 @@ def _declare(m: Manager, prep: Prepared) -> tuple[list[str], list[str], list[str
 
     for name in (BOOT, TERM, FAILED_BEFORE):
         reg(name)
+    for k in range(len(tracked)):
+        for bit in range(WIDTH):
+            reg(counter_bit(k, bit))
     program = prep.program
 
     def tests(test: ir.Test) -> None:
@@ -416,11 +447,13 @@ def _relations(m: Manager, program: ir.Program) -> Node:
     return result
 
 
-def build_circuit(prep: Prepared, manager: Manager | None = None) -> Circuit:
-    """The circuit of ``prep``: its walks iterated to the signals' fixpoint."""
+def build_circuit(prep: Prepared, manager: Manager | None = None,
+                  tracked: tuple[ir.VarDecl, ...] = ()) -> Circuit:
+    """The circuit of ``prep``: its walks iterated to the signals' fixpoint; ``tracked``: the
+    variables kept exactly (:mod:`.circuit_data`), the other data abstracted."""
     m = manager or Manager()
-    registers, inputs, data = _declare(m, prep)
-    circuit = Circuit(prep, m, registers, inputs, data)
+    registers, inputs, data = _declare(m, prep, tracked)
+    circuit = Circuit(prep, m, registers, inputs, data, tracked=tracked)
     circuit.relations = _relations(m, prep.program)
     boot, term = m.var(BOOT), m.var(TERM)
     running = ~term
@@ -485,6 +518,11 @@ def _outputs(circuit: Circuit, walk: _Walk, codes: dict[int, Rail], env: dict) -
             present = walk.must.get(decl, m.false)
         circuit.next[name] = present & running & ~code0
     circuit.evaluated = walk.evaluated
+    for k, var in enumerate(circuit.tracked):
+        for bit, value in enumerate(walk.values[var]):
+            circuit.next[counter_bit(k, bit)] = value & running & ~code0
+    circuit.overflow = walk.arithmetic.overflow
+    circuit.relations &= walk.constraints
     circuit.undecided = [(where, loc, name) for where, loc, name in walk.undecided
                          if where != m.false]
     del boot

@@ -101,15 +101,13 @@ class MissionReport:
 
     @property
     def counters_exact(self) -> bool:
-        return self.model.exact if self.symbolic is None else not self.symbolic.counters
+        return self.model.exact if self.symbolic is None else self.symbolic.abstracted is None
 
     @property
     def abstracted_because(self) -> str | None:
         if self.symbolic is None:
             return self.model.abstracted_because
-        if self.symbolic.counters:
-            return "the symbolic checker abstracts the counters too"
-        return None
+        return self.symbolic.abstracted
 
 
 def applicable(items, mission: ast.Mission) -> list:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.reactive import ir
+from orccad_app.reactive.circuit_data import WIDTH
 from orccad_app.verify import data
 from orccad_app.robottask.atoms import ACTIVE, SIGNAL, STATUS, TRUE_ATOM, Atoms
 from orccad_app.robottask.composition import Composition
@@ -45,21 +46,31 @@ class SymbolicCheck:
     bdd_nodes: int
     registers: int
     walks: int
-    counters: bool
-    """Whether the mission has counters the explicit model would track exactly (the symbolic
-    one abstracts them)."""
+    abstracted: str | None
+    """Why the counters are abstracted (None: tracked exactly, or none)."""
 
 
 def symbolic_model(composition: Composition) -> tuple[SymbolicModel, Witness, SymbolicCheck]:
     """The explored symbolic model of ``composition`` (built with a lazy automaton)."""
-    circuit = build_circuit(composition.automaton.prep)  # type: ignore[union-attr]
+    prep = composition.automaton.prep  # type: ignore[union-attr]
+    tracked = counters_of(composition)
+    circuit = build_circuit(prep, tracked=tracked)
     model = SymbolicModel(composition, circuit)
     reachable = model.explore()
+    abstracted = None
+    if tracked and (circuit.overflow & reachable & circuit.relations) != model.m.false:
+        abstracted = f"a counter leaves [{-(1 << (WIDTH - 1))}, {(1 << (WIDTH - 1)) - 1}]"
+        model.m.release(circuit, model)
+        circuit = build_circuit(prep)
+        model = SymbolicModel(composition, circuit)
+        reachable = model.explore()
     model.check_constructive()
     m = model.m
-    control = m.exists(["failed_before"], reachable)
-    sizes = SymbolicCheck(model.count(control) // 2, model.count(reachable),
-                          len(m.bdd), len(model.cur), circuit.walks, bool(counters_of(composition)))
+    control = m.exists(["failed_before"] + [r for r in model.cur if r.startswith("v")],
+                       reachable)
+    sizes = SymbolicCheck(model.count(control) >> (1 + _counter_bits(model)),
+                          model.count(reachable), len(m.bdd), len(model.cur), circuit.walks,
+                          abstracted)
     return model, Witness(model), sizes
 
 
@@ -69,6 +80,10 @@ def release(model: SymbolicModel, witness: Witness) -> None:
     circuit = model.circuit
     manager = model.m
     manager.release(circuit, model)
+
+
+def _counter_bits(model: SymbolicModel) -> int:
+    return sum(1 for r in model.cur if r.startswith("v"))
 
 
 def counters_of(composition: Composition) -> tuple:
@@ -81,7 +96,8 @@ def counters_of(composition: Composition) -> tuple:
         if isinstance(node.src, ir.Assign):
             actions.append(node.src)
         stack.extend(node.children)
-    tracked = {a.var for a in actions}
+    order = {a.var: None for a in actions}
+    tracked = set(order)
     changed = True
     while changed:
         changed = False
@@ -89,7 +105,7 @@ def counters_of(composition: Composition) -> tuple:
             if action.var in tracked and not data.is_exact(action.expr, tracked):
                 tracked.discard(action.var)
                 changed = True
-    return tuple(tracked)
+    return tuple(v for v in order if v in tracked)
 
 
 def parallel_tasks(composition: Composition) -> str:

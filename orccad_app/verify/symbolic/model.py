@@ -15,6 +15,7 @@ pre-image: the next-state functions substituted into the set (vector composition
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
@@ -32,6 +33,8 @@ __all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES", "MAX_BDD_NOD
 MAX_IMAGES = 100_000
 #: BDD nodes the symbolic checker may hold (about 100 bytes each in CUDD: ~1.5 GB).
 MAX_BDD_NODES = 15_000_000
+#: Seconds between two counts of the BDD nodes (the budget's check).
+BUDGET_EVERY_S = 0.5
 
 
 class SymbolicBudgetExceeded(OrccadError):
@@ -60,6 +63,7 @@ class SymbolicModel:
         self.free = list(c.inputs) + list(c.data)
         self.to_cur = dict(zip(self.nxt, self.cur))
         self.to_next = dict(zip(self.cur, self.nxt))
+        self._budget_checked = float("-inf")
         self.term = m.var(TERM)
         self.running = ~self.term
         self.init = m.cube({r: r == BOOT for r in c.registers})
@@ -136,7 +140,12 @@ class SymbolicModel:
 
     def check_budget(self) -> None:
         """Refuse the mission, located, once the BDDs hold more than :data:`MAX_BDD_NODES`
-        nodes, naming the parallel branches that multiply the states."""
+        nodes, naming the parallel branches that multiply the states. Counting the nodes costs
+        a pass over CUDD's tables: it is done at most every :data:`BUDGET_EVERY_S`."""
+        now = time.monotonic()
+        if now - self._budget_checked < BUDGET_EVERY_S:
+            return
+        self._budget_checked = now
         if len(self.m.bdd) <= MAX_BDD_NODES:
             return
         composition = self.composition
