@@ -262,6 +262,15 @@ def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
                     progress: CheckProgress | None) -> MissionReport:
     composition = compose(program, mission, lazy=True)
     model, witness, sizes = symbolic_model(composition)
+    try:
+        return _symbolic_outcomes(program, mission, builtins, progress, composition, model,
+                                  witness, sizes)
+    finally:
+        release(model, witness)
+
+
+def _symbolic_outcomes(program, mission, builtins, progress, composition, model, witness,
+                       sizes) -> MissionReport:
     report = MissionReport(composition, witness.model, engine=SYMBOLIC, symbolic=sizes)
     total = _properties_total(program, mission, builtins)
     if builtins:
@@ -278,7 +287,6 @@ def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
                                                 PropertyOutcome, _script))
         if progress is not None:
             progress.properties(len(report.outcomes), total)
-    release(model, witness)
     return report
 
 

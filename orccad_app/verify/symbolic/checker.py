@@ -29,7 +29,8 @@ from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.builtins import check_builtin_symbolic
 from orccad_app.reactive.circuit import build_circuit
 from orccad_app.verify.symbolic.ltl import SymbolicLasso, find_lasso_symbolic
-from orccad_app.verify.symbolic.model import SymbolicModel
+from orccad_app.verify.symbolic.model import (MAX_COUNTER_IMAGES, SymbolicBudgetExceeded,
+                                              SymbolicModel)
 from orccad_app.verify.symbolic.runs import holds_at
 from orccad_app.verify.symbolic.witness import Witness
 
@@ -51,26 +52,41 @@ class SymbolicCheck:
 
 
 def symbolic_model(composition: Composition) -> tuple[SymbolicModel, Witness, SymbolicCheck]:
-    """The explored symbolic model of ``composition`` (built with a lazy automaton)."""
+    """The explored symbolic model of ``composition`` (built with a lazy automaton): counters
+    exact unless one leaves its bits or they take more than :data:`MAX_COUNTER_IMAGES`
+    instants to explore."""
     prep = composition.automaton.prep  # type: ignore[union-attr]
     tracked = counters_of(composition)
-    circuit = build_circuit(prep, tracked=tracked)
-    model = SymbolicModel(composition, circuit)
-    reachable = model.explore()
     abstracted = None
-    if tracked and (circuit.overflow & reachable & circuit.relations) != model.m.false:
-        abstracted = f"a counter leaves [{-(1 << (WIDTH - 1))}, {(1 << (WIDTH - 1)) - 1}]"
-        model.m.release(circuit, model)
-        circuit = build_circuit(prep)
-        model = SymbolicModel(composition, circuit)
-        reachable = model.explore()
-    model.check_constructive()
+    model = None
+    if tracked:
+        model = SymbolicModel(composition, build_circuit(prep, tracked=tracked))
+        try:
+            reachable = model.explore(MAX_COUNTER_IMAGES)
+            circuit = model.circuit
+            if (circuit.overflow & reachable & circuit.relations) != model.m.false:
+                low, high = -(1 << (WIDTH - 1)), (1 << (WIDTH - 1)) - 1
+                abstracted = f"a counter leaves [{low}, {high}]"
+        except SymbolicBudgetExceeded:
+            abstracted = f"the counters take more than {MAX_COUNTER_IMAGES} instants to explore"
+        if abstracted is not None:
+            model.m.release(model.circuit, model)
+            model = None
+    try:
+        if model is None:
+            model = SymbolicModel(composition, build_circuit(prep))
+            reachable = model.explore()
+        model.check_constructive()
+    except BaseException:
+        if model is not None:
+            model.m.release(model.circuit, model)
+        raise
     m = model.m
-    control = m.exists(["failed_before"] + [r for r in model.cur if r.startswith("v")],
-                       reachable)
-    sizes = SymbolicCheck(model.count(control) >> (1 + _counter_bits(model)),
-                          model.count(reachable), len(m.bdd), len(model.cur), circuit.walks,
-                          abstracted)
+    counter_bits = [r for r in model.cur if r.startswith("v")]
+    control = m.exists(["failed_before"] + counter_bits, reachable)
+    sizes = SymbolicCheck(model.count(control) >> (1 + len(counter_bits)),
+                          model.count(reachable), len(m.bdd), len(model.cur),
+                          model.circuit.walks, abstracted)
     return model, Witness(model), sizes
 
 
@@ -80,10 +96,6 @@ def release(model: SymbolicModel, witness: Witness) -> None:
     circuit = model.circuit
     manager = model.m
     manager.release(circuit, model)
-
-
-def _counter_bits(model: SymbolicModel) -> int:
-    return sum(1 for r in model.cur if r.startswith("v"))
 
 
 def counters_of(composition: Composition) -> tuple:

@@ -33,6 +33,9 @@ __all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES", "MAX_BDD_NOD
 MAX_IMAGES = 100_000
 #: BDD nodes the symbolic checker may hold (about 100 bytes each in CUDD: ~1.5 GB).
 MAX_BDD_NODES = 15_000_000
+#: Breadth-first images allowed with exact counters (a counter that counts every instant
+#: would take 2^15 of them): past them the counters are abstracted.
+MAX_COUNTER_IMAGES = 1_000
 #: Seconds between two counts of the BDD nodes (the budget's check).
 BUDGET_EVERY_S = 0.5
 
@@ -117,16 +120,16 @@ class SymbolicModel:
         return source & self.compose(target) & self.circuit.relations
 
     # ------------------------------------------------------------------ reachability
-    def explore(self) -> Node:
+    def explore(self, max_images: int = MAX_IMAGES) -> Node:
         """The reachable states, breadth first (the rings are kept for shortest runs)."""
         m = self.m
         reached = self.init
         frontier = self.init
         self.rings = [self.init]
         while frontier != m.false:
-            if len(self.rings) > MAX_IMAGES:
+            if len(self.rings) > max_images:
                 raise SymbolicBudgetExceeded(
-                    f"mission {self.composition.name}: more than {MAX_IMAGES} instants to "
+                    f"mission {self.composition.name}: more than {max_images} instants to "
                     "reach every state", self.composition.mission.loc)
             new = self.image(frontier) & ~reached
             self.check_budget()
