@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from orccad_app.executive.delays import ControllerDelays
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
 from orccad_app.mission.run import MissionRun
@@ -80,6 +81,9 @@ class RunOptions:
     :param scheduler: every processor's policy, ``fp`` or ``edf``.
     :param context_switch_ns: the context-switch overhead [ns].
     :param bus_transfer_ns: the bus's transfer time per message [ns].
+    :param delays: the exchange delay and release jitter a real controller adds
+        (``--exchange-us``, ``--jitter-us``: :mod:`orccad_app.executive.delays`); default
+        none, the executive's ideal exchange.
     :param realtime: ``None`` as fast as possible, else simulated s per wall s.
     :param trace: a trace file to write (``.csv`` or ``.mcap``; a directory for
         ``rosbag2``), ``None`` for none.
@@ -91,7 +95,7 @@ class RunOptions:
         :mod:`orccad_app.mission.observer`).
     :param run_factory: makes the :class:`~orccad_app.mission.run.MissionRun` from the plan
         and its keyword arguments (``seed``, ``until_ns``, ``injections``, ``processors``,
-        ``bus``, ``observers``, ``realtime``): a subclass for another way of executing the
+        ``bus``, ``observers``, ``realtime``, and ``delays`` when there are any): a subclass for another way of executing the
         Module-Tasks (``orccad sil``); default :class:`MissionRun` itself.
     :param signals_end_run: Ctrl-C and SIGTERM end the run after the current event (status
         ``aborted``, report and trace complete), a second one at once; the handlers are
@@ -107,6 +111,7 @@ class RunOptions:
     scheduler: str = "fp"
     context_switch_ns: int = 0
     bus_transfer_ns: int = 0
+    delays: ControllerDelays = field(default_factory=ControllerDelays)
     realtime: float | None = None
     trace: str | None = None
     trace_format: str | None = None

@@ -72,10 +72,12 @@ class RunSession:
         processors = [Processor(name, options.scheduler, options.context_switch_ns)
                       for name in self.plan.processor_names]
         make = options.run_factory or MissionRun
+        delays: dict[str, Any] = {} if options.delays.ideal else {"delays": options.delays}
         self.run: MissionRun = make(self.plan, seed=options.seed, until_ns=self.until_ns,
                                     injections=injections, processors=processors,
                                     bus=Bus(transfer_ns=options.bus_transfer_ns),
-                                    observers=options.observers, realtime=options.realtime)
+                                    observers=options.observers, realtime=options.realtime,
+                                    **delays)
         """The :class:`~orccad_app.mission.run.MissionRun` (observe it, do not reach in)."""
         self.monitor = PropertyMonitor(source.program, mission, self.run)
         """Judges every property of the mission on the run."""
