@@ -135,11 +135,12 @@ class MissionRun(RobotTaskLifecycle):
                  tick_ns: int | None = None, backend: ModuleTaskBackend | None = None) -> None:
         if not isinstance(until_ns, int) or until_ns <= 0:
             raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
+        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
+        plan = self.backend.run_plan(plan)
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
         check_run_budget(plan, until_ns)
-        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
         self.realtime = realtime if self.backend.pacing is None else self.backend.pacing
         self.tick_ns = tick_ns or plan.tick_ns
         self.reactor: MissionReactor = self.backend.reactor(plan)
