@@ -225,14 +225,19 @@ class _Explorer:
 
 def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES,
                     progress: Callable[[int], None] | None = None,
-                    max_transitions: int | None = None) -> Automaton:
+                    max_transitions: int | None = None,
+                    defer_double_emissions: bool = False) -> Automaton:
     """Compile ``program`` to a minimized deterministic automaton.
 
     Raises :class:`OrccadError` (with a location) for instantaneous loops, non-causal programs
     and when more than ``max_states`` control states are reachable. ``progress`` is called
-    with the number of control states explored after each one.
+    with the number of control states explored after each one. ``defer_double_emissions``:
+    a valued signal without ``combine`` emitted twice in a transition makes that transition
+    raise when it is taken (what ``orccad react`` does, and the generated C) instead of
+    refusing the program (what ``orccad check`` does).
     """
     prep = prepare(program)
+    prep.defer_double_emissions = defer_double_emissions
     explorer = _Explorer(prep, max_states, max_transitions)
     trees: dict[object, object] = {}
     queue: deque = deque([BOOT])

@@ -11,7 +11,7 @@ from orccad_app.lang import ast
 from orccad_app.robottask.application import contains
 from orccad_app.verify.builtins import Violation, _endless_spans
 from orccad_app.verify.model import Step
-from orccad_app.verify.symbolic.bdd import Node
+from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.model import SymbolicModel
 from orccad_app.verify.symbolic.runs import Point, pick_state, shortest_run
 from orccad_app.verify.symbolic.witness import Witness

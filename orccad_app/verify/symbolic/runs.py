@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from orccad_app.verify.symbolic.bdd import Node
+from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.model import SymbolicModel
 
 __all__ = ["Point", "shortest_run", "state_of", "pick_state"]

@@ -19,7 +19,7 @@ from orccad_app.reactive.engine import BOOT, react
 from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.prepare import TERMINATED
 from orccad_app.verify.model import ENDED, Model, Path, Step
-from orccad_app.verify.symbolic.circuit import (BOOT as BOOT_REG, FAILED_BEFORE, TERM,
+from orccad_app.reactive.circuit import (BOOT as BOOT_REG, FAILED_BEFORE, TERM,
                                                 data_var, input_var, pre_bit, register)
 from orccad_app.verify.symbolic.model import SymbolicModel
 

@@ -35,7 +35,7 @@ from orccad_app.reactive.prepare import (
     ASSIGN, EMIT, EXIT, LOCAL, LOOP, MARK, NOTHING, PAR, PAUSE, PRESENT, SEQ, SUSPEND, TRAP,
     KNode, Prepared,
 )
-from orccad_app.verify.symbolic.bdd import Manager, Node
+from orccad_app.reactive.bdd import Manager, Node
 
 __all__ = ["Circuit", "build_circuit", "register", "pre_bit", "input_var", "data_var",
            "BOOT", "TERM", "FAILED_BEFORE", "next_name", "MAX_FIXPOINT_WALKS"]
