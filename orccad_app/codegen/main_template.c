@@ -17,12 +17,14 @@
  * automaton has a fixed string table), a vector input must have the size the automaton gives
  * it, and only ASCII white space separates tokens.
  */
+#define _POSIX_C_SOURCE 200112L /* stat(): only regular files are read, as orccad react */
 #include "@P@.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define MAX_SCRIPT_BYTES 512000
 #define MAX_DURATION_NS INT64_C(@MAX_DURATION_NS@)
@@ -630,6 +632,37 @@ static void check_utf8(const char *text, size_t len)
     }
 }
 
+/* Refuse what is not a regular file before opening it, as orccad react does: opening a FIFO
+   blocks until a writer comes, a folder reads as nothing, a device may never end. */
+static void require_regular_file(const char *path)
+{
+    struct stat info;
+    char message[4200];
+    const char *kind = "not a regular file";
+    if (stat(path, &info) != 0) {
+        if (errno == ENOENT)
+            snprintf(message, sizeof message, "%.4000s: no such file", path);
+        else
+            snprintf(message, sizeof message, "%.4000s: cannot read: %s", path, strerror(errno));
+        fail(message);
+    }
+    if (S_ISREG(info.st_mode)) return;
+    if (S_ISDIR(info.st_mode)) {
+        snprintf(message, sizeof message, "%.4000s: is a folder, not a file", path);
+        fail(message);
+    }
+#ifdef S_ISFIFO
+    if (S_ISFIFO(info.st_mode)) kind = "a FIFO";
+#endif
+    if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) kind = "a device";
+#ifdef S_ISSOCK
+    if (S_ISSOCK(info.st_mode)) kind = "a socket";
+#endif
+    snprintf(message, sizeof message, "%.4000s: %s, not a regular file (only regular files are "
+             "read)", path, kind);
+    fail(message);
+}
+
 /* Run one script: the exit status (0, 1 failed/aborted, 2 a run-time error). */
 static int run_script(const char *path, int trace)
 {
@@ -642,6 +675,7 @@ static int run_script(const char *path, int trace)
     int number, timed = 0, record = 0, status = @UP@_RUNNING, pass;
     int64_t clock = 0;
     script_name = path;
+    require_regular_file(path);
     file = fopen(path, "rb");
     if (file == NULL) {
         char message[4200];
@@ -650,6 +684,12 @@ static int run_script(const char *path, int trace)
         fail(message);
     }
     len = fread(script, 1, MAX_SCRIPT_BYTES + 1, file);
+    if (ferror(file)) {
+        char message[4200];
+        snprintf(message, sizeof message, "%.4000s: cannot read: %s", path, strerror(errno));
+        fclose(file);
+        fail(message);
+    }
     fclose(file);
     if (len > MAX_SCRIPT_BYTES) {
         char message[4200];

@@ -43,7 +43,8 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.codegen.driver import main_source
-    from orccad_app.codegen.mission import check_prefix, default_prefix, generate_mission
+    from orccad_app.codegen.mission import generate_mission
+    from orccad_app.codegen.names import check_prefix, default_prefix
     from orccad_app.codegen.output import write_files
     from orccad_app.pipeline import compose_mission, load, select_mission
 
@@ -55,7 +56,8 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     prefix = check_prefix(args.name if args.name is not None else default_prefix(mission.name))
-    composition = compose_mission(source, mission, max_states=args.max_states)
+    composition = compose_mission(source, mission, max_states=args.max_states,
+                                  defer_double_emissions=True)
     program = generate_mission(composition, prefix,
                                origin=f" from {args.file}, mission {mission.name}")
     files = dict(program.files)
