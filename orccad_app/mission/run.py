@@ -54,6 +54,7 @@ from typing import Any, Iterable
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.deadlock import DeadlockError
+from orccad_app.executive.delays import ControllerDelays
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.observer import Observer
 from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
@@ -127,20 +128,24 @@ class MissionRun(RobotTaskLifecycle):
     :param backend: where the Module-Tasks' jobs run and what steps the automaton (default
         :class:`~orccad_app.mission.backend.InProcess`: this process, the Python reactor);
         its pacing, when it has one, replaces ``realtime``.
+    :param delays: the exchange delay and release jitter a real controller adds
+        (:mod:`orccad_app.executive.delays`; default none: the ideal exchange).
     """
 
     def __init__(self, plan: MissionPlan, *, seed: int = 0,
                  until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
                  processors: Iterable[Processor] = (), bus: Bus | None = None,
                  observers: Iterable[Any] = (), realtime: float | None = None,
-                 tick_ns: int | None = None, backend: ModuleTaskBackend | None = None) -> None:
+                 tick_ns: int | None = None, backend: ModuleTaskBackend | None = None,
+                 delays: ControllerDelays = ControllerDelays()) -> None:
         if not isinstance(until_ns, int) or until_ns <= 0:
             raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
+        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
+        plan = self.backend.run_plan(plan)
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
         check_run_budget(plan, until_ns)
-        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
         self.realtime = realtime if self.backend.pacing is None else self.backend.pacing
         self.tick_ns = tick_ns or plan.tick_ns
         self.reactor: MissionReactor = self.backend.reactor(plan)
@@ -150,7 +155,8 @@ class MissionRun(RobotTaskLifecycle):
         self._on_reaction = self._hooks["on_reaction"]
         plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
-                              plants=plants, observers=[_Link(self), *observers])
+                              plants=plants, observers=[_Link(self), *observers],
+                              delays=delays)
         self.kernel = self.sim.kernel
         self._updates = TypeOneUpdates(self.kernel, plan.tcs, self.sim.hooks.on_param)
         self._signals = plan.signals

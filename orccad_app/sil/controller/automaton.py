@@ -84,12 +84,14 @@ class ControllerAutomaton(AutomatonPosition):
         """One instant of the C automaton with ``inputs`` present (a mapping gives valued
         inputs their values), at ``clock_ns`` [ns]."""
         clock = 0 if clock_ns is None else clock_ns
-        body = bytearray(self._quiet) if inputs else self._quiet
+        body: bytes = self._quiet
         if inputs:
+            words = bytearray(self._quiet)
             valued = inputs if isinstance(inputs, Mapping) else {}
             for name in inputs:
-                self._encode(body, name, valued.get(name))
-        reply = self._controller.request_words(Op.REACT, _WORD.pack(clock) + bytes(body))
+                self._encode(words, name, valued.get(name))
+            body = bytes(words)
+        reply = self._controller.request_words(Op.REACT, _WORD.pack(clock) + body)
         return self._reacted(reply)
 
     def input_words(self, name: str, value: Any, at_ns: int) -> bytes:
