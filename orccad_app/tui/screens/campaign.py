@@ -11,6 +11,7 @@ the screen stops it as Ctrl-C does, leaving the database resumable (``s`` resume
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from textual import on, work
@@ -121,7 +122,7 @@ class CampaignScreen(Screen):
         self.query_one("#candidates").border_title = "runs to replay (enter)"
         self._show_mode()
         self._status()
-        if self.db and Path(self.db).is_file():
+        if self.db and os.path.lexists(self.db):
             self.action_open()
         self.set_interval(REFRESH_S, self._tick)
 
@@ -226,10 +227,10 @@ class CampaignScreen(Screen):
     def action_open(self) -> None:
         """Read the database in the field now (nothing runs)."""
         self.db = self._field("db")
-        if not self.db or not Path(self.db).is_file():
-            self.notify(f"db: no such file {self.db!r}", severity="error")
+        if not self.db:
+            self.notify("type the database's path", severity="error")
             return
-        self._read()
+        self._read()  # what is wrong with the file, if anything, is said by the read
 
     def action_back(self) -> None:
         self._close()
