@@ -25,7 +25,7 @@ from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.helpers import helpers_for
 from orccad_app.codegen.header import header_text
 from orccad_app.codegen.interface import ROLE_CODES, Interface
-from orccad_app.codegen.names import c_identifier
+from orccad_app.codegen.names import c_identifier, own_macros
 from orccad_app.codegen.reaction import Graph, intern
 from orccad_app.codegen.static_types import CType, CodegenError, Kind, TypeTable, infer
 from orccad_app.reactive import ir
@@ -71,7 +71,8 @@ def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = N
     strings = StringTable(_strings(graph, tests, signals, types))
     places = _places(types, graph, tests)
     errors = ErrorTable()
-    interface = Interface.make(program.inputs, program.outputs, types.places, roles)
+    interface = Interface.make(program.inputs, program.outputs, types.places, roles,
+                               own_macros(prefix))
     reason = _reason_places(program, places)
     writer = ExprWriter(types, places, errors, strings)
     functions = []
