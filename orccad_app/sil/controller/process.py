@@ -21,6 +21,7 @@ import signal
 import socket
 import struct
 import subprocess
+from collections.abc import Sequence
 from enum import IntEnum
 from pathlib import Path
 
@@ -103,7 +104,7 @@ class ControllerProcess:
         """True while the process runs."""
         return self.process.poll() is None
 
-    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: list[float] = (),
+    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: Sequence[float] = (),
                 offset: int = 0) -> tuple[float, ...]:
         """Send one request and wait for its reply (the heartbeat); the reply's doubles."""
         payload = struct.pack(f"={len(values)}d", *values) if values else b""

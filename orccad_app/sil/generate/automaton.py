@@ -27,7 +27,7 @@ from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.sil.generate.adjust import adjust_lines, c_adjustments
 from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["HEAD_WORDS", "PREFIX", "SignalSlot", "automaton_files", "binding_header",
+__all__ = ["HEAD_WORDS", "PREFIX", "MissionProgram", "SignalSlot", "automaton_files", "binding_header",
            "managed_sites", "mission_automaton", "reaction_words", "signal_slots",
            "signal_words", "value_words", "write_automaton"]
 
@@ -37,22 +37,35 @@ HEAD_WORDS = 5
 """The words of a reaction's reply before its outputs' (``orccad_automaton.h``)."""
 
 
-def mission_automaton(plan: MissionPlan, max_states: int = DEFAULT_MAX_STATES) -> CProgram:
-    """The C of ``plan``'s automaton; the plan's automaton becomes the full one (compiled
-    from its program when it was lazy), whose state numbers the C automaton reports. Raises
-    a located error for what the generator refuses, or past ``max_states``."""
+@dataclass(frozen=True)
+class MissionProgram:
+    """The mission's automaton for the controller.
+
+    :param automaton: the full automaton (compiled from the plan's program when the plan's was
+        lazy), whose state numbers the C automaton reports and whose labels the run reads.
+    :param program: its C.
+    """
+
+    automaton: Automaton
+    program: CProgram
+
+
+def mission_automaton(plan: MissionPlan, max_states: int = DEFAULT_MAX_STATES) -> MissionProgram:
+    """The full automaton of ``plan`` and its C (``plan`` is left as it is: a run in the
+    controller runs a copy of it with the full automaton). Raises a located error for what
+    the generator refuses, or past ``max_states``."""
     automaton = plan.automaton
     if not isinstance(automaton, Automaton):
         automaton = compile_program(automaton.program, max_states=max_states)
-        plan.automaton = automaton
     tasks = {site.instance.task.name: site.instance.task for site in plan.sites}
     try:
-        return generate_composed(automaton, plan.roles, tuple(site.task for site in plan.sites),
-                                 tasks.values(), PREFIX,
-                                 origin=f" for the controller of mission {plan.name}")
+        program = generate_composed(automaton, plan.roles,
+                                    tuple(site.task for site in plan.sites), tasks.values(),
+                                    PREFIX, origin=f" for the controller of mission {plan.name}")
     except CodegenError as error:
         raise OrccadError(f"orccad sil: the mission's automaton has no C: {error.message}",
                           error.location) from None
+    return MissionProgram(automaton, program)
 
 
 def value_words(signal: CSignal) -> int:
@@ -136,7 +149,8 @@ def _site_table(program: CProgram, plan: MissionPlan, table: ModuleTable) -> tup
     starts = {slot.name: slot.word
               for slot in signal_slots(program.interface.outputs, HEAD_WORDS)}
     managed = managed_sites(plan)
-    rows, modules = [], []
+    rows: list[str] = []
+    modules: list[int] = []
     tasks: dict[str, int] = {}
     for number, site in enumerate(plan.sites):
         assert site.number == number  # the generated phase table's site numbers
