@@ -25,18 +25,19 @@ from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.helpers import helpers_for
 from orccad_app.codegen.header import header_text
 from orccad_app.codegen.interface import ROLE_CODES, Interface
-from orccad_app.codegen.names import c_identifier
+from orccad_app.codegen.names import c_identifier, own_macros
 from orccad_app.codegen.reaction import Graph, intern
 from orccad_app.codegen.sites import SiteInfo, phase_columns, site_tables
 from orccad_app.codegen.static_types import CType, CodegenError, Kind, TypeTable, infer
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import ABORTED, DONE, FAILED, RUNNING, Automaton
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import SignalRoles
 
 __all__ = ["CProgram", "generate", "STATUS_CODES"]
 
-STATUS_CODES = {RUNNING: 0, DONE: 1, FAILED: 2, ABORTED: 3}
+STATUS_CODES = {Status.RUNNING: 0, Status.DONE: 1, Status.FAILED: 2, Status.ABORTED: 3}
 
 
 @dataclass(frozen=True)
@@ -73,7 +74,8 @@ def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = N
     strings = StringTable(_strings(graph, tests, signals, types))
     places = _places(types, graph, tests)
     errors = ErrorTable()
-    interface = Interface.make(program.inputs, program.outputs, types.places, roles)
+    interface = Interface.make(program.inputs, program.outputs, types.places, roles,
+                               own_macros(prefix))
     reason = _reason_places(program, places)
     writer = ExprWriter(types, places, errors, strings)
     functions = []
@@ -174,7 +176,7 @@ def _places(types: TypeTable, graph: Graph, tests: list[ir.Expr]) -> Places:
 
 def _reason_places(program: ir.Program, places: Places) -> dict[str, Place | None]:
     found: dict[str, Place | None] = {}
-    for status, decl in ((FAILED, program.failed), (ABORTED, program.aborted)):
+    for status, decl in ((Status.FAILED, program.failed), (Status.ABORTED, program.aborted)):
         place = places.values.get(decl) if decl is not None else None
         if place is not None and place.ctype.kind is not Kind.STRING:
             raise CodegenError(f"the {status} reason {decl.name} is not a string",  # type: ignore[union-attr]
@@ -258,7 +260,7 @@ def _step(prefix: str, automaton: Automaton, graph: Graph, interface: Interface,
         f"{prefix.upper()}_ABORTED) {{",
         "        m->status = st;",
         f"        m->reason = (st == {prefix.upper()}_FAILED) ? "
-        f"{_reason(reason[FAILED])} : {_reason(reason[ABORTED])};",
+        f"{_reason(reason[Status.FAILED])} : {_reason(reason[Status.ABORTED])};",
         "    }",
         f"}} else if (st != {prefix.upper()}_RUNNING && m->status == "
         f"{prefix.upper()}_RUNNING) {{",

@@ -70,6 +70,7 @@ from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
+from orccad_app.reactive.status import at_horizon
 from orccad_app.robottask.binding import ArgumentError
 from orccad_app.robottask.labels import Phase
 
@@ -428,11 +429,7 @@ class MissionRun(RobotTaskLifecycle):
 
     def _final_status(self) -> tuple[MissionStatus, str | None]:
         reactor = self.reactor
-        if reactor.finished:  # the automaton's own word: done, failed or aborted
-            return MissionStatus(reactor.status), reactor.reason
-        if reactor.status == MissionStatus.ABORTED:  # the 'on fatal' recovery was cut by the
-            return MissionStatus.RECOVERING, reactor.reason  # horizon
-        if reactor.status == MissionStatus.FAILED:
-            return MissionStatus.FAILED, reactor.reason
-        return (MissionStatus.TIMEOUT,
-                f"the mission was still running at {self.until_ns / 1e9:g} s")
+        status = at_horizon(reactor.status, reactor.finished)
+        if status is MissionStatus.TIMEOUT:
+            return status, f"the mission was still running at {self.until_ns / 1e9:g} s"
+        return status, reactor.reason

@@ -14,7 +14,7 @@ import pytest
 
 from orccad_app.cli import main as orccad
 from orccad_app.codegen.names import (LIBRARY_NAMES, SYSTEM_HEADERS, c_identifier,
-                                      default_prefix, reserved)
+                                      default_prefix, own_macros, reserved)
 from tests.codegen.cbuild import STRICT, compiler
 from tests.codegen.conftest import MISSIONS
 from tests.codegen.helpers import agree, make
@@ -115,6 +115,21 @@ def test_identifiers_keep_their_name_unless_reserved():
         "TrackPID_start", "Gripper", "s_NAN", "s_9lives", "Gripper_2"]
     assert not reserved("Estop") and reserved("ESTOP") and reserved("errno")
     assert {"NULL", "EOF", "errno", "stdin", "INFINITY", "NAN"} <= LIBRARY_NAMES
+
+
+def test_a_signal_named_as_a_macro_of_the_header_itself(tmp_path):
+    """``ABRO_DONE`` is the header's own macro (the mission's status): a field of that name
+    was ``bool 1;``."""
+    (tmp_path / "abro.orc").write_text(
+        "mission ABRO { input ABRO_DONE, ORCCAD_GENERATED_COMMON; output ABRO_STATE_COUNT;\n"
+        "  loop { await ABRO_DONE or ORCCAD_GENERATED_COMMON; emit ABRO_STATE_COUNT; } }\n")
+    (tmp_path / "abro.in").write_text("\nABRO_DONE\nORCCAD_GENERATED_COMMON\n")
+    made = make(tmp_path / "abro.orc")
+    records = agree(made, tmp_path / "abro.in")
+    assert [r["outputs"] for r in records] == [[], ["ABRO_STATE_COUNT"], ["ABRO_STATE_COUNT"]]
+    defined = set(re.findall(r"#define (\w+)", made.program.header))
+    assert defined == own_macros("abro")
+    assert "bool s_ABRO_DONE; /* ABRO_DONE */" in made.program.header
 
 
 # ---------------------------------------------------------------- prefixes and file names

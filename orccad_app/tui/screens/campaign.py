@@ -22,6 +22,7 @@ from textual.screen import Screen
 from textual.widgets import Button, DataTable, Footer, Header, Input, Label, Static
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.status import MissionStatus
 from orccad_app.tui.campaigns import (Bin, CampaignSnapshot, Candidate, FalsifySnapshot,
                                       SearchProcess, default_db, read_campaign, read_study)
 from orccad_app.tui.screens import orccad
@@ -377,7 +378,7 @@ def status_text(mode: str, state: str, snapshot: CampaignSnapshot | FalsifySnaps
     if isinstance(snapshot, CampaignSnapshot):
         share = snapshot.runs / snapshot.limit if snapshot.limit else 0.0
         bar = "█" * round(share * 20) + "░" * (20 - round(share * 20))
-        done = snapshot.estimates.get("done")
+        done = snapshot.estimates.get(MissionStatus.DONE)
         p = "" if not done or done["p"] is None else (
             f"   P(done) = {done['p']:.3f} [{done['low']:.3f}, {done['high']:.3f}]")
         crashed = f"   {snapshot.crashed} crashed" if snapshot.crashed else ""
