@@ -117,6 +117,22 @@ def test_identifiers_keep_their_name_unless_reserved():
     assert {"NULL", "EOF", "errno", "stdin", "INFINITY", "NAN"} <= LIBRARY_NAMES
 
 
+def test_robot_task_and_exception_names_that_meet_as_a_macro(tmp_path):
+    """A Robot-Task ``INT64`` whose exception is ``MAX``: the composed input ``INT64.MAX`` is
+    ``INT64_MAX`` as a C identifier, the <stdint.h> macro."""
+    text = (MISSIONS / "arm_pid.orc").read_text()
+    (tmp_path / "m.orc").write_text(text.replace("TrackPID", "INT64")
+                                    .replace("TrackingLost", "MAX"))
+    (tmp_path / "m.in").write_text("\n\n\nINT64.MAX\n\n")
+    made = make(tmp_path / "m.orc")
+    assert "bool s_INT64_MAX; /* INT64.MAX: set when the observer of INT64's 'MAX' fires */" \
+        in made.program.header
+    records = agree(made, tmp_path / "m.in")
+    assert records[0]["outputs"] == ["INT64.start", "INT64.measure", "INT64.activate"]
+    assert (records[3]["outputs"], records[3]["status"], records[3]["reason"]) == (
+        ["MAX.raised"], "failed", "MAX")
+
+
 def test_a_signal_named_as_a_macro_of_the_header_itself(tmp_path):
     """``ABRO_DONE`` is the header's own macro (the mission's status): a field of that name
     was ``bool 1;``."""
