@@ -22,7 +22,8 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
-from orccad_app.commands.arguments import bounded_int, positive_int, seconds
+from orccad_app.commands.arguments import (bounded_int, positive_int, seconds,
+                                           writable_output)
 
 __all__ = ["register", "run", "add_common", "MAX_WORKERS", "MAX_RUNS"]
 
@@ -133,6 +134,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.campaign.spec import load_spec
     from orccad_app.jsonout import dumps
 
+    if args.report:  # written after the runs: refused now, not after hours of them
+        writable_output(args.report, "--report", folder=not args.report.endswith(".html"))
     spec = load_spec(args.spec)
     options = CampaignOptions(args.runs, args.workers, args.cluster,
                               args.db or default_db(args.spec), args.resume, args.epsilon,
