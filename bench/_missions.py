@@ -69,3 +69,54 @@ def percentile(sorted_values: list[float], q: float) -> float:
     """The ``q`` quantile (0…1) of already sorted values, nearest rank."""
     index = min(len(sorted_values) - 1, max(0, round(q * (len(sorted_values) - 1))))
     return sorted_values[index]
+
+
+#: A Robot-Task of the robot grid (:func:`robot_grid`): a 1 s tracking task with a type-1,
+#: a type-2 and a type-3 exception, as ``bench/bench_check.py``'s.
+GRID_TASK = """robottask T{r}_{k}() on r{r} {{
+    duration 1 s;
+    task_function joint_tracking(trajectory = cosine(q0 = [0.5, 0.5, 0.5], omega = pi));
+    law pid(kp = 400.0, kv = 40.0);
+    module traj : trajectory  period 1 ms wcet 0.1 ms on cpu0 priority 2;
+    module ctrl : control_law period 1 ms wcet 0.3 ms on cpu0 priority 1;
+    module jl   : joint_limits(margin = 0.05) period 5 ms wcet 0.05 ms on cpu0 priority 3;
+    connect traj.qd -> ctrl.qd;
+    connect traj.qd_dot -> ctrl.qd_dot;
+    connect r{r}.q -> ctrl.q;
+    connect r{r}.qdot -> ctrl.qdot;
+    connect ctrl.tau -> r{r}.tau;
+    connect r{r}.q -> jl.q;
+    exception JointLimit from jl : fatal;
+    exception TrackingLost from tracking_error(max = 0.2) : abort;
+    exception Saturated from torque_saturation : adjust ctrl.kp = 200.0;
+}}
+"""
+
+
+def robot_grid(robots: int, tasks: int, *, false_property: bool = False) -> str:
+    """A mission of ``robots`` arms in ``par``, each running ``tasks`` Robot-Tasks in
+    sequence (each in a ``try … catch``), with two properties: a hand-over and termination
+    under fairness; ``false_property`` adds a third that fails (every robot's first task
+    never raises TrackingLost)."""
+    text = "".join(f"robot r{r} : arm3dof;\n" for r in range(1, robots + 1))
+    text += "".join(GRID_TASK.format(r=r, k=k) for r in range(1, robots + 1)
+                    for k in range(1, tasks + 1))
+    branches = []
+    for r in range(1, robots + 1):
+        runs = " ".join(f"try {{ run T{r}_{k}(); }} catch TrackingLost {{ emit Lost; }}"
+                        for k in range(1, tasks + 1))
+        branches.append(runs)
+    body = "par { " + " } || { ".join(branches) + " }" if robots > 1 else branches[0]
+    second = min(2, tasks)
+    text += f"""
+mission Grid {{
+    output Lost, Done;
+    {body}
+    emit Done;
+}}
+property Grid.handover: always (started(T1_{second}) -> once (ended(T1_1) or Lost));
+property Grid.terminates: eventually (Done or aborted);
+"""
+    if false_property:
+        text += "property Grid.never_lost: never Lost;\n"
+    return text

@@ -232,7 +232,11 @@ def compile_mission(source: Source, mission: ast.Mission, *, view: str = COMPOSE
 
 
 def compose_mission(source: Source, mission: ast.Mission, *,
-                    max_states: int = DEFAULT_MAX_STATES, lazy: bool = False) -> Composition:
+                    max_states: int = DEFAULT_MAX_STATES, lazy: bool = False,
+                    defer_double_emissions: bool = False) -> Composition:
     """The composed automaton of ``mission`` with its ``run`` sites and signal roles (what the
-    checker and the mission layer start from); ``lazy`` for a run (states built on demand)."""
-    return compose(source.program, mission, max_states=max_states, lazy=lazy)
+    checker and the mission layer start from); ``lazy`` for a run (states built on demand);
+    ``defer_double_emissions`` for a full automaton that runs (``orccad codegen``): see
+    :func:`~orccad_app.reactive.compiler.compile_program`."""
+    return compose(source.program, mission, max_states=max_states, lazy=lazy,
+                   defer_double_emissions=defer_double_emissions)

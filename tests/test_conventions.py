@@ -94,8 +94,7 @@ def test_every_imported_third_party_package_is_declared():
     assert not undeclared, f"imported but not declared in pyproject: {undeclared}"
 
 
-def _children_of_orccad_app() -> set[str]:
-    package = ROOT / "orccad_app"
+def _children_of_orccad_app(package: Path = ROOT / "orccad_app") -> set[str]:
     names = {p.stem for p in package.glob("*.py")} | {
         p.name for p in package.iterdir() if (p / "__init__.py").is_file()}
     return names - {"__init__"}
@@ -128,9 +127,39 @@ def test_the_import_contracts_name_every_part_of_the_core():
     assert not missing, f"missing from plugins-through-the-api's forbidden_modules: {sorted(missing)}"
 
 
+def test_the_sil_packages_are_each_in_a_layer_by_job():
+    """orccad_app/sil is split by job (generate, build, controller, lockstep, realtime, runs):
+    a new module or package there must take its place in the 'sil-by-job' layers, so that
+    generating C never imports running it."""
+    children = _children_of_orccad_app(ROOT / "orccad_app" / "sil")
+    layered = set()
+    for layer in _contract("sil-by-job")["layers"]:
+        layered |= {name.strip() for name in layer.split("|")}
+    assert children - layered == set(), "not in any layer of the 'sil-by-job' contract"
+    assert children == layered, "a layer of 'sil-by-job' names nothing"
+
+
 def test_every_test_marked_slow_exists():
     """tests/slow.py names tests by file and function: a renamed test must be renamed there."""
     from tests.slow import SLOW
     for node in sorted(SLOW):
         path, function = node.split("::")
         assert f"def {function}(" in (ROOT / path).read_text(encoding="utf-8"), node
+
+
+def test_no_package_imports_another_packages_private_names():
+    """A name with a leading underscore is its package's own: another package of orccad_app
+    (or a built-in plugin) that needs it asks for a public one (issue 36: codegen imported
+    reactive's ``_divide``)."""
+    found = []
+    for path in sorted([*(ROOT / "orccad_app").rglob("*.py"), *(ROOT / "plugins").rglob("*.py")]):
+        relative = path.relative_to(ROOT)
+        own = relative.parts[1] if relative.parts[0] == "orccad_app" else relative.parts[0]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not (isinstance(node, ast.ImportFrom) and node.module
+                    and node.module.startswith("orccad_app.")):
+                continue
+            other = node.module.split(".")[1]
+            found += [f"{relative}:{node.lineno}: {node.module}.{alias.name}"
+                      for alias in node.names if alias.name.startswith("_") and other != own]
+    assert not found, "\n".join(found)

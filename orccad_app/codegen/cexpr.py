@@ -11,20 +11,22 @@ different sizes, a compiler-made fault. Each error code's message is the Python 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.static_types import ARITHMETIC, BOOL, INT, NEVER, CType, Kind, TypeTable
 from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
-from orccad_app.reactive.expr import _divide, format_expr
+from orccad_app.reactive.expr import divide, format_expr
 
-__all__ = ["Places", "Place", "ExprWriter", "c_type", "c_literal", "c_string", "StringTable"]
+__all__ = ["Places", "Place", "ExprWriter", "c_type", "c_literal", "c_string", "c_comment",
+           "StringTable"]
 
 
 def _python_message(left: object, right: object) -> str:
     try:
-        _divide(left, right)
+        divide(left, right)
     except ZeroDivisionError as error:
         return str(error)
     raise AssertionError("no division by zero")  # pragma: no cover
@@ -332,7 +334,7 @@ class ExprWriter:
         if op == "/":
             self._emit(f"if ({y} == 0.0) {self._fail(_REAL_DIVISION)}")
         self._emit(f"{result} = {x} {op} {y};")
-        self._emit(f"if (!isfinite({result})) {{ if ({result} > 0) "
+        self._emit(f"if (!ck_finite({result})) {{ if ({result} > 0) "
                    f"{self._fail('the result is not a finite number (inf)')} "
                    f"{self._fail('the result is not a finite number (-inf)')} }}")
 
@@ -360,10 +362,20 @@ class ExprWriter:
         return f"({a} {op} {b})"
 
 
+def _utf8(text: str) -> bytes:
+    """The bytes of ``text``: a name read from the file system keeps its undecodable bytes
+    (Python holds them as surrogate escapes), any other lone surrogate is written ``\\uXXXX``."""
+    try:
+        return text.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:
+        return text.encode("utf-8", "backslashreplace")
+
+
 def c_string(text: str) -> str:
-    """A C string literal of ``text`` (UTF-8 bytes, octal escapes for the rest)."""
+    """A C string literal of ``text`` (its UTF-8 bytes, octal escapes for the rest; a path
+    that is not UTF-8 keeps its own bytes)."""
     out = []
-    for byte in text.encode("utf-8"):
+    for byte in _utf8(text):
         char = chr(byte)
         if char in '"\\?':
             out.append("\\" + char)
@@ -372,3 +384,15 @@ def c_string(text: str) -> str:
         else:
             out.append(f"\\{byte:03o}")
     return '"' + "".join(out) + '"'
+
+
+def c_comment(text: str) -> str:
+    """``text`` made safe inside a C comment on one line: ``/*`` and ``*/`` split (``/ *``,
+    ``* /``), ``??`` split (``?\\?``: no trigraph), control characters, line separators and
+    bytes that are not UTF-8 written as escapes (``\\n``, ``\\xff``); the rest as it is."""
+    decoded = _utf8(text).decode("utf-8", "backslashreplace")
+    shown = "".join(char if char.isprintable() else char.encode("unicode_escape").decode("ascii")
+                    for char in decoded)
+    shown = re.sub(r"/(?=\*)", "/ ", shown)
+    shown = re.sub(r"\*(?=/)", "* ", shown)
+    return re.sub(r"\?(?=\?)", "?\\\\", shown)

@@ -1,9 +1,10 @@
-"""The C helper functions of a generated automaton: checked 64-bit arithmetic and the exact
-comparison of an integer with a real.
+"""The C helper functions of a generated automaton: checked 64-bit arithmetic, the finiteness
+of a real result and the exact comparison of an integer with a real.
 
 Each is a ``static`` function included only when the generated code calls it (an unused static
-function is a warning, and the generated code compiles with ``-Werror``). They call nothing:
-the object file needs no library (``nm -u`` lists nothing).
+function is a warning, and the generated code compiles with ``-Werror``). They call nothing
+and need no header beyond ``<stdint.h>``: the object file needs no library, not even libm
+(``nm -u`` lists nothing), and the step builds freestanding (``-ffreestanding -nostdinc``).
 """
 
 from __future__ import annotations
@@ -55,6 +56,13 @@ static int ck_neg(int64_t a, int64_t *r)
     if (a == INT64_MIN) return 1;
     *r = -a;
     return 0;
+}""",
+    "ck_finite": """\
+/* 1 when the real x is finite: x - x is then 0, and NaN for an infinity or a NaN (IEEE 754
+   arithmetic, as isfinite() of <math.h>, which the step does not include) */
+static int ck_finite(double x)
+{
+    return x - x == 0.0;
 }""",
     "cmp_if": """\
 /* -1, 0 or 1 as the integer a is below, equal to or above the (finite) real b, compared

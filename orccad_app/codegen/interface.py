@@ -2,27 +2,23 @@
 
 Every input of the automaton is a ``bool`` presence field of ``PREFIX_in`` (and, when valued,
 a ``_value`` field of its static type); every output likewise in ``PREFIX_out``. Names are the
-signal names made C identifiers (``TrackPID.Saturated`` → ``TrackPID_Saturated``, a suffix
+signal names made C identifiers (``TrackPID.Saturated`` → ``TrackPID_Saturated``; ``s_``
+before a name a header or the compiler owns, ``NAN`` → ``s_NAN``, :mod:`.names`; a suffix
 added on a clash); the header says which signal each field is, its type and its role for a
 runtime (start a Robot-Task, apply a type-1 update, an observer event to set…).
 """
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
-from orccad_app.codegen.cexpr import c_type
+from orccad_app.codegen.cexpr import c_comment, c_type
+from orccad_app.codegen.names import c_identifier
 from orccad_app.codegen.static_types import CType, Kind
 from orccad_app.reactive import ir
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
-__all__ = ["CSignal", "Interface", "c_identifier", "ROLE_CODES", "role_text"]
-
-_KEYWORDS = frozenset(
-    "auto break case char const continue default do double else enum extern float for goto "
-    "if inline int long register restrict return short signed sizeof static struct switch "
-    "typedef union unsigned void volatile while bool true false m in out status state".split())
+__all__ = ["CSignal", "Interface", "ROLE_CODES", "role_text"]
 
 #: the role numbers of ``enum orccad_role`` in the header
 ROLE_CODES: dict[RoleKind | None, int] = {
@@ -30,20 +26,6 @@ ROLE_CODES: dict[RoleKind | None, int] = {
     RoleKind.GOOD_END: 4, RoleKind.EVENT: 5, RoleKind.ADJUST: 6, RoleKind.RAISED: 7,
     RoleKind.ARGUMENT: 8,
 }
-
-
-def c_identifier(name: str, taken: set[str]) -> str:
-    """``name`` as a C identifier not in ``taken`` (which it is added to)."""
-    base = re.sub(r"[^A-Za-z0-9_]", "_", name) or "_"
-    if base[0].isdigit() or base in _KEYWORDS:
-        base = "_" + base
-    candidate, number = base, 1
-    while candidate in taken or f"{candidate}_value" in taken:
-        number += 1
-        candidate = f"{base}_{number}"
-    taken.add(candidate)
-    taken.add(f"{candidate}_value")
-    return candidate
 
 
 @dataclass(frozen=True)
@@ -98,7 +80,7 @@ def _comment(signal: CSignal) -> str:
     role = role_text(signal)
     if role:
         text += f": {role}"
-    return text.replace("*/", "* /")
+    return c_comment(text)
 
 
 @dataclass(frozen=True)

@@ -9,12 +9,11 @@ output (and the input it comes from).
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable
 
 from orccad_app.codegen.generate import CProgram, generate
+from orccad_app.codegen.names import check_prefix, default_prefix
 from orccad_app.codegen.static_types import CType, CodegenError, Kind
-from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.lang.run_args import param_type
 from orccad_app.reactive import ir
@@ -23,29 +22,6 @@ from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
 __all__ = ["generate_mission", "generate_composed", "default_prefix", "check_prefix"]
-
-_C_KEYWORDS = frozenset(
-    "auto break case char const continue default do double else enum extern float for goto "
-    "if inline int long register restrict return short signed sizeof static struct switch "
-    "typedef union unsigned void volatile while main".split())
-
-
-def default_prefix(mission: str) -> str:
-    """``ArmRecovery`` -> ``arm_recovery``."""
-    words = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", mission).lower()
-    prefix = re.sub(r"[^a-z0-9_]", "_", words)
-    return prefix if prefix and not prefix[0].isdigit() else "m_" + prefix
-
-
-def check_prefix(prefix: str) -> str:
-    """``prefix`` when it is a usable C identifier prefix, else an error."""
-    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]{0,62}", prefix) or prefix in _C_KEYWORDS:
-        raise OrccadError(f"--name '{prefix}' is not a C identifier (letters, digits and _, "
-                          "not starting with a digit, at most 63 characters, not a C keyword)")
-    if prefix.upper() == "ORCCAD" or prefix.startswith("orccad_"):
-        raise OrccadError(f"--name '{prefix}': the orccad_ prefix is the generated headers' "
-                          "own")
-    return prefix
 
 
 def generate_mission(composition: Composition, prefix: str, origin: str = "") -> CProgram:

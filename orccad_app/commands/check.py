@@ -20,6 +20,7 @@ import argparse
 import shlex
 import sys
 
+from orccad_app.diagnostics import OrccadError
 from orccad_app.commands.arguments import (add_file, add_max_states, add_mission, emit_text,
                                            refuse_overwriting)
 
@@ -47,6 +48,11 @@ def register(sub) -> None:
                              "--inject-from OUT)")
     parser.add_argument("--json", action="store_true",
                         help="print the verdicts and counterexamples as one JSON object")
+    parser.add_argument("--engine", choices=("auto", "explicit", "symbolic"), default="auto",
+                        help="explicit: tabulate the automaton and its model; symbolic: the "
+                             "mission's circuit on BDDs (many parallel robots); auto "
+                             "(default): explicit while the automaton has at most 2000 "
+                             "transitions, else symbolic (docs/verification.md)")
     add_max_states(parser)
     parser.set_defaults(func=run)
 
@@ -54,6 +60,8 @@ def register(sub) -> None:
 def run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, require_missions, select_mission
 
+    if args.promela and args.engine == "symbolic":
+        raise OrccadError("--promela writes the explicit model: drop --engine symbolic")
     refuse_overwriting(args.counterexample, args.file)
     refuse_overwriting(args.promela, args.file)
     _refuse_json_with_text_views(args)
@@ -68,7 +76,8 @@ def run(args: argparse.Namespace) -> int:
     failed, written, unproved = 0, False, 0
     reports = []
     for mission in missions:
-        report = _checked(source, mission, args.max_states)
+        engine = "explicit" if args.promela else args.engine
+        report = _checked(source, mission, args.max_states, engine)
         unproved += len(report.signal_properties)
         if args.promela:
             _write_promela(source, mission, report, args.promela)
@@ -120,16 +129,16 @@ class _Progress:
             self.line.show(f"checking {self.mission}: {done} of {total} properties done")
 
 
-def _checked(source, mission, max_states: int):
+def _checked(source, mission, max_states: int, engine: str = "auto"):
     """The report of ``mission``, with a progress line when stderr is a terminal."""
     from orccad_app.verify.checker import check_mission
 
     if not sys.stderr.isatty():  # never in a pipe or a file
-        return check_mission(source.program, mission, max_states=max_states)
+        return check_mission(source.program, mission, max_states=max_states, engine=engine)
     progress = _Progress(mission.name)
     try:
         return check_mission(source.program, mission, max_states=max_states,
-                             progress=progress)
+                             progress=progress, engine=engine)
     finally:
         progress.line.close()
 
@@ -149,12 +158,7 @@ def _script_text(source, mission, outcome) -> str:
 
 
 def _print_report(source, report, several: bool) -> None:
-    model, automaton = report.model, report.composition.automaton
-    data = "counters exact" if model.exact else "data abstracted"
-    if model.abstracted_because:
-        data += f": {model.abstracted_because}"
-    print(f"mission {report.composition.name}: automaton {automaton.state_count} states, "
-          f"model {len(model.states)} states / {model.step_count} steps ({data})")
+    print(report.summary())
     for outcome in report.outcomes:
         mark = "ok  " if outcome.holds else "FAIL"
         detail = f": {outcome.message}" if outcome.message else ""
@@ -169,14 +173,14 @@ def _print_report(source, report, several: bool) -> None:
 
 def _report_dict(source, report) -> dict:
     """One mission's verdicts, JSON-ready (no timings: the same input gives the same text)."""
-    model, automaton = report.model, report.composition.automaton
     mission = report.composition.mission
     return {
         "mission": report.composition.name,
-        "automaton_states": automaton.state_count,
-        "model_states": len(model.states),
-        "model_steps": model.step_count,
-        "counters_exact": model.exact,
+        "engine": report.engine,
+        "automaton_states": report.automaton_states,
+        "model_states": report.model_states,
+        "model_steps": report.model_steps,
+        "counters_exact": report.counters_exact,
         "outcomes": [{"kind": o.kind, "name": o.name, "holds": o.holds, "message": o.message,
                       "counterexample": None if o.holds or o.script is None else
                       _script_dict(source, mission, o)} for o in report.outcomes],
@@ -220,7 +224,8 @@ def _replay(source, missions, args) -> int:
     known = []
     for mission in missions:
         name = wanted.split(".", 1)[1] if wanted.startswith(f"{mission.name}.") else wanted
-        report = check_mission(source.program, mission, max_states=args.max_states)
+        report = check_mission(source.program, mission, max_states=args.max_states,
+                               engine=args.engine)
         known += [o.name for o in report.outcomes]
         outcome = next((o for o in report.outcomes if o.name == name), None)
         if outcome is None:

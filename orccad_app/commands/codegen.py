@@ -4,7 +4,7 @@ C99 of the composed mission automaton (see ``docs/deploy.md``).
 Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
 that runs the automaton on an input script and prints what ``orccad react --composed
 --jsonl`` prints; with ``--module-tasks``, the Module-Tasks' table ``orccad_modules.c`` and
-the C runtime, :mod:`orccad_app.sil.emit`) into the folder ``DIR`` (default: ``PREFIX``),
+the C runtime, :mod:`orccad_app.sil.generate.table`) into the folder ``DIR`` (default: ``PREFIX``),
 all or nothing.
 """
 
@@ -43,7 +43,8 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.codegen.driver import main_source
-    from orccad_app.codegen.mission import check_prefix, default_prefix, generate_mission
+    from orccad_app.codegen.mission import generate_mission
+    from orccad_app.codegen.names import check_prefix, default_prefix
     from orccad_app.codegen.output import write_files
     from orccad_app.pipeline import compose_mission, load, select_mission
 
@@ -55,7 +56,8 @@ def run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     prefix = check_prefix(args.name if args.name is not None else default_prefix(mission.name))
-    composition = compose_mission(source, mission, max_states=args.max_states)
+    composition = compose_mission(source, mission, max_states=args.max_states,
+                                  defer_double_emissions=True)
     program = generate_mission(composition, prefix,
                                origin=f" from {args.file}, mission {mission.name}")
     files = dict(program.files)
@@ -63,8 +65,8 @@ def run(args: argparse.Namespace) -> int:
         files[f"{prefix}_main.c"] = main_source(program)
     if args.module_tasks:
         from orccad_app.mission.plan import plan_mission
-        from orccad_app.sil.automaton import binding_header
-        from orccad_app.sil.emit import module_table, module_task_files
+        from orccad_app.sil.generate.automaton import binding_header
+        from orccad_app.sil.generate.table import module_table, module_task_files
 
         plan = plan_mission(source, mission)
         files.update(module_task_files(plan, args.file))

@@ -18,6 +18,7 @@ import logging
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from typing import Any
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
@@ -51,7 +52,7 @@ class OrccadLanguageServer(LanguageServer):
         self.foreign: dict[str, set[str]] = {}
         self.extra: dict[str, list[types.Diagnostic]] = {}  # e.g. the proof's verdicts
         self.executor = ThreadPoolExecutor(1, thread_name_prefix="orccad-analysis")
-        self._host = None
+        self._host: Any = None
         self._host_problems: tuple[Problem, ...] = ()
         self._host_loaded = False
         self._host_lock = threading.Lock()
@@ -91,7 +92,8 @@ class OrccadLanguageServer(LanguageServer):
     def snippets(self) -> bool:
         """Whether the client takes completion snippets."""
         try:
-            item = self.client_capabilities.text_document.completion.completion_item
+            item: Any = self.client_capabilities.text_document
+            item = item.completion.completion_item
             return bool(item.snippet_support)
         except AttributeError:
             return False

@@ -1,7 +1,7 @@
 """What a mission run steps: :class:`MissionReactor`, the interface of the Python
 :class:`~orccad_app.reactive.runtime.Reactor` that :class:`~orccad_app.mission.run.MissionRun`
 reads, so that another runtime of the plan's automaton can take its place (the controller
-process's C automaton in ``orccad sil``, :mod:`orccad_app.sil.automaton`)."""
+process's C automaton in ``orccad sil``, :mod:`orccad_app.sil.controller.automaton`)."""
 
 from __future__ import annotations
 

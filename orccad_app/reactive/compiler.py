@@ -29,10 +29,15 @@ from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
 
 __all__ = ["compile_program", "DEFAULT_MAX_STATES", "TERMINAL", "state_budget_error",
-           "StateBudgetExceeded"]
+           "StateBudgetExceeded", "TransitionBudgetExceeded"]
 
 class StateBudgetExceeded(OrccadError):
     """The program has more reachable states (or transitions of one state) than the budget."""
+
+
+class TransitionBudgetExceeded(StateBudgetExceeded):
+    """The explicit automaton would have more transitions than the caller allows (a caller
+    with another way, such as the symbolic checker, stops the tabulation early)."""
 
 
 #: Default state budget; ``orccad compile --max-states`` changes it.
@@ -112,10 +117,12 @@ def _forced(signal: ir.SignalDecl, valuation: dict, relations) -> bool | None:
     return None
 
 class _Explorer:
-    def __init__(self, prep: Prepared, max_states: int):
+    def __init__(self, prep: Prepared, max_states: int, max_leaves: int | None = None):
         self.prep = prep
         self.max_states = max_states
         self.leaves = 0
+        self.total = 0
+        self.max_leaves = max_leaves
 
     def tree(self, state) -> object:
         self.leaves = 0
@@ -159,6 +166,11 @@ class _Explorer:
 
     def _count(self, leaves: int) -> None:
         self.leaves += leaves
+        self.total += leaves
+        if self.max_leaves is not None and self.total > self.max_leaves:
+            raise TransitionBudgetExceeded(
+                f"'{self.prep.program.name}' has more than {self.max_leaves} transitions",
+                self.prep.program.loc)
         if self.leaves > MAX_LEAVES_PER_STATE:
             raise StateBudgetExceeded(
                 f"state explosion: one state of '{self.prep.program.name}' needs more than "
@@ -212,15 +224,21 @@ class _Explorer:
 
 
 def compile_program(program: ir.Program, *, max_states: int = DEFAULT_MAX_STATES,
-                    progress: Callable[[int], None] | None = None) -> Automaton:
+                    progress: Callable[[int], None] | None = None,
+                    max_transitions: int | None = None,
+                    defer_double_emissions: bool = False) -> Automaton:
     """Compile ``program`` to a minimized deterministic automaton.
 
     Raises :class:`OrccadError` (with a location) for instantaneous loops, non-causal programs
     and when more than ``max_states`` control states are reachable. ``progress`` is called
-    with the number of control states explored after each one.
+    with the number of control states explored after each one. ``defer_double_emissions``:
+    a valued signal without ``combine`` emitted twice in a transition makes that transition
+    raise when it is taken (what ``orccad react`` does, and the generated C) instead of
+    refusing the program (what ``orccad check`` does).
     """
     prep = prepare(program)
-    explorer = _Explorer(prep, max_states)
+    prep.defer_double_emissions = defer_double_emissions
+    explorer = _Explorer(prep, max_states, max_transitions)
     trees: dict[object, object] = {}
     queue: deque = deque([BOOT])
     seen = {BOOT}

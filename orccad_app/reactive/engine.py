@@ -132,7 +132,9 @@ def _schedule(prep: Prepared, walk: Walk) -> tuple:
 
     A second emission of a valued signal combines with the first (``combine``); without
     ``combine`` it is a compile error when no data test of the instant could rule it out, and
-    otherwise a :class:`~orccad_app.reactive.ir.Fault` raised at run time if it happens.
+    otherwise a :class:`~orccad_app.reactive.ir.Fault` raised at run time if it happens. With
+    ``prep.defer_double_emissions`` (a run: ``orccad react``, the generated C) it is always
+    the fault: an error of the instant whose inputs make it, not of the program.
     """
     ordered = [event for _, event in sorted(walk.events, key=lambda e: e[0])]
     first_at: dict = {}
@@ -164,14 +166,12 @@ def _schedule(prep: Prepared, walk: Walk) -> tuple:
             elif target.combine is not None:
                 out.append(("emit", target, made(prep, ("combine", id(expr)), lambda: ir.Binary(
                     target.combine, ir.SigValue(target, loc), expr, loc))))
-            elif tested:
+            else:
                 message = (f"signal {target.name} is emitted twice in one instant (first at "
-                           f"{first_at[key]}) and declares no 'combine'")
+                           f"{first_at[key]}): declare how its values combine, e.g. "
+                           f"'output {target.name} : {target.type} combine +;'")
+                if not (tested or prep.defer_double_emissions):
+                    raise OrccadError(message, loc)
                 out.append(("emit", target, made(prep, ("fault", id(expr)),
                                                   lambda: ir.Fault(message, loc))))
-            else:
-                raise OrccadError(
-                    f"signal {target.name} is emitted twice in one instant (first at "
-                    f"{first_at[key]}): declare how its values combine, e.g. "
-                    f"'output {target.name} : {target.type} combine +;'", loc)
     return tuple(out)

@@ -91,6 +91,7 @@ class LazyAutomaton:
         self.program = program
         self.max_states = max_states
         self.prep = prepare(program)
+        self.prep.defer_double_emissions = True  # a run: the instant that makes it fails
         self._explorer = _Explorer(self.prep, max_states)
         self._by_pause = _labels_by_pause(self.prep)
         self.data_tests: tuple[ir.DataTest, ...] = tuple(self.prep.data_tests)

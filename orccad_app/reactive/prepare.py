@@ -83,6 +83,10 @@ class Prepared:
     #: expressions made by the engine (combinations, faults), made once so that equal events
     #: of two runs are the same objects
     made: dict = field(default_factory=dict)
+    #: a valued signal without ``combine`` emitted twice in a reaction is a run-time error of
+    #: that reaction (an ``ir.Fault``) even where no data test could rule it out: how a run
+    #: sees it (``orccad react``, the generated C), not how ``check`` judges the program
+    defer_double_emissions: bool = False
 
 
 def _children(stmt: ir.Stmt) -> tuple[ir.Stmt, ...]:

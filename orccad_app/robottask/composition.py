@@ -49,13 +49,20 @@ class Composition:
 
 def compose(program: ast.Program, mission: ast.Mission, *,
             max_states: int = DEFAULT_MAX_STATES, lazy: bool = False,
-            progress: Callable[[int], None] | None = None) -> Composition:
+            progress: Callable[[int], None] | None = None,
+            max_transitions: int | None = None,
+            defer_double_emissions: bool = False) -> Composition:
     """Lower and compile ``mission`` in the composed view; ``lazy``: build the automaton's
     states as a run reaches them (what ``run``, campaigns and the TUI do); ``progress``: called
-    with the number of states explored (a full compile)."""
+    with the number of states explored (a full compile); ``max_transitions``: stop a full
+    compile past that many transitions (:class:`~orccad_app.reactive.compiler.TransitionBudgetExceeded`);
+    ``defer_double_emissions``: see :func:`~orccad_app.reactive.compiler.compile_program` (a
+    lazy automaton always defers)."""
     lowerer = ApplicationLowerer(program, mission)
     kernel = lowerer.lower()
     automaton: Automaton | LazyAutomaton = (
         LazyAutomaton(kernel, max_states=max_states) if lazy
-        else compile_program(kernel, max_states=max_states, progress=progress))
+        else compile_program(kernel, max_states=max_states, progress=progress,
+                             max_transitions=max_transitions,
+                             defer_double_emissions=defer_double_emissions))
     return Composition(mission, program, automaton, tuple(lowerer.sites), lowerer.roles)

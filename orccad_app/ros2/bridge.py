@@ -128,6 +128,7 @@ class ZenohBridge:
         except Exception as error:  # zenoh.ZError: the reason from Zenoh
             raise OrccadError(f"--ros2-zenoh {' '.join(connect)}: cannot open a Zenoh "
                               f"session: {error}") from None
+        self._closed = False
         self._store = messages.typestore()
         self._zid = str(self._session.info.zid())
         self._entities = 0  # ids of the node's entities (the node is 0)
@@ -206,11 +207,12 @@ class ZenohBridge:
 
     def close(self) -> None:
         """Undeclare everything and close the session (idempotent)."""
-        session, self._session = self._session, None
-        if session is not None:
-            for token in self._tokens:
-                token.undeclare()
-            session.close()
+        if self._closed:
+            return
+        self._closed = True
+        for token in self._tokens:
+            token.undeclare()
+        self._session.close()
 
 
 def _joint_actuators(model: Any) -> dict[str, int]:

@@ -1,19 +1,25 @@
-"""Software in the loop: the mission's Module-Tasks as C, in a controller process of their own.
+"""Software in the loop: the mission's Module-Tasks and automaton as C, in a controller process.
 
-- :mod:`.layout`: how a Module-Task instance is described to the C runtime (kind, slots,
-  parameter vector), and the refusal of a kind without C;
-- :mod:`.emit`: the generated table of a mission (``orccad_modules.c``), generation gap;
-- :mod:`.build`: the project's own build step (the C compiler, cached by content);
-- :mod:`.controller`: the controller process — started, spoken to over a Unix socket,
-  watched by its heartbeat, always killed and reaped;
-- :mod:`.remote`: the Module-Task proxy the executive drives;
-- :mod:`.lockstep`: ``orccad sil --lockstep``; :mod:`.realtime`: ``orccad sil --realtime``;
-- :mod:`.runs`: the run factory through which ``orccad sil`` runs in the run façade.
+Split by job, each package importing only those below it (``pyproject.toml``, contract
+``sil-by-job``):
 
-The C runtime library is ``orccad_app/sil/c`` (C99, no allocation, no recursion).
+- :mod:`.generate` — writing the controller's C, nothing built or run: each kind's C layout
+  (:mod:`.generate.layout`), the mission's Module-Task table (:mod:`.generate.table`), the
+  type-1 updates the controller applies itself (:mod:`.generate.adjust`), the mission's
+  automaton and its binding header (:mod:`.generate.automaton`), the runtime library's files
+  (:mod:`.generate.library`; the library itself is ``orccad_app/sil/c``, C99, no allocation,
+  no recursion);
+- :mod:`.build` — compiling it: the C compiler, cached by content (:mod:`.build.compiler`), the
+  controller executable of a plan (:mod:`.build.executable`);
+- :mod:`.controller` — speaking to the running controller: the process over a Unix socket with
+  its heartbeat (:mod:`.controller.process`), the Module-Task proxies the executive drives
+  (:mod:`.controller.remote`), the mission's automaton stepped in it
+  (:mod:`.controller.automaton`);
+- :mod:`.lockstep` — ``orccad sil --lockstep``: every job computed by the controller, one
+  exchange per job, the executive's timing model;
+- :mod:`.realtime` — ``orccad sil --realtime``: the controller's threads on the wall clock, this
+  process the plant server over shared memory;
+- :mod:`.runs` — how ``orccad sil`` runs through the run façade.
+
 See docs/deploy.md.
 """
-
-from orccad_app.sil.layout import CLayout, NoCImplementation, c_layout
-
-__all__ = ["CLayout", "NoCImplementation", "c_layout"]

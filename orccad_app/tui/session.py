@@ -218,9 +218,7 @@ def check_file(view: FileView, mission: str) -> Any:
 
 def check_text(report: Any) -> str:
     """The verdicts of a check report, with each counterexample's input script."""
-    model, automaton = report.model, report.composition.automaton
-    lines = [f"mission {report.composition.name}: automaton {automaton.state_count} states, "
-             f"model {len(model.states)} states / {model.step_count} steps"]
+    lines = [report.summary(data=False)]
     for outcome in report.outcomes:
         mark = "ok  " if outcome.holds else "FAIL"
         detail = f": {outcome.message}" if outcome.message else ""

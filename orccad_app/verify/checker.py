@@ -17,7 +17,7 @@ from typing import Protocol
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
-from orccad_app.reactive.compiler import DEFAULT_MAX_STATES
+from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, TransitionBudgetExceeded
 from orccad_app.verify.builtins import BUILTINS, check_builtin
 from orccad_app.robottask.composition import Composition, compose
 from orccad_app.verify.counterexample import Script, make_script
@@ -26,10 +26,13 @@ from orccad_app.verify.lasso import Periodic, evaluate, holds_on_lasso
 from orccad_app.verify.letters import Alphabet
 from orccad_app.verify.model import Model, build_model
 from orccad_app.verify.search import Instant, Lasso, find_lasso
+from orccad_app.verify.symbolic.checker import (SymbolicCheck, builtin_outcome, counters_of,
+                                                parallel_tasks, property_outcome, release,
+                                                symbolic_model)
 from orccad_app.verify.tableau import Tableau
 
 __all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable",
-           "CheckProgress"]
+           "CheckProgress", "ENGINES", "EXPLICIT", "SYMBOLIC", "AUTO", "AUTO_EXPLICIT_TRANSITIONS"]
 
 
 @dataclass
@@ -46,17 +49,67 @@ class PropertyOutcome:
 
 @dataclass
 class MissionReport:
-    """Every verdict on one mission, and the sizes of what was checked."""
+    """Every verdict on one mission, and the sizes of what was checked.
+
+    ``engine`` says which checker decided (:data:`EXPLICIT` or :data:`SYMBOLIC`); a symbolic
+    check's ``model`` holds only the explicit steps of its counterexamples, its sizes are in
+    ``symbolic``."""
 
     composition: Composition
     model: Model
     outcomes: list[PropertyOutcome] = field(default_factory=list)
     signal_properties: list[ast.Property] = field(default_factory=list)
     """Signal (STL) properties: not proved here, judged on runs and campaigns."""
+    engine: str = "explicit"
+    symbolic: SymbolicCheck | None = None
+    engine_reason: str = ""
+    """Why the engine was chosen (``auto``): empty when the user chose it."""
 
     @property
     def holds(self) -> bool:
         return all(o.holds for o in self.outcomes)
+
+    def summary(self, data: bool = True) -> str:
+        """The first line of the report: what was explored, by which engine (``data``: and
+        whether the counters are exact)."""
+        kind = "counters exact" if self.counters_exact else "data abstracted"
+        if self.abstracted_because:
+            kind += f": {self.abstracted_because}"
+        tail = f" ({kind})" if data else ""
+        if self.symbolic is not None:
+            why = f" ({self.engine_reason})" if self.engine_reason else ""
+            return (f"mission {self.composition.name}: symbolic{why}, {self.automaton_states} "
+                    f"control states, model {self.model_states} states{tail}")
+        return (f"mission {self.composition.name}: automaton {self.automaton_states} states, "
+                f"model {self.model_states} states / {self.model_steps} steps{tail}")
+
+    @property
+    def automaton_states(self) -> int:
+        """Control states: of the minimized automaton, or reachable in the circuit."""
+        if self.symbolic is not None:
+            return self.symbolic.control_states
+        return self.composition.automaton.state_count
+
+    @property
+    def model_states(self) -> int:
+        return self.symbolic.states if self.symbolic is not None else len(self.model.states)
+
+    @property
+    def model_steps(self) -> int | None:
+        """Steps of the explicit model (None for a symbolic check: it has no list of steps)."""
+        return None if self.symbolic is not None else self.model.step_count
+
+    @property
+    def counters_exact(self) -> bool:
+        return self.model.exact if self.symbolic is None else not self.symbolic.counters
+
+    @property
+    def abstracted_because(self) -> str | None:
+        if self.symbolic is None:
+            return self.model.abstracted_because
+        if self.symbolic.counters:
+            return "the symbolic checker abstracts the counters too"
+        return None
 
 
 def applicable(items, mission: ast.Mission) -> list:
@@ -138,18 +191,59 @@ def _check_builtin(model: Model, name: str) -> PropertyOutcome:
                    time.perf_counter() - started)
 
 
+#: The engines of ``orccad check``: the explicit automaton and model, the circuit on BDDs, or
+#: the explicit one while it stays small (``auto``, the default).
+EXPLICIT, SYMBOLIC, AUTO = "explicit", "symbolic", "auto"
+ENGINES = (AUTO, EXPLICIT, SYMBOLIC)
+#: ``auto``: the explicit automaton is tabulated while it has at most this many transitions;
+#: past them (parallel branches multiply them) the symbolic checker takes over.
+AUTO_EXPLICIT_TRANSITIONS = 2_000
+
+
 def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool = True,
                   max_states: int = DEFAULT_MAX_STATES,
-                  progress: CheckProgress | None = None) -> MissionReport:
+                  progress: CheckProgress | None = None, engine: str = AUTO,
+                  counters: bool = True) -> MissionReport:
     """Compile ``mission`` in the composed view and check its properties; ``progress`` is told
-    the states explored while compiling, then the properties done."""
+    the states explored while compiling, then the properties done. ``engine``: see
+    :data:`ENGINES`; ``counters``: track counters exactly where the engine can (the explicit
+    one), else abstract every data value."""
+    if engine not in ENGINES:
+        raise OrccadError(f"unknown checker engine '{engine}' (one of {', '.join(ENGINES)})")
     states = None if progress is None else progress.states
-    composition = compose(program, mission, max_states=max_states, progress=states)
-    model = build_model(composition)
-    report = MissionReport(composition, model)
+    reason = ""
+    if engine == AUTO:
+        lazy = compose(program, mission, max_states=max_states, lazy=True)
+        reason = parallel_tasks(lazy)
+        if reason and counters_of(lazy):
+            reason = ""  # the explicit model tracks the counters: keep it while it fits
+    if engine == EXPLICIT or (engine == AUTO and not reason):
+        limit = AUTO_EXPLICIT_TRANSITIONS if engine == AUTO else None
+        try:
+            composition = compose(program, mission, max_states=max_states, progress=states,
+                                  max_transitions=limit)
+        except TransitionBudgetExceeded:
+            reason = (f"the explicit automaton has more than {AUTO_EXPLICIT_TRANSITIONS} "
+                      "transitions")
+        else:
+            return _check_explicit(program, mission, composition, builtins, progress, counters)
+    report = _check_symbolic(program, mission, builtins, progress)
+    report.engine_reason = reason
+    return report
+
+
+def _properties_total(program: ast.Program, mission: ast.Mission, builtins: bool) -> int:
     properties = [p for p in applicable(program.properties, mission)
                   if not ast.is_signal_formula(p.formula)]
-    total = (len(BUILTINS) if builtins else 0) + len(properties)
+    return (len(BUILTINS) if builtins else 0) + len(properties)
+
+
+def _check_explicit(program: ast.Program, mission: ast.Mission, composition: Composition,
+                    builtins: bool, progress: CheckProgress | None,
+                    counters: bool = True) -> MissionReport:
+    model = build_model(composition, counters=counters)
+    report = MissionReport(composition, model)
+    total = _properties_total(program, mission, builtins)
     if builtins:
         for name in BUILTINS:
             report.outcomes.append(_check_builtin(model, name))
@@ -163,6 +257,30 @@ def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool 
         report.outcomes.append(_check_property(model, prop, assumptions))
         if progress is not None:
             progress.properties(len(report.outcomes), total)
+    return report
+
+
+def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
+                    progress: CheckProgress | None) -> MissionReport:
+    composition = compose(program, mission, lazy=True)
+    model, witness, sizes = symbolic_model(composition)
+    report = MissionReport(composition, witness.model, engine=SYMBOLIC, symbolic=sizes)
+    total = _properties_total(program, mission, builtins)
+    if builtins:
+        for name in BUILTINS:
+            report.outcomes.append(builtin_outcome(model, witness, name, PropertyOutcome))
+            if progress is not None:
+                progress.properties(len(report.outcomes), total)
+    assumptions = [from_ast(a.formula) for a in applicable(program.assumptions, mission)]
+    for prop in applicable(program.properties, mission):
+        if ast.is_signal_formula(prop.formula):
+            report.signal_properties.append(prop)
+            continue
+        report.outcomes.append(property_outcome(model, witness, prop, assumptions,
+                                                PropertyOutcome, _script))
+        if progress is not None:
+            progress.properties(len(report.outcomes), total)
+    release(model, witness)
     return report
 
 

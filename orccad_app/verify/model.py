@@ -234,11 +234,13 @@ class _OverBudget(Exception):
     pass
 
 
-def build_model(composition: Composition, *, budget: int = MODEL_BUDGET) -> Model:
+def build_model(composition: Composition, *, budget: int = MODEL_BUDGET,
+                counters: bool = True) -> Model:
     """Explore the model of ``composition``: counters exactly when the state space stays
-    under ``budget`` states, else every data value abstracted."""
-    tracked = data.tracked_variables(composition.automaton)
-    reason = None
+    under ``budget`` states (and ``counters``), else every data value abstracted."""
+    counted = data.tracked_variables(composition.automaton)
+    tracked = counted if counters else ()
+    reason = None if counters or not counted else "counters abstracted on request"
     if tracked:
         try:
             return _Builder(composition, tracked, budget).build()
@@ -249,6 +251,6 @@ def build_model(composition: Composition, *, budget: int = MODEL_BUDGET) -> Mode
     except _OverBudget:  # pragma: no cover - at most twice the automaton's states
         raise OrccadError(f"mission {composition.name}: the model has more than {budget} "
                           "states", composition.mission.loc) from None
-    model.exact = not tracked
+    model.exact = not counted
     model.abstracted_because = reason
     return model

@@ -1,4 +1,4 @@
-"""The type-1 updates the real-time controller applies itself (``orccad_app/sil/adjust.py``):
+"""The type-1 updates the real-time controller applies itself (``orccad_app/sil/generate/adjust.py``):
 which ones, and their computed values in C equal to the mission layer's, bit for bit."""
 
 from __future__ import annotations
@@ -11,10 +11,11 @@ import subprocess
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.robottask.updates import compute
-from orccad_app.sil.adjust import AdjustForm, _NotInC, c_adjustments, c_expression
-from orccad_app.sil.automaton import managed_sites
-from orccad_app.sil.build import C_DIR, CFLAGS, compiler
-from orccad_app.sil.emit import module_table
+from orccad_app.sil.generate.adjust import AdjustForm, _NotInC, c_adjustments, c_expression
+from orccad_app.sil.generate.automaton import managed_sites
+from orccad_app.sil.build.compiler import CFLAGS, compiler
+from orccad_app.sil.generate.library import C_DIR
+from orccad_app.sil.generate.table import module_table
 
 from tests.sil.helpers import plan_of
 
@@ -172,7 +173,7 @@ def test_an_update_touching_a_parameter_the_supervisor_updates_stays_with_it():
     updates writes is the supervisor's too, and so on until nothing changes."""
     from types import SimpleNamespace
 
-    from orccad_app.sil.adjust import CAdjust, _Candidate, _closed
+    from orccad_app.sil.generate.adjust import CAdjust, _Candidate, _closed
 
     def candidate(name, writes, reads=()):
         adjust = CAdjust(0, name, 0, f"X.{name}.adjust", AdjustForm.COMPUTED, ())

@@ -8,7 +8,8 @@ import os
 import subprocess
 import sys
 
-from orccad_app.sil.build import CFLAGS, compiler, library_sources
+from orccad_app.sil.build.compiler import CFLAGS, compiler
+from orccad_app.sil.generate.library import library_sources
 
 from tests.sil.helpers import MISSIONS
 

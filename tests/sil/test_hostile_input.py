@@ -21,8 +21,8 @@ from pathlib import Path
 import pytest
 
 from orccad_app.cli import main
-from orccad_app.sil.controller import ControllerProcess
-from orccad_app.sil.build import BuildError, compiler_command
+from orccad_app.sil.controller.process import ControllerProcess
+from orccad_app.sil.build.compiler import BuildError, compiler_command
 
 from tests.sil.helpers import MISSIONS
 

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from orccad_app.mission.plan import SiteModules
-from orccad_app.sil.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
+from orccad_app.sil.generate.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
 from orccad_app.sil.lockstep import lockstep
-from orccad_app.sil.remote import RemoteModule
+from orccad_app.sil.controller.remote import RemoteModule
 
 from tests.sil.helpers import plan_of
 
@@ -52,8 +52,8 @@ CASES = [("arm_pid.orc", None, True, 0.6), ("arm_retune.orc", None, True, 0.6),
 def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact, scale):
     plan = plan_of(file, mission)
     rng = np.random.default_rng(7)
-    with lockstep(plan, file) as controller:
-        for site in plan.sites:
+    with lockstep(plan, file) as started:
+        for site in started.plan.sites:
             remotes = site.fresh_computes()
             pythons = SiteModules.fresh_computes(site)  # new Python instances, same args
             for name, remote in remotes.items():
@@ -65,7 +65,7 @@ def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact
                     t_s = 0.001 * job
                     inputs = _inputs(python, rng, scale)
                     _same(python.compute(t_s, inputs), remote.compute(t_s, inputs), exact)
-        assert controller.alive
+        assert started.controller.alive
 
 
 def test_the_auv_constants_are_the_plugins():

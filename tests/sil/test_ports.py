@@ -15,11 +15,12 @@ import pytest
 
 from orccad_app.executive.block import BLOCK
 from orccad_app.executive.channel import make_channel
-from orccad_app.sil.build import C_DIR, CFLAGS, compiler
+from orccad_app.sil.build.compiler import CFLAGS, compiler
+from orccad_app.sil.generate.library import C_DIR
 from orccad_app.tcs.connection import Connection
 from orccad_app.tcs.protocol import Protocol
 
-#: the generated table's numbering (orccad_app/sil/emit.py, orccad_port.h)
+#: the generated table's numbering (orccad_app/sil/generate/table.py, orccad_port.h)
 PROTOCOLS = ["asyn/asyn", "syn/syn", "asyn/syn", "syn/asyn", "asyn/synF", "synF/asyn",
              "asyn/synD", "asyn/synDF"]
 SANITIZE = ("-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g")
@@ -119,7 +120,7 @@ def test_each_protocol_in_c_does_what_the_executive_does(port_check, protocol):
 
 
 def test_the_numbering_is_the_generated_tables():
-    from orccad_app.sil.emit import PROTOCOL_NUMBERS
+    from orccad_app.sil.generate.table import PROTOCOL_NUMBERS
 
     assert list(PROTOCOL_NUMBERS) == PROTOCOLS
     assert {p.value for p in Protocol} == set(PROTOCOLS)

@@ -5,7 +5,7 @@
  * The kinds, each operation for operation its Python kind (orccad_app/control,
  * plugins/orccad_observers, plugins/orccad_auv) so that the values are bit-identical on finite
  * inputs (tests/sil/test_kinds.py compares them), with its parameter and state layout
- * (orccad_app/sil/layout.py writes the same offsets):
+ * (orccad_app/sil/generate/layout.py writes the same offsets):
  *   orccad_mt_trajectory.c  cosine, min_jerk, constant
  *   orccad_mt_laws.c        pid, computed_torque, dynamic_model, ct_feedback
  *   orccad_mt_observers.c   joint_limits, torque_saturation, tracking_error, at_rest

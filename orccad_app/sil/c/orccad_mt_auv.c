@@ -1,7 +1,7 @@
 /* orccad_mt_auv.c: the AUV's Module-Task kinds in C (autopilot, guidance, observers;
  * plugins/orccad_auv/control.py, observers.py), operation for operation the Python kinds'.
  * Part of the ORCCAD runtime library (the dispatch: orccad_mt.c); C99, no allocation, no
- * recursion. Each kind's parameter layout (orccad_app/sil/layout.py writes the same offsets)
+ * recursion. Each kind's parameter layout (orccad_app/sil/generate/layout.py writes the same offsets)
  * is at the kind. */
 #include <math.h>
 

@@ -7,7 +7,7 @@
 #include "orccad_dynamics.h"
 #include "orccad_mt_kinds.h"
 
-/* ---- parameter layouts (orccad_app/sil/layout.py writes the same offsets) --------------- */
+/* ---- parameter layouts (orccad_app/sil/generate/layout.py writes the same offsets) --------------- */
 /* pid:       [dof, anti_windup, kp, kv, ki, tau_min, tau_max, alpha, beta (each [dof])]
  *            state: [t_prev set, t_prev, integral[dof], sat_dir[dof],
  *                    3 estimators (q velocity, qd velocity, qd_dot acceleration)] */

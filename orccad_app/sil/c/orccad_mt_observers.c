@@ -6,7 +6,7 @@
 
 #include "orccad_mt_kinds.h"
 
-/* ---- parameter layouts (orccad_app/sil/layout.py writes the same offsets) --------------- */
+/* ---- parameter layouts (orccad_app/sil/generate/layout.py writes the same offsets) --------------- */
 /* observers: [edge, ...kind's parameters]             state: [held, t0 set, t0, ...] */
 /* each kind's own parameters: at the kind below. */
 

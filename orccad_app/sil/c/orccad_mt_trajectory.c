@@ -5,7 +5,7 @@
 
 #include "orccad_mt_kinds.h"
 
-/* ---- parameter layouts (orccad_app/sil/layout.py writes the same offsets) --------------- */
+/* ---- parameter layouts (orccad_app/sil/generate/layout.py writes the same offsets) --------------- */
 /* cosine:    [dim, omega, q0[dim]]                     state: [t0 set, t0] */
 /* min_jerk:  [dim, duration, has_start, goal[dim], start[dim]]
  *                                                      state: [t0 set, t0, started, start[dim]] */

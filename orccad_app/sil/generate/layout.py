@@ -227,6 +227,7 @@ def _model_block(kind: str, model: Any) -> list[float]:
     for index in range(1, pin.njoints):
         joint = pin.joints[index]
         name = joint.shortname()
+        axis: tuple[float, ...]
         if name in _AXES:
             axis = _AXES[name]
         elif name == "JointModelRevoluteUnaligned":

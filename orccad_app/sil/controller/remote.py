@@ -1,25 +1,30 @@
-"""A Module-Task whose compute runs in the controller process: :class:`RemoteModule`.
+"""A Module-Task whose compute runs in the controller process: :class:`RemoteModule`, and
+the run site that starts them (:class:`RemoteSite`).
 
 The executive drives a :class:`RemoteModule` as it drives a Python module instance (``init``,
 ``compute``, ``set_param``, ``get_param``, ``param_spec``), but each call becomes a request
-to the controller process (:class:`~orccad_app.sil.controller.ControllerProcess`), where the
+to the controller process (:class:`~orccad_app.sil.controller.process.ControllerProcess`), where the
 C Module-Task keeps all the state that ``compute`` uses. The Python instance made for the same
 start (its *shadow*) never computes: it validates type-1 updates and gives the parameter
-vector of the C layout (:func:`~orccad_app.sil.layout.c_layout`), so a run-time argument or an
+vector of the C layout (:func:`~orccad_app.sil.generate.layout.c_layout`), so a run-time argument or an
 update reaches the C Module-Task exactly as the Python one would have taken it.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
-from orccad_app.sil.controller import ControllerFailure, ControllerProcess, Op
-from orccad_app.sil.layout import CLayout, c_layout, same_word
+from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.sil.controller.process import ControllerFailure, ControllerProcess, Op
+from orccad_app.sil.generate.layout import CLayout, c_layout, same_word
+from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["RemoteModule"]
+__all__ = ["ControllerRun", "RemoteModule", "RemoteSite", "remote_plan"]
 
 
 class RemoteModule:
@@ -32,7 +37,7 @@ class RemoteModule:
     :param start: send the fresh start (``START``, then the run-time arguments); ``False``
         when the controller has started it itself (its real-time automaton task).
     :param c_owned: the parameter words the controller's automaton task alone writes (its
-        type-1 updates, :mod:`orccad_app.sil.adjust`): never sent.
+        type-1 updates, :mod:`orccad_app.sil.generate.adjust`): never sent.
     """
 
     def __init__(self, controller: ControllerProcess, index: int, nominal: CLayout,
@@ -145,3 +150,58 @@ class RemoteModule:
 
     def __repr__(self) -> str:
         return f"<{self.kind.name} module in the controller process, entry {self._index}>"
+
+
+@dataclasses.dataclass
+class RemoteSite(SiteModules):
+    """A run site whose starts make proxies to the controller process."""
+
+    controller: Any = None
+    table: Any = None
+    managed: bool = False
+    """The controller starts its Module-Tasks itself (its real-time automaton task)."""
+    c_owned: Mapping[str, frozenset[int]] = dataclasses.field(default_factory=dict)
+    """Per Module-Task, the parameter words the automaton task alone writes (its type-1
+    updates): the proxies never send them."""
+
+    def fresh_computes(self, instance: Any = None) -> dict[str, Any]:
+        shadows = super().fresh_computes(instance)
+        table: ModuleTable = self.table
+        proxies = {}
+        for name, shadow in shadows.items():
+            index = table.index(name)
+            proxies[name] = RemoteModule(self.controller, index, table.entries[index].layout,
+                                         shadow, start=not self.managed,
+                                         c_owned=self.c_owned.get(name, frozenset()))
+        return proxies
+
+
+@dataclasses.dataclass(frozen=True)
+class ControllerRun:
+    """A started controller and the plan a run of it runs.
+
+    :param controller: the controller process.
+    :param table: its generated table.
+    :param plan: a copy of the mission's plan (:func:`remote_plan`): the full automaton, run
+        sites whose starts make :class:`RemoteModule` proxies.
+    """
+
+    controller: ControllerProcess
+    table: ModuleTable
+    plan: MissionPlan
+
+
+def remote_plan(plan: MissionPlan, automaton: Automaton, table: ModuleTable,
+                controller: ControllerProcess, managed: frozenset[int] = frozenset(),
+                c_owned: Mapping[str, frozenset[int]] | None = None) -> MissionPlan:
+    """A copy of ``plan`` (``plan`` itself unchanged) whose automaton is the full
+    ``automaton`` the controller runs and whose run sites start their Module-Tasks in
+    ``controller``; the sites numbered in ``managed`` are started by the controller itself,
+    the parameter words ``c_owned`` of their Module-Tasks written by it alone."""
+    sites: list[SiteModules] = []
+    for site in plan.sites:
+        fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
+        own = site.number in managed
+        sites.append(RemoteSite(**fields, controller=controller, table=table, managed=own,
+                                c_owned=(c_owned or {}) if own else {}))
+    return dataclasses.replace(plan, automaton=automaton, sites=sites)

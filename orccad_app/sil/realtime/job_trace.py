@@ -2,7 +2,7 @@
 
 In real time no job runs in this process: the controller's threads record each job's measured
 life cycle and each release they skip (``orc_io_job``, a ring in the shared memory,
-:meth:`~orccad_app.sil.shared.SharedMemory.jobs`) while a trace observes the run.
+:meth:`~orccad_app.sil.realtime.shared.SharedMemory.jobs`) while a trace observes the run.
 :class:`JobTrace` hands them to the run's observers as ``orccad run``'s executive does —
 ``on_release``, ``on_start``, ``on_compute_end``, ``on_finish`` (``response_ns`` from the
 release, ``missed`` after the period), ``on_overrun`` (the unfinished job) — with the
@@ -19,8 +19,8 @@ import heapq
 from typing import Any
 
 from orccad_app.executive.hooks import Hooks
-from orccad_app.sil.emit import ModuleTable
-from orccad_app.sil.shared import JobRecord, JobRecords
+from orccad_app.sil.generate.table import ModuleTable
+from orccad_app.sil.realtime.shared import JobRecord, JobRecords
 
 __all__ = ["JobTrace"]
 

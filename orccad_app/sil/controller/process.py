@@ -2,7 +2,7 @@
 
 :class:`ControllerProcess` starts the compiled controller (:mod:`orccad_app.sil.build`) with
 one end of a Unix ``socketpair`` as its file descriptor, checks that it runs the expected
-table (:attr:`~orccad_app.sil.emit.ModuleTable.digest`), and exchanges one request and one
+table (:attr:`~orccad_app.sil.generate.table.ModuleTable.digest`), and exchanges one request and one
 reply at a time (the frames of ``orccad_app/sil/c/orccad_lockstep.c``).
 
 Every reply is the controller's **heartbeat**: a controller that does not answer within
@@ -21,6 +21,7 @@ import signal
 import socket
 import struct
 import subprocess
+from collections.abc import Sequence
 from enum import IntEnum
 from pathlib import Path
 
@@ -103,7 +104,7 @@ class ControllerProcess:
         """True while the process runs."""
         return self.process.poll() is None
 
-    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: list[float] = (),
+    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: Sequence[float] = (),
                 offset: int = 0) -> tuple[float, ...]:
         """Send one request and wait for its reply (the heartbeat); the reply's doubles."""
         payload = struct.pack(f"={len(values)}d", *values) if values else b""

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from orccad_app.sil.layout import MAX_DIM, MAX_PORTS
+from orccad_app.sil.generate.layout import MAX_DIM, MAX_PORTS
 
 __all__ = ["SharedMemory", "Mirror", "JobRecord", "JobRecords", "LATENESS_RING", "REACTION_RING",
            "JOB_RING", "ReactionsLost"]
@@ -229,7 +229,8 @@ class SharedMemory:
 
     def close(self) -> None:
         """Unmap and remove the file."""
-        self.ints = self.floats = np.empty(0)
+        self.ints = np.empty(0, dtype=np.int64)
+        self.floats = np.empty(0)
         try:
             self._map.close()
         except BufferError:  # a view still alive: the file goes anyway

@@ -26,12 +26,11 @@ import tempfile
 from pathlib import Path
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.sil.generate.library import C_DIR
 
-__all__ = ["BuildError", "C_DIR", "CFLAGS", "library_sources", "build_executable", "compiler",
-           "compiler_command", "extra_flags"]
+__all__ = ["BuildError", "CFLAGS", "build_executable", "compiler", "compiler_command",
+           "extra_flags"]
 
-C_DIR = Path(__file__).parent / "c"
-"""The runtime library's sources."""
 CFLAGS = ("-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic")
 _BUILD_TIMEOUT_S = 120.0
 _STOP_GRACE_S = 1.0
@@ -40,23 +39,8 @@ _MESSAGE_LINES = 60
 """The compiler's message is cut after this many lines."""
 
 
-_MODULE_TASK_SOURCES = ("orccad_mt.c", "orccad_mt_trajectory.c", "orccad_mt_laws.c",
-                        "orccad_mt_observers.c", "orccad_mt_auv.c")
-"""The Module-Tasks' C: the dispatch (``orccad_mt.c``) and the kinds, one file per family."""
-_REALTIME_SOURCES = ("orccad_port.c", "orccad_rt_lifecycle.c", "orccad_rt_record.c",
-                     "orccad_rt_deadlock.c", "orccad_rt_automaton.c", "orccad_rt_main.c")
-"""The real-time runtime's C besides its threads (``orccad_rt.c``, the ``main`` given)."""
-
-
 class BuildError(OrccadError):
     """The controller could not be built (no C compiler, or it failed)."""
-
-
-def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
-    """The runtime library's C files for the controller whose ``main`` is in ``main``."""
-    runtime = ([C_DIR / name for name in _REALTIME_SOURCES] if main == "orccad_rt.c" else [])
-    return [*(C_DIR / name for name in _MODULE_TASK_SOURCES), C_DIR / "orccad_dynamics.c",
-            *runtime, C_DIR / "orccad_wire.c", C_DIR / "orccad_automaton.c", C_DIR / main]
 
 
 def compiler_command() -> list[str]:

@@ -1,0 +1,36 @@
+"""``PREFIX_main`` refuses a script that is not a regular file as ``orccad react`` does (issue
+34, item 4): a FIFO would block it until a writer came, a folder reads as an empty script (it
+ran nothing and exited 0), a device may never end. Same message, exit status 2."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+
+import pytest
+
+from orccad_app.cli import main as orccad
+from tests.codegen.cbuild import build
+from tests.codegen.conftest import MISSIONS, generated
+
+
+def _react_error(script: str, capsys) -> str:
+    assert orccad(["react", str(MISSIONS / "abro.orc"), "--composed", "--inputs", script,
+                   "--jsonl"]) == 2
+    return capsys.readouterr().err
+
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "device", "missing"])
+def test_a_script_that_is_not_a_regular_file_is_refused_as_react_does(kind, tmp_path, capsys):
+    binary = build(generated("abro", "ABRO").program)
+    script = {"fifo": tmp_path / "s.in", "folder": tmp_path / "d.in",
+              "device": "/dev/zero", "missing": tmp_path / "none.in"}[kind]
+    if kind == "fifo":
+        os.mkfifo(script)
+    elif kind == "folder":
+        os.mkdir(script)
+    for argv in ([str(binary), str(script)], [str(binary), str(script), "--trace"]):
+        done = subprocess.run(argv, capture_output=True, text=True, timeout=20)
+        assert done.returncode == 2 and done.stdout == ""
+        assert done.stderr == _react_error(str(script), capsys)
+    assert "regular file" in done.stderr or "folder" in done.stderr or "no such" in done.stderr
