@@ -83,3 +83,16 @@ def test_an_unreadable_injection_value_says_what_is_accepted(value):
     assert outcome.status == 2
     assert ("expected SIGNAL(VALUE)@SECONDS, VALUE a number, true, false or a vector of "
             "numbers [x, y, ...]") in outcome.err, outcome.err
+
+
+def test_a_huge_bad_value_in_a_react_script_is_cut_in_the_message(tmp_path):
+    script = tmp_path / "big.in"
+    script.write_text("Waypoint([" + ",".join(["1.5"] * 100_000) + ",nan])\n",
+                      encoding="utf-8")
+    outcome = run_orccad(["react", WAYPOINTS, "--inputs", str(script)])
+    check_outcome(outcome)
+    assert outcome.status == 2
+    assert "big.in:1:1: error: '[1.5,1.5," in outcome.err
+    assert "(400005 characters)' is not a vector value for Waypoint (finite numbers)" \
+        in outcome.err, outcome.err[-300:]
+    assert len(outcome.err) < 2000

@@ -34,7 +34,7 @@ SAMPLERS = ("tpe", "cmaes", "random")
 MAX_TRIALS = 10_000
 """Most trials a study may hold (``--budget`` plus a resumed study's trials), checked before
 the first: the samplers' cost grows with the trials told (TPE's about quadratically: 2 000
-trials cost some 10 s of sampling alone, 10 000 some 4 minutes, 100 000 would cost hours)."""
+trials measured at some 10 s of sampling alone, so 10 000 some 4 minutes and 100 000 hours)."""
 UNDEFINED = 1e9
 """Objective of a run on which the property is undefined (the search's placeholder, never
 reported as a robustness: :attr:`FalsifyResult.best_robustness` is then ``None``)."""

@@ -22,7 +22,7 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
-from orccad_app.commands.arguments import (bounded_int, positive_int, seconds,
+from orccad_app.commands.arguments import (bounded_int, seconds,
                                            writable_output)
 
 __all__ = ["register", "run", "add_common", "MAX_WORKERS", "MAX_RUNS"]
@@ -33,10 +33,6 @@ MAX_WORKERS = 256
 MAX_RUNS = 1_000_000
 """Mirrors ``campaign.spec.MAX_RUNS`` (a test keeps them equal; importing the campaign package
 here would slow every command's start-up)."""
-
-
-def _positive_int(text: str) -> int:
-    return positive_int(text)  # one check for every command (commands/arguments.py)
 
 
 def _probability(text: str) -> float:
