@@ -22,7 +22,7 @@ from typing import Any, Callable
 from orccad_app.campaign.adapter import CompiledMission, RunRecord
 from orccad_app.campaign.executor import Job, make_backend
 from orccad_app.campaign.setting import (RunSetting, build_setting, replay_command,
-                                         whole_ns_ms)
+                                         whole_ns_ms, whole_ns_us)
 from orccad_app.campaign.spec import CampaignSpec
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
@@ -105,6 +105,9 @@ class Falsifier:
             values[entry.target] = _suggest(trial, entry.target, entry.dist)
         for timing in self.spec.timings:  # whole nanoseconds, as --timing takes them
             values[timing.target] = whole_ns_ms(_suggest(trial, timing.target, timing.dist))
+        for axis in self.spec.controller:
+            name = f"controller.{axis.target}"
+            values[name] = whole_ns_us(_suggest(trial, name, axis.dist))
         for number, inject in enumerate(self.spec.injections):
             prefix = f"inject[{number}]"
             if inject.probability in (0.0, 1.0):

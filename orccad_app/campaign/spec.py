@@ -16,6 +16,10 @@
     [timing]                        # Module-Task period / WCET / BCET [ms] (--timing)
     "Survey.pilot.wcet_ms" = "U(0.5, 5)"
 
+    [controller]                    # a real controller's delays [µs] (--exchange-us,
+    exchange_us = "U(0, 1000)"      # --jitter-us: docs/executive.md)
+    jitter_us = "U(0, 200)"
+
     [[inject]]                      # an input or a plant fault at a random time (--inject)
     event = "auv.leak=1@U(20, 170)"
     probability = 0.3               # Bernoulli occurrence (default 1)
@@ -43,12 +47,17 @@ from orccad_app.campaign.distributions import (Distribution, DistributionError, 
                                                parse_distribution)
 from orccad_app.diagnostics import OrccadError, SourceLocation, cut
 
-__all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "InjectEntry", "Check", "load_spec",
+__all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "ControllerEntry", "InjectEntry",
+           "Check", "load_spec", "CONTROLLER_KEYS",
            "parse_spec", "SpecLocator", "DEFAULT_SEEDS", "MAX_RUNS", "MAX_UNTIL_S", "MAX_SEED"]
 
 DEFAULT_SEEDS = parse_distribution(f"UI(0, {2 ** 31 - 1})")
 _TOP = ("mission", "runs", "seed", "until_s", "seeds", "signals", "params", "timing",
-        "inject", "check")
+        "controller", "inject", "check")
+CONTROLLER_KEYS = ("exchange_us", "jitter_us")
+"""The keys of ``[controller]``: ``orccad run``'s ``--exchange-us`` and ``--jitter-us``."""
+MAX_DELAY_US = 1e6
+"""The largest exchange period or release jitter a spec may draw [µs] (1 s)."""
 _EVENT = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:=(.*?)|\((.*)\))?\s*@(.+)$", re.S)
 _DRAWS = "U(a, b), UI(a, b), N(mu, sigma), N(mu, sigma, lo, hi), choice(v, ...) or B(p)"
 _METRIC = re.compile(r"^(?:(max|min)\(([A-Za-z_][\w.]*(?:\[\d+\])?)\)|sim_time_s|"
@@ -80,6 +89,16 @@ class ParamEntry:
 @dataclass(frozen=True)
 class TimingEntry:
     """``"TASK.MODULE.FIELD" = DIST`` of ``[timing]`` [ms]."""
+
+    target: str
+    dist: Distribution
+    key: tuple
+
+
+@dataclass(frozen=True)
+class ControllerEntry:
+    """``exchange_us = DIST`` or ``jitter_us = DIST`` of ``[controller]`` [µs]: the delays a
+    real controller adds (:mod:`orccad_app.executive.delays`)."""
 
     target: str
     dist: Distribution
@@ -124,6 +143,7 @@ class CampaignSpec:
     signals: tuple[str, ...] = ()
     params: tuple[ParamEntry, ...] = ()
     timings: tuple[TimingEntry, ...] = ()
+    controller: tuple[ControllerEntry, ...] = ()
     injections: tuple[InjectEntry, ...] = ()
     checks: tuple[Check, ...] = ()
     locator: SpecLocator | None = field(default=None, compare=False)
@@ -234,6 +254,8 @@ class _Reader:
                                  for k, v in self.table("params").items())
         values["timings"] = tuple(TimingEntry(k, self.dist(v, "timing", k), ("timing", k))
                                   for k, v in self.table("timing").items())
+        values["controller"] = tuple(self.controller(k, v)
+                                     for k, v in self.table("controller").items())
         values["injections"] = tuple(self.inject(i, item)
                                      for i, item in enumerate(self.array("inject")))
         values["checks"] = tuple(self.check(i, item)
@@ -282,6 +304,18 @@ class _Reader:
                 raise self.fail(f"signal {cut(repr(signal))}: expected ROBOT.PORT or ROBOT.PORT[i]",
                                 "signals")
         return tuple(value)
+
+    def controller(self, name: str, value: Any) -> ControllerEntry:
+        key = ("controller", name)
+        if name not in CONTROLLER_KEYS:
+            raise self.fail(f"unknown key '{name}' in [controller] (keys: "
+                            f"{', '.join(CONTROLLER_KEYS)})", *key)
+        dist = self.dist(value, *key)
+        low, high = dist.bounds
+        if not 0 <= low <= high <= MAX_DELAY_US:
+            raise self.fail(f"{name} must draw microseconds in [0, {MAX_DELAY_US:g}], got "
+                            f"{value!r}", *key)
+        return ControllerEntry(name, dist, key)
 
     def inject(self, index: int, item: dict[str, Any]) -> InjectEntry:
         key = ("inject", index)

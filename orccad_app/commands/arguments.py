@@ -95,6 +95,15 @@ def seconds(text: str) -> float:
     return value
 
 
+def delay_us(text: str) -> int:
+    """A controller's delay given in µs (``--exchange-us``, ``--jitter-us``): finite, in
+    [0, 1e6]; returned in whole nanoseconds."""
+    value = _finite(text, "microseconds")
+    if not 0 <= value <= 1e6:
+        raise argparse.ArgumentTypeError(f"expected microseconds in [0, 1000000], got {text!r}")
+    return int(round(value * 1000))
+
+
 #: Range of pacing and speed factors (simulated s per wall s).
 FACTOR_RANGE = (1e-3, 1e3)
 

@@ -3,7 +3,8 @@
 Both commands run a mission through the run façade (:mod:`orccad_app.session`) and print the
 same report: the same injections (``--inject``, ``--inject-from``), overrides (``--set``,
 ``--timing``), trace (``--trace``, ``--trace-format``), live views (``--foxglove``,
-``--ros2-zenoh``), scheduling (``--scheduler``, ``--context-switch-us``, ``--bus-us``),
+``--ros2-zenoh``), scheduling (``--scheduler``, ``--context-switch-us``, ``--bus-us``), a
+real controller's delays (``--exchange-us``, ``--jitter-us``),
 ``--json``, and the same exit status. Only the standard library is imported at module level
 (building the parser stays fast).
 """
@@ -15,8 +16,8 @@ import math
 import sys
 from typing import Any
 
-from orccad_app.commands.arguments import (bounded_int, checked_injection, non_negative_int,
-                                           seconds)
+from orccad_app.commands.arguments import (bounded_int, checked_injection, delay_us,
+                                           non_negative_int, seconds)
 
 __all__ = ["add_run_flags", "check_run_flags", "run_options", "refuse_trace_over_inputs",
            "observe", "render"]
@@ -89,6 +90,13 @@ def add_run_flags(parser: argparse.ArgumentParser) -> None:
                         metavar="US", help="context-switch overhead [µs] (default 0)")
     parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
+    parser.add_argument("--exchange-us", type=delay_us, default=0, metavar="US",
+                        help="model a real controller's I/O: the robot's ports exchanged every "
+                             "US µs (a sensor up to US old, a torque applied up to US late; "
+                             "the phase from the seed); default 0, the ideal exchange")
+    parser.add_argument("--jitter-us", type=delay_us, default=0, metavar="US",
+                        help="model a real controller's release jitter: each periodic release "
+                             "late by a uniform draw in [0, US] µs (from the seed); default 0")
 
 
 def check_run_flags(args: argparse.Namespace) -> None:
@@ -152,6 +160,7 @@ def run_options(args: argparse.Namespace, realtime: float | None) -> Any:
     and overrides parsed: a malformed one is refused before the file is loaded); paced at
     ``realtime`` (simulated s per wall s, ``None``: as fast as possible; a live view paces at
     1 by default)."""
+    from orccad_app.executive.delays import ControllerDelays
     from orccad_app.mission.overrides import PlanOverrides
     from orccad_app.session import InputScript, RunOptions
 
@@ -165,6 +174,7 @@ def run_options(args: argparse.Namespace, realtime: float | None) -> Any:
                       seed=args.seed, until_s=args.until, scheduler=args.scheduler,
                       context_switch_ns=args.context_switch_us * 1000,
                       bus_transfer_ns=args.bus_us * 1000,
+                      delays=ControllerDelays(args.exchange_us, args.jitter_us),
                       realtime=1.0 if live and realtime is None else realtime,
                       trace=args.trace, trace_format=args.trace_format, trace_file=args.file,
                       signals_end_run=True)

@@ -25,6 +25,7 @@ import numpy as np
 
 from orccad_app.mission.observer import MissionObserver
 from orccad_app.mission.run import MissionRun
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.atoms import Atoms, InstantView
 from orccad_app.robottask.labels import RtLabel
 
@@ -65,7 +66,7 @@ class PropertyRecorder(MissionObserver):
         self._errors = {robot: np.zeros(dim) for robot, dim in self._task_errors.items()}
         self._atoms = Atoms(mission_run.plan.roles, keys)
         self._ports = sorted(set(ports))
-        self._status = "running"
+        self._status: str = Status.RUNNING
         self._letters: dict[tuple, frozenset] = {}
         self.letters: list[frozenset] = []
         """One letter per instant (reaction)."""

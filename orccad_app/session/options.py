@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from orccad_app.executive.delays import ControllerDelays
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
 from orccad_app.reactive.ir import SignalDecl
@@ -111,6 +112,9 @@ class RunOptions:
     :param scheduler: every processor's policy, ``fp`` or ``edf``.
     :param context_switch_ns: the context-switch overhead [ns].
     :param bus_transfer_ns: the bus's transfer time per message [ns].
+    :param delays: the exchange delay and release jitter a real controller adds
+        (``--exchange-us``, ``--jitter-us``: :mod:`orccad_app.executive.delays`); default
+        none, the executive's ideal exchange.
     :param realtime: ``None`` as fast as possible, else simulated s per wall s.
     :param trace: a trace file to write (``.csv`` or ``.mcap``; a directory for
         ``rosbag2``), ``None`` for none.
@@ -137,6 +141,7 @@ class RunOptions:
     scheduler: str = "fp"
     context_switch_ns: int = 0
     bus_transfer_ns: int = 0
+    delays: ControllerDelays = field(default_factory=ControllerDelays)
     realtime: float | None = None
     trace: str | None = None
     trace_format: str | None = None

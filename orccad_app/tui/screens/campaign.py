@@ -11,6 +11,7 @@ the screen stops it as Ctrl-C does, leaving the database resumable (``s`` resume
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from textual import on, work
@@ -22,6 +23,7 @@ from textual.screen import Screen
 from textual.widgets import Button, DataTable, Footer, Header, Input, Label, Static
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.status import MissionStatus
 from orccad_app.tui.campaigns import (Bin, CampaignSnapshot, Candidate, FalsifySnapshot,
                                       SearchProcess, default_db, read_campaign, read_study)
 from orccad_app.tui.screens import orccad
@@ -120,7 +122,7 @@ class CampaignScreen(Screen):
         self.query_one("#candidates").border_title = "runs to replay (enter)"
         self._show_mode()
         self._status()
-        if self.db and Path(self.db).is_file():
+        if self.db and os.path.lexists(self.db):
             self.action_open()
         self.set_interval(REFRESH_S, self._tick)
 
@@ -225,10 +227,10 @@ class CampaignScreen(Screen):
     def action_open(self) -> None:
         """Read the database in the field now (nothing runs)."""
         self.db = self._field("db")
-        if not self.db or not Path(self.db).is_file():
-            self.notify(f"db: no such file {self.db!r}", severity="error")
+        if not self.db:
+            self.notify("type the database's path", severity="error")
             return
-        self._read()
+        self._read()  # what is wrong with the file, if anything, is said by the read
 
     def action_back(self) -> None:
         self._close()
@@ -377,7 +379,7 @@ def status_text(mode: str, state: str, snapshot: CampaignSnapshot | FalsifySnaps
     if isinstance(snapshot, CampaignSnapshot):
         share = snapshot.runs / snapshot.limit if snapshot.limit else 0.0
         bar = "█" * round(share * 20) + "░" * (20 - round(share * 20))
-        done = snapshot.estimates.get("done")
+        done = snapshot.estimates.get(MissionStatus.DONE)
         p = "" if not done or done["p"] is None else (
             f"   P(done) = {done['p']:.3f} [{done['low']:.3f}, {done['high']:.3f}]")
         crashed = f"   {snapshot.crashed} crashed" if snapshot.crashed else ""
