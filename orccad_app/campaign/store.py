@@ -121,8 +121,8 @@ class CampaignStore:
                 self.db = connect_read_only(self.path)
             else:
                 self.db = sqlite3.connect(self.path)
-            self._refuse_foreign_tables()
             if not read_only:
+                self._refuse_foreign_tables()
                 self.db.execute("PRAGMA journal_mode=WAL")
                 self.db.execute("PRAGMA synchronous=NORMAL")
                 self.db.executescript(SCHEMA)
@@ -132,12 +132,14 @@ class CampaignStore:
 
     def _refuse_foreign_tables(self) -> None:
         """A database holding tables a campaign does not write (an optuna study, another
-        program's file) is refused before anything is written to it."""
+        program's file) is refused before anything is written to it (a reader only checks
+        the campaign's tables, :meth:`_check_schema`)."""
         foreign = sorted(table_names(self.db) - set(COLUMNS))
         if foreign:
             what = ("an optuna study: it is orccad falsify's --study" if "studies" in foreign
                     else "another program's file")
             shown = ", ".join(foreign[:6]) + (", ..." if len(foreign) > 6 else "")
+            self.db.close()
             raise OrccadError(f"{self.path}: not a campaign database (it holds the tables "
                               f"{shown}: {what})")
 
