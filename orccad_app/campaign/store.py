@@ -66,10 +66,33 @@ COLUMNS = {
 _STATUSES = RUN_STATUSES
 
 
-def connect_read_only(path: str | Path) -> sqlite3.Connection:
+def connect_read_only(path: str | Path, timeout_s: float = 5.0) -> sqlite3.Connection:
     """SQLite file ``path`` opened read-only (any characters in its name): nothing is ever
-    written to it, and no write lock is taken that a writer would wait for."""
-    return sqlite3.connect(Path(path).resolve().as_uri() + "?mode=ro", uri=True)
+    written to it or beside it, and no write lock is taken that a writer would wait for; a
+    lock held by another program is waited for ``timeout_s`` [s]. A WAL database that no
+    writer has open (no ``-wal`` or ``-shm`` file beside it) is opened immutable: read-only,
+    SQLite would still create both files beside it to read it."""
+    uri = Path(path).resolve().as_uri() + "?mode=ro"
+    if _wal_without_writer(Path(path)):
+        uri += "&immutable=1"
+    return sqlite3.connect(uri, uri=True, timeout=timeout_s)
+
+
+def _wal_without_writer(path: Path) -> bool:
+    """Whether regular file ``path`` is an SQLite database in WAL mode (its header's read and
+    write versions are 2) with neither ``-wal`` nor ``-shm`` beside it."""
+    import os
+    import stat
+
+    try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return False  # never opened here: a FIFO would block
+        with open(path, "rb") as handle:
+            header = handle.read(20)
+    except OSError:
+        return False
+    return header[:16] == b"SQLite format 3\x00" and header[18:20] == b"\x02\x02" \
+        and not any(os.path.lexists(f"{path}{suffix}") for suffix in ("-wal", "-shm"))
 
 
 class CampaignStore:

@@ -3,7 +3,8 @@ controller process.
 
 ::
 
-    orccad sil FILE [--mission M] (--lockstep | --realtime) [--heartbeat-s S] [--build-dir DIR]
+    orccad sil FILE [--mission M] (--lockstep | --realtime | --check-kinds)
+                    [--heartbeat-s S] [--build-dir DIR] [--check-jobs N] [--check-rtol R]
                     [every flag of orccad run but its --realtime FACTOR]
 
 The Module-Tasks of every Robot-Task the mission runs are emitted as C
@@ -107,6 +108,51 @@ def _heartbeat(text: str) -> float:
     return value
 
 
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= 100_000:
+        raise argparse.ArgumentTypeError(f"expected a number of jobs in [1, 100000], got "
+                                         f"{text!r}")
+    return value
+
+
+def _rtol(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"expected a relative tolerance in [0, 1], got "
+                                         f"{text!r}")
+    return value
+
+
+def _check_kinds(args: argparse.Namespace) -> int:
+    """``--check-kinds``: every Module-Task's C against its Python on random inputs."""
+    from orccad_app.mission.overrides import plan_with_overrides
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.sil.lockstep import check_kinds
+
+    options = run_options(args, None)
+    source = load(args.file)
+    source.print_warnings()
+    mission = select_mission(source, args.mission)
+    plan = plan_with_overrides(source, mission, options.overrides)
+    compared, difference = check_kinds(plan, args.file, args.check_jobs, args.seed,
+                                       rtol=args.check_rtol,
+                                       build_dir=check_build_dir(args.build_dir))
+    how = "bit for bit" if args.check_rtol == 0.0 else f"within {args.check_rtol:g} relative"
+    if difference is not None:
+        print(f"C and Python differ: {difference.text()}")
+        return 1
+    print(f"C and Python agree ({how}) on {compared} Module-Tasks, {args.check_jobs} jobs "
+          f"each, random inputs of seed {args.seed}")
+    return 0
+
+
 def register(sub) -> None:
     parser = sub.add_parser("sil", help="run the mission's Module-Tasks as a C controller "
                                         "process against the plant",
@@ -123,6 +169,14 @@ def register(sub) -> None:
                       help="real threads per processor, wall-clock periods "
                            "(clock_nanosleep, SCHED_FIFO where permitted), the plant over "
                            "shared memory; the report adds the measured release lateness")
+    mode.add_argument("--check-kinds", action="store_true",
+                      help="no run: feed every Module-Task of the mission, in C and in Python, "
+                           "the same random inputs (--check-jobs, --seed) and report the first "
+                           "output that differs (exit 1), bit for bit unless --check-rtol")
+    parser.add_argument("--check-jobs", type=_jobs, default=100, metavar="N",
+                        help="jobs per Module-Task for --check-kinds (default 100)")
+    parser.add_argument("--check-rtol", type=_rtol, default=0.0, metavar="R",
+                        help="--check-kinds: equal within R relative (default 0: bit for bit)")
     add_run_flags(parser)
     parser.add_argument("--heartbeat-s", type=_heartbeat, default=None, metavar="S",
                         help="the controller must answer each request within S wall seconds "
@@ -163,6 +217,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    if args.check_kinds:
+        return _check_kinds(args)
     from orccad_app.pipeline import load, select_mission
     from orccad_app.session import ControllerOptions, Execution, RunSession
     from orccad_app.session.backends import refuse_in_realtime

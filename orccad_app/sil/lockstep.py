@@ -23,10 +23,14 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Iterator
 from contextlib import ExitStack, contextmanager
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from orccad_app.mission.backend import InProcess
-from orccad_app.mission.plan import MissionPlan
+from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.sil.build.executable import build_controller
 from orccad_app.sil.controller.automaton import ControllerAutomaton
@@ -35,7 +39,8 @@ from orccad_app.sil.controller.remote import ControllerRun, remote_plan
 from orccad_app.sil.generate.automaton import MissionProgram, mission_automaton
 from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["LockstepBackend", "lockstep", "start_controller"]
+__all__ = ["KindDifference", "LockstepBackend", "check_kinds", "lockstep", "random_inputs",
+           "start_controller"]
 
 
 def start_controller(table: ModuleTable, executable: Path,
@@ -109,3 +114,94 @@ class LockstepBackend(InProcess):
     def close(self) -> None:
         """End and reap the controller."""
         self._stack.close()
+
+
+@dataclass(frozen=True)
+class KindDifference:
+    """The first output where a kind's C and its Python disagree (:func:`check_kinds`).
+
+    :param module: the Module-Task (TCS name).
+    :param kind: its kind.
+    :param job: the job's number (0 the first after ``init``).
+    :param t_s: the job's time [s].
+    :param port: the output port (``present`` differences name the port too).
+    :param python: what the Python kind wrote (``None``: nothing).
+    :param c: what the C kind wrote (``None``: nothing).
+    """
+
+    module: str
+    kind: str
+    job: int
+    t_s: float
+    port: str
+    python: Any
+    c: Any
+
+    def text(self) -> str:
+        """One line naming it."""
+        return (f"module-task '{self.module}' (kind {self.kind}), job {self.job} "
+                f"(t = {self.t_s:g} s), output {self.port!r}: Python {_shown(self.python)}, "
+                f"C {_shown(self.c)}")
+
+
+def _shown(value: Any) -> str:
+    if value is None:
+        return "wrote nothing"
+    return repr(np.asarray(value, dtype=float).tolist())
+
+
+def random_inputs(instance: Any, rng: np.random.Generator, scale: float = 1.0) -> dict[str, Any]:
+    """Random values for ``instance``'s input ports (each absent one time in ten: "none yet"):
+    a ``float`` port a non-negative number, a vector normal with standard deviation
+    ``scale``."""
+    values: dict[str, Any] = {}
+    for port in instance.ports:
+        if port.direction != "in" or rng.random() < 0.1:
+            continue
+        data = rng.normal(0.0, scale, port.dim or 1)
+        values[port.name] = float(abs(data[0]) * 10) if port.type == "float" else data
+    return values
+
+
+def _differs(python: Any, c: Any, rtol: float) -> bool:
+    want = np.asarray(python, dtype=float)
+    have = np.asarray(c, dtype=float)
+    if rtol == 0.0:
+        return want.shape != have.shape or want.tobytes() != have.tobytes()
+    return want.shape != have.shape or not np.allclose(have, want, rtol=rtol, atol=1e-300,
+                                                       equal_nan=True)
+
+
+def check_kinds(plan: MissionPlan, source: str, jobs: int = 100, seed: int = 0,
+                scale: float = 1.0, rtol: float = 0.0,
+                build_dir: Path | None = None) -> tuple[int, KindDifference | None]:
+    """Feed every Module-Task of ``plan``, in C (a lockstep controller built for it) and in
+    Python (a fresh instance with the same parameters), the same ``jobs`` random inputs
+    (:func:`random_inputs`, drawn from ``seed``) at 1 ms steps; the number of Module-Tasks
+    compared and the first output that differs (``None``: none did) — bit for bit when
+    ``rtol`` is 0, else within ``rtol`` relative."""
+    rng = np.random.default_rng(seed)
+    compared = 0
+    with lockstep(plan, source, build_dir) as started:
+        for site in started.plan.sites:
+            remotes = site.fresh_computes()
+            pythons = SiteModules.fresh_computes(site)  # new Python instances, same arguments
+            for name, remote in remotes.items():
+                python = pythons[name]
+                python.init()
+                remote.init()
+                compared += 1
+                for job in range(jobs):
+                    t_s = 0.001 * job
+                    inputs = random_inputs(python, rng, scale)
+                    want, got = python.compute(t_s, inputs), remote.compute(t_s, inputs)
+                    for port in sorted(set(want) | set(got)):
+                        a, b = want.get(port), got.get(port)
+                        if a is None or b is None:
+                            if a is not b:
+                                return compared, KindDifference(name, python.kind.name, job,
+                                                                t_s, port, a, b)
+                        elif _differs(a, b, rtol):
+                            return compared, KindDifference(name, python.kind.name, job, t_s,
+                                                            port, a, b)
+    return compared, None

@@ -60,7 +60,7 @@ def mission_automaton(plan: MissionPlan, max_states: int = DEFAULT_MAX_STATES) -
     tasks = {site.instance.task.name: site.instance.task for site in plan.sites}
     try:
         program = generate_composed(automaton, plan.roles,
-                                    tuple(site.task for site in plan.sites), tasks.values(),
+                                    tuple(site.site for site in plan.sites), tasks.values(),
                                     PREFIX, origin=f" for the controller of mission {plan.name}")
     except CodegenError as error:
         raise OrccadError(f"orccad sil: the mission's automaton has no C: {error.message}",
