@@ -129,6 +129,7 @@ HOMONYMS = {
     "orccad_app/robottask/labels.py": (1, "Phase.ACTIVE's word for people"),
     "orccad_app/commands/check.py": (1, "the JSON count of failed properties"),
     "orccad_app/campaign/runner.py": (1, "PrefixCounts.done, an attribute in __slots__"),
+    "orccad_app/lsp/lifecycle.py": (1, "the language server's lifecycle phase"),
 }
 """Files that write a status word for another concept: how many times, and why."""
 
