@@ -23,6 +23,7 @@ from textual.screen import Screen
 from textual.widgets import Button, DataTable, Footer, Header, Input, Label, Static
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.pipeline import require_regular_file
 from orccad_app.reactive.status import MissionStatus
 from orccad_app.tui.campaigns import (Bin, CampaignSnapshot, Candidate, FalsifySnapshot,
                                       SearchProcess, default_db, read_campaign, read_study)
@@ -177,8 +178,13 @@ class CampaignScreen(Screen):
                         severity="error")
             return
         spec, db = self._field("spec"), self._field("db")
-        if not spec or not Path(spec).is_file():
-            self.notify(f"spec: no such file {spec!r}", severity="error")
+        if not spec:
+            self.notify("type the campaign spec's path", severity="error")
+            return
+        try:
+            require_regular_file(spec)  # missing, a folder, a FIFO: said as such
+        except OrccadError as error:
+            self.notify(f"spec: {error.message}", severity="error")
             return
         if not db:
             self.notify("type the database's path", severity="error")
