@@ -51,6 +51,7 @@ from __future__ import annotations
 import time
 from typing import Any, Iterable
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.deadlock import DeadlockError
@@ -106,11 +107,11 @@ class _Link(Observer):
         self._run.signal(name, value)
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
-        if port == "e":
+        if port == TASK_ERROR:
             self._run.task_error(module, value)
 
     def wants_write(self, module: str, port: str) -> bool:
-        return port == "e"
+        return port == TASK_ERROR
 
 
 class MissionRun(RobotTaskLifecycle):
