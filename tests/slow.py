@@ -12,6 +12,7 @@ import pytest
 
 #: ``file::function`` of the slow tests (every parameter of a parametrized test).
 SLOW = frozenset({
+    "tests/sil/test_supervisor_writes.py::test_the_supervisor_writes_no_parameter_word_in_real_time",
     "tests/sil/test_controller_tree.py::test_an_aarch64_build_under_qemu_ends_as_orccad_run",
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_in_real_time_runs_the_same_robot_tasks",
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_ends_as_orccad_run",
