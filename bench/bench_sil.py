@@ -29,15 +29,17 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from orccad_app.pipeline import load, select_mission  # noqa: E402
-from orccad_app.session import RunOptions, RunSession  # noqa: E402
-from orccad_app.sil.runs import ControllerRuns, SilMode  # noqa: E402
+from orccad_app.session import (ControllerOptions, Execution, RunOptions,  # noqa: E402
+                                RunSession)
 
 
-def _run(path: Path, runs: ControllerRuns | None = None) -> tuple[float, dict]:
-    """One run through the run façade (the controller's when ``runs`` is given): its wall
-    time [s] and its report without the wall time."""
+def _run(path: Path, execution: Execution = Execution.SIMULATED) -> tuple[float, dict]:
+    """One run through the run façade (its Module-Tasks run as ``execution`` says; the
+    controller built and started before the clock starts): its wall time [s] and its report
+    without the wall time."""
     source = load(str(path))
-    session = RunSession(source, select_mission(source, None), RunOptions(run_factory=runs))
+    session = RunSession(source, select_mission(source, None),
+                         RunOptions(execution=execution, controller=ControllerOptions(str(path))))
     start = time.perf_counter()
     report = session.execute().as_dict()
     wall = time.perf_counter() - start
@@ -51,8 +53,7 @@ def lockstep_against_run(path: Path, repeat: int) -> None:
     for _ in range(repeat):
         wall, expected = _run(path)
         best_run = min(best_run, wall)
-        with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:  # compiled once (cached)
-            wall, got = _run(path, runs)
+        wall, got = _run(path, Execution.LOCKSTEP)  # compiled once (cached)
         best_sil = min(best_sil, wall)
     assert got == expected, "lockstep and orccad run disagree"
     sim_s = expected["sim_time_s"]

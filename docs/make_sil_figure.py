@@ -22,22 +22,20 @@ MISSION = ROOT / "missions" / "arm_recovery.orc"
 INJECTION = "TrackPID.TrackingLost@2.5"
 
 
-def _plan():
-    from orccad_app.mission.plan import plan_mission
+def _run(execution_name: str) -> np.ndarray:
+    """The task errors of one run through the run façade, its Module-Tasks run as
+    ``execution_name`` (``simulated``, ``lockstep`` or ``realtime``) says."""
+    from orccad_app.mission.injection import parse_injection
     from orccad_app.pipeline import load, select_mission
+    from orccad_app.session import ControllerOptions, Execution, RunOptions, RunSession
 
     source = load(str(MISSION))
-    return plan_mission(source, select_mission(source, None))
-
-
-def _options(plan) -> dict:
-    from orccad_app.executive import Bus
-    from orccad_app.executive.processor import Processor
-    from orccad_app.mission.injection import parse_injection
-
-    return {"until_ns": int(plan.run_horizon_s(60.0) * 1e9), "bus": Bus(),
-            "processors": [Processor(name) for name in plan.processor_names],
-            "injections": [parse_injection(INJECTION)]}
+    seen = _Errors()
+    options = RunOptions(injections=(parse_injection(INJECTION),), observers=(seen,),
+                         execution=Execution(execution_name),
+                         controller=ControllerOptions(str(MISSION)))
+    RunSession(source, select_mission(source, None), options).execute()
+    return np.array(seen.samples)
 
 
 class _Errors:
@@ -54,51 +52,15 @@ class _Errors:
             self.samples.append((t_ns / 1e9, float(np.max(np.abs(value)))))
 
 
-def executive() -> np.ndarray:
-    from orccad_app.mission.run import MissionRun
-
-    plan = _plan()
-    seen = _Errors()
-    MissionRun(plan, observers=[seen], **_options(plan)).run()
-    return np.array(seen.samples)
-
-
-def lockstep() -> np.ndarray:
-    from orccad_app.mission.run import MissionRun
-    from orccad_app.sil.lockstep import lockstep as in_lockstep
-
-    plan = _plan()
-    seen = _Errors()
-    with in_lockstep(plan, str(MISSION)):
-        MissionRun(plan, observers=[seen], **_options(plan)).run()
-    return np.array(seen.samples)
-
-
-def realtime() -> np.ndarray:
-    from orccad_app.sil.realtime.run import RealtimeRun, realtime as in_realtime
-
-    samples: list[tuple[float, float]] = []
-
-    class Recorded(RealtimeRun):
-        def task_error(self, module, value):
-            samples.append((self.kernel.now / 1e9, float(np.max(np.abs(value)))))
-            super().task_error(module, value)
-
-    plan = _plan()
-    with in_realtime(plan, str(MISSION)) as (table, controller, shared):
-        Recorded(plan, table, controller, shared, **_options(plan)).run()
-    return np.array(samples)
-
-
 def main(out: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    runs = [("orccad run (simulated executive)", executive()),
-            ("orccad sil --lockstep (C, own process)", lockstep()),
-            ("orccad sil --realtime (threads, wall clock)", realtime())]
+    runs = [("orccad run (simulated executive)", _run("simulated")),
+            ("orccad sil --lockstep (C, own process)", _run("lockstep")),
+            ("orccad sil --realtime (threads, wall clock)", _run("realtime"))]
     figure, axes = plt.subplots(1, 3, figsize=(13, 3.6), sharey=True)
     for axis, (title, data) in zip(axes, runs):
         axis.plot(data[:, 0], data[:, 1] * 1e3, linewidth=0.8)

@@ -25,6 +25,7 @@ SLOW = frozenset({
     "tests/mission/test_mission_run.py::test_type1_exception_retunes_the_running_module",
     "tests/verify/test_counterexample.py::test_check_exits_1_and_its_script_replays_to_the_violation",
     "tests/tui/test_tui_live.py::test_the_trace_is_exported_as_mcap_and_a_bad_suffix_is_refused",
+    "tests/verify/symbolic/test_robot_grid.py::test_8x4_is_proved_and_its_false_property_replays_against_the_plant",
 })
 
 

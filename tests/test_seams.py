@@ -78,10 +78,37 @@ def test_observers_do_not_reach_into_the_simulation():
     found = []
     for path in sorted(PACKAGE.rglob("*.py")):
         relative = path.relative_to(ROOT).as_posix()
-        if relative.startswith(("orccad_app/mission/", "orccad_app/executive/",
-                                "orccad_app/sil/")):
+        if relative.startswith(("orccad_app/mission/", "orccad_app/executive/")):
             continue
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             if re.search(r"(?<!self)\.sim\b", line):
                 found.append(f"{relative}:{number}: {line.strip()}")
     assert not found, "\n".join(found)
+
+
+def _python_files() -> list[Path]:
+    return sorted([*PACKAGE.rglob("*.py"), *(ROOT / "plugins").rglob("*.py")])
+
+
+def test_module_tasks_run_behind_one_backend_not_a_mission_run_subclass():
+    """Where a Module-Task's job runs is the run's ModuleTaskBackend (in-process, lockstep,
+    real time): no class subclasses MissionRun, and only the mission layer and the run
+    façade construct one."""
+    subclasses, made = [], []
+    for path in _python_files():
+        relative = path.relative_to(ROOT).as_posix()
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ClassDef):
+                bases = {ast.unparse(base).rsplit(".", 1)[-1] for base in node.bases}
+                if bases & {"MissionRun", "RobotTaskLifecycle"} and \
+                        relative != "orccad_app/mission/run.py":
+                    subclasses.append(f"{relative}:{node.lineno}: class {node.name}")
+            elif isinstance(node, ast.Call) and isinstance(node.func, (ast.Name, ast.Attribute)):
+                name = node.func.id if isinstance(node.func, ast.Name) else node.func.attr
+                if name == "MissionRun" and not relative.startswith(
+                        ("orccad_app/mission/", "orccad_app/session/")):
+                    made.append(f"{relative}:{node.lineno}")
+    assert not subclasses, "\n".join(subclasses)
+    assert not made, "MissionRun made outside the mission layer and the façade:\n" + \
+        "\n".join(made)

@@ -166,6 +166,25 @@ static int parse_int(const char *text, size_t len, int64_t *out)
 
 /* ------------------------------------------------------------------ JSON */
 
+/* The length of the UTF-8 sequence at text[i] (1 to 4), or 0 when its bytes are not one as
+   Python's strict decoder judges (no overlong form, no surrogate, at most U+10FFFF). */
+static size_t utf8_length(const char *text, size_t len, size_t i)
+{
+    unsigned char c = (unsigned char)text[i], d;
+    size_t need = c < 0x80 ? 0 : (c >= 0xC2 && c <= 0xDF) ? 1
+                : (c >= 0xE0 && c <= 0xEF) ? 2 : (c >= 0xF0 && c <= 0xF4) ? 3 : 99;
+    size_t k;
+    if (need == 99 || i + need >= len) return 0;
+    for (k = 1; k <= need; ++k)
+        if (((unsigned char)text[i + k] & 0xC0) != 0x80) return 0;
+    d = need ? (unsigned char)text[i + 1] : 0;
+    if (need == 2 && ((c == 0xE0 && d < 0xA0) || (c == 0xED && d > 0x9F))) return 0;
+    if (need == 3 && ((c == 0xF0 && d < 0x90) || (c == 0xF4 && d > 0x8F))) return 0;
+    return need + 1;
+}
+
+/* A JSON string of text; a byte that is not UTF-8 (a path's) is written \udcXX, as Python
+   holds it (surrogateescape) and json.dumps writes it. */
 static void json_string(const char *text, size_t len)
 {
     size_t i = 0;
@@ -173,7 +192,12 @@ static void json_string(const char *text, size_t len)
     while (i < len) {
         unsigned char c = (unsigned char)text[i];
         unsigned long code;
-        int extra;
+        size_t extra;
+        if (c >= 0x80 && utf8_length(text, len, i) == 0) {
+            printf("\\udc%02x", c);
+            ++i;
+            continue;
+        }
         if (c < 0x80) {
             ++i;
             if (c == '"') fputs("\\\"", stdout);
@@ -187,10 +211,10 @@ static void json_string(const char *text, size_t len)
             else putchar(c);
             continue;
         }
-        extra = c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : 1;
+        extra = utf8_length(text, len, i) - 1;
         code = c & (extra == 3 ? 0x07 : extra == 2 ? 0x0F : 0x1F);
         ++i;
-        while (extra-- > 0 && i < len) code = (code << 6) | ((unsigned char)text[i++] & 0x3F);
+        while (extra-- > 0) code = (code << 6) | ((unsigned char)text[i++] & 0x3F);
         if (code >= 0x10000) {
             code -= 0x10000;
             printf("\\u%04lx\\u%04lx", 0xD800 + (code >> 10), 0xDC00 + (code & 0x3FF));
@@ -607,28 +631,15 @@ static void check_utf8(const char *text, size_t len)
     size_t line_start = 0;
     while (i < len) {
         unsigned char c = (unsigned char)text[i];
-        size_t need = c < 0x80 ? 0 : (c >= 0xC2 && c <= 0xDF) ? 1
-                    : (c >= 0xE0 && c <= 0xEF) ? 2 : (c >= 0xF0 && c <= 0xF4) ? 3 : 99;
-        size_t k;
-        int ok = need != 99 && i + need < len + (need ? 0 : 1);
-        for (k = 1; ok && k <= need; ++k)
-            if (i + k >= len || ((unsigned char)text[i + k] & 0xC0) != 0x80) ok = 0;
-        if (ok && need == 2) {
-            unsigned char d = (unsigned char)text[i + 1];
-            if ((c == 0xE0 && d < 0xA0) || (c == 0xED && d > 0x9F)) ok = 0;
-        }
-        if (ok && need == 3) {
-            unsigned char d = (unsigned char)text[i + 1];
-            if ((c == 0xF0 && d < 0x90) || (c == 0xF4 && d > 0x8F)) ok = 0;
-        }
-        if (!ok) {
+        size_t length = utf8_length(text, len, i);
+        if (length == 0) {
             char message[200];
             snprintf(message, sizeof message, "not UTF-8 text: byte 0x%02x cannot be decoded "
                      "(save the file as UTF-8)", c);
             fail_at(line, column(text + line_start, i - line_start), message);
         }
         if (c == '\n') { ++line; line_start = i + 1; }
-        i += need + 1;
+        i += length;
     }
 }
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Callable
 from typing import Any
 
 from orccad_app.commands.arguments import (bounded_int, checked_injection, non_negative_int,
@@ -148,8 +147,7 @@ def _warn_first_instant(injections) -> None:
                   "and each look from the next instant on)", file=sys.stderr)
 
 
-def run_options(args: argparse.Namespace, realtime: float | None,
-                run_factory: Callable[..., Any] | None = None) -> Any:
+def run_options(args: argparse.Namespace, realtime: float | None) -> Any:
     """The run's :class:`~orccad_app.session.RunOptions` from the command line (injections
     and overrides parsed: a malformed one is refused before the file is loaded); paced at
     ``realtime`` (simulated s per wall s, ``None``: as fast as possible; a live view paces at
@@ -169,7 +167,7 @@ def run_options(args: argparse.Namespace, realtime: float | None,
                       bus_transfer_ns=args.bus_us * 1000,
                       realtime=1.0 if live and realtime is None else realtime,
                       trace=args.trace, trace_format=args.trace_format, trace_file=args.file,
-                      run_factory=run_factory, signals_end_run=True)
+                      signals_end_run=True)
 
 
 def _foxglove_wait_s(args: argparse.Namespace) -> float:

@@ -9,8 +9,9 @@ controller process.
 The Module-Tasks of every Robot-Task the mission runs are emitted as C
 (:mod:`orccad_app.sil.generate.table`), compiled with the runtime library into the controller
 (:mod:`orccad_app.sil.build`) and started as their own process. The run goes through the run
-façade as ``orccad run``'s does (:class:`~orccad_app.sil.runs.ControllerRuns` makes its
-MissionRun), so the report, ``--json``, ``--trace``, ``--inject``, ``--inject-from``, ``--set``,
+façade as ``orccad run``'s does (its Module-Task backend, picked from
+``RunOptions.execution``, is :class:`~orccad_app.sil.lockstep.LockstepBackend` or
+:class:`~orccad_app.sil.realtime.backend.RealtimeBackend`), so the report, ``--json``, ``--trace``, ``--inject``, ``--inject-from``, ``--set``,
 ``--timing``, ``--foxglove`` and ``--ros2-zenoh`` are ``orccad run``'s; ``--scheduler``,
 ``--context-switch-us`` and ``--bus-us`` apply in lockstep (the executive's timing model) and
 are refused in real time with the reason. The report adds the controller process (and in real
@@ -163,37 +164,39 @@ def run(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.session import RunSession
+    from orccad_app.session import ControllerOptions, Execution, RunSession
+    from orccad_app.session.backends import refuse_in_realtime
     from orccad_app.sil.controller.process import DEFAULT_HEARTBEAT_S
-    from orccad_app.sil.runs import ControllerRuns, SilMode, refuse_in_realtime
+    from orccad_app.sil.lockstep import LockstepBackend
+    from orccad_app.sil.realtime.backend import RealtimeBackend
 
     check_run_flags(args)
-    mode = SilMode.REALTIME if args.realtime else SilMode.LOCKSTEP
+    execution = Execution.REALTIME if args.realtime else Execution.LOCKSTEP
     options = run_options(args, None)
-    if mode is SilMode.REALTIME:
+    if execution is Execution.REALTIME:
         refuse_in_realtime(options)
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
     refuse_trace_over_inputs(args, source)
     build_dir = check_build_dir(args.build_dir)
-    with ControllerRuns(mode, args.file, build_dir,
-                        args.heartbeat_s or DEFAULT_HEARTBEAT_S) as runs:
-        options = dataclasses.replace(options, run_factory=runs)
-        session = RunSession(source, mission, options)
-        report = session.execute(starting=observe(args, session))
-        timings = runs.timings()
-    assert runs.controller is not None
+    options = dataclasses.replace(options, execution=execution, controller=ControllerOptions(
+        args.file, build_dir, args.heartbeat_s or DEFAULT_HEARTBEAT_S))
+    session = RunSession(source, mission, options)
+    report = session.execute(starting=observe(args, session))
+    backend = session.backend
+    assert isinstance(backend, (LockstepBackend, RealtimeBackend))
+    timings = (backend.timings or []) if isinstance(backend, RealtimeBackend) else None
     modules = len(session.plan.tcs.module_tasks)
-    controller: dict[str, Any] = {"mode": mode.value, "pid": runs.controller.pid,
+    controller: dict[str, Any] = {"mode": execution.value, "pid": backend.controller.pid,
                                   "module_tasks": modules}
     how = ("real-time threads, the plant over shared memory" if timings is not None
            else "lockstep over a Unix socket")
-    lines = [f"Controller: process {runs.controller.pid}, {modules} Module-Tasks in C, {how}"]
+    lines = [f"Controller: process {backend.controller.pid}, {modules} Module-Tasks in C, {how}"]
     if timings is not None:
         controller["timing"] = [_timing_dict(t) for t in timings]
         lines += _timing_lines(timings)
-        lost = runs.job_records_lost()
+        lost = backend.job_records_lost
         if args.trace is not None:
             controller["job_records_lost"] = lost
         if lost:

@@ -19,10 +19,12 @@ at the module's releases: :mod:`~orccad_app.mission.updates`; a refused value en
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Any, Callable
 
 from orccad_app.executive.simulation import Simulation
 from orccad_app.lang.ast_robottask import ExceptionType
+from orccad_app.mission.backend import ModuleTaskBackend
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.result import ExceptionRecord, RobotTaskRecord, TaskOutcome
@@ -31,7 +33,18 @@ from orccad_app.robottask.binding import plain_arguments
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
-__all__ = ["RobotTaskLifecycle"]
+__all__ = ["RobotTaskLifecycle", "site_phases"]
+
+
+def site_phases(labels: Iterable[object]) -> dict[int, Phase]:
+    """Site number -> phase of every Robot-Task a state's ``labels`` say is running."""
+    phases: dict[int, Phase] = {}
+    for label in labels:
+        if isinstance(label, PhaseLabel):
+            phases[label.site] = max(phases.get(label.site, label.phase), label.phase)
+        elif isinstance(label, RtLabel):
+            phases.setdefault(label.site, Phase.SYNCHRONIZING)
+    return phases
 
 
 class RobotTaskLifecycle:
@@ -43,6 +56,7 @@ class RobotTaskLifecycle:
 
     plan: MissionPlan
     reactor: MissionReactor
+    backend: ModuleTaskBackend
     sim: Simulation
     records: list[RobotTaskRecord]
     exceptions: list[ExceptionRecord]
@@ -55,13 +69,7 @@ class RobotTaskLifecycle:
     _adjust: dict[int, dict]
 
     def _phases(self) -> dict[int, Phase]:
-        phases: dict[int, Phase] = {}
-        for label in self.reactor.labels:
-            if isinstance(label, PhaseLabel):
-                phases[label.site] = max(phases.get(label.site, label.phase), label.phase)
-            elif isinstance(label, RtLabel):
-                phases.setdefault(label.site, Phase.SYNCHRONIZING)
-        return phases
+        return site_phases(self.reactor.labels)
 
     def _running_site(self, task: str) -> SiteModules | None:
         for site in self.plan.sites:
@@ -123,13 +131,13 @@ class RobotTaskLifecycle:
             wanted = site.wanted(new)
             stop = [m for m in site.modules if m in active and (restart or m not in wanted)]
             if stop:
-                self.sim.kill(stop, at_ns=now)
+                self.backend.kill(stop, now)
                 active.difference_update(stop)
             if starting:  # fresh ports: nothing the previous run wrote is read again
-                self.sim.reset_ports(site.modules, at_ns=now)
+                self.backend.reset_ports(site.modules, now)
             start = [m for m in wanted if m not in active]
             if start:
-                self.sim.activate(start, at_ns=now)
+                self.backend.activate(start, now)
                 self._updates.activated(start, now)
                 active.update(start)
         self._phase = phases

@@ -35,6 +35,12 @@ default and the run's cost budget: :mod:`~orccad_app.mission.budget`), on a run-
 ``auv.battery=5%@60``: a trailing ``%`` is dropped, the fault's unit applies) applies the fault
 ``FAULT`` of robot ``ROBOT``'s plant at ``T`` seconds instead of raising a signal.
 
+**Where the jobs run.** The run's :class:`~orccad_app.mission.backend.ModuleTaskBackend`
+(a constructor argument) says where the Module-Tasks' jobs compute and what steps the
+automaton: in this process (:class:`~orccad_app.mission.backend.InProcess`, the default), or
+in the controller process of ``orccad sil``, in lockstep or in real time. The run activates,
+kills and resets Module-Tasks, hands inputs and holds its events through it.
+
 **Observers.** Executive observers are passed to the simulation; those that also define the
 mission's callbacks (:class:`~orccad_app.mission.observer.MissionObserver`) get those too
 (traces).
@@ -54,6 +60,7 @@ from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
 from orccad_app.executive.processor import Processor
 from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
+from orccad_app.mission.backend import InProcess, ModuleTaskBackend
 from orccad_app.mission.budget import DEFAULT_UNTIL_NS, check_run_budget
 from orccad_app.mission.injection import Injection, typed_injection
 from orccad_app.mission.lifecycle import RobotTaskLifecycle
@@ -62,7 +69,6 @@ from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
-from orccad_app.reactive.runtime import Reactor
 from orccad_app.robottask.binding import ArgumentError
 from orccad_app.robottask.labels import Phase
 
@@ -117,25 +123,26 @@ class MissionRun(RobotTaskLifecycle):
     :param observers: executive observers (traces), optionally with the mission hooks.
     :param realtime: ``None`` (as fast as possible) or the pacing factor (sim s / wall s).
     :param tick_ns: the automaton's periodic reaction [ns] (default ``plan.tick_ns``).
-    :param reactor: what runs the plan's automaton (default a
-        :class:`~orccad_app.reactive.runtime.Reactor` of it; ``orccad sil`` passes the
-        controller process's C automaton).
+    :param backend: where the Module-Tasks' jobs run and what steps the automaton (default
+        :class:`~orccad_app.mission.backend.InProcess`: this process, the Python reactor);
+        its pacing, when it has one, replaces ``realtime``.
     """
 
     def __init__(self, plan: MissionPlan, *, seed: int = 0,
                  until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
                  processors: Iterable[Processor] = (), bus: Bus | None = None,
                  observers: Iterable[Any] = (), realtime: float | None = None,
-                 tick_ns: int | None = None, reactor: MissionReactor | None = None) -> None:
+                 tick_ns: int | None = None, backend: ModuleTaskBackend | None = None) -> None:
         if not isinstance(until_ns, int) or until_ns <= 0:
             raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
         check_run_budget(plan, until_ns)
-        self.realtime = realtime
+        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
+        self.realtime = realtime if self.backend.pacing is None else self.backend.pacing
         self.tick_ns = tick_ns or plan.tick_ns
-        self.reactor: MissionReactor = reactor if reactor is not None else Reactor(plan.automaton)
+        self.reactor: MissionReactor = self.backend.reactor(plan)
         observers = list(observers)
         self._hooks = {hook: [getattr(o, hook) for o in observers if hasattr(o, hook)]
                        for hook in MISSION_HOOKS}
@@ -163,6 +170,7 @@ class MissionRun(RobotTaskLifecycle):
         self._stopped_by: str | None = None
         self._route_signals()
         self._schedule_inputs(injections)
+        self.backend.attach(self, self.sim)
 
     def add_observer(self, observer: Any) -> None:
         """Observe the run from now on (executive callbacks and the mission hooks it has)."""
@@ -185,9 +193,10 @@ class MissionRun(RobotTaskLifecycle):
             if injection.time_ns >= self.until_ns:
                 raise OrccadError(f"--inject {injection.name}@{injection.time_ns / 1e9:g}: "
                                   f"after --until ({self.until_ns / 1e9:g} s)")
-            self.kernel.schedule(max(0, injection.time_ns - self.input_lead_ns), _CONTROL,
-                                 self._inject, injection)
-        self.kernel.schedule(0, _CONTROL, self._tick)
+            self.kernel.schedule(max(0, injection.time_ns - self.backend.input_lead_ns),
+                                 _CONTROL, self._inject, injection)
+        if self.backend.reacts_on_ticks:
+            self.kernel.schedule(0, _CONTROL, self._tick)
 
     def _schedule_fault(self, injection: Injection) -> None:
         robot, fault = injection.robot_fault
@@ -237,8 +246,10 @@ class MissionRun(RobotTaskLifecycle):
             self._post(target, None)
 
     def _post(self, name: str, value: Any) -> None:
-        self._pending[name] = value
         now = self.kernel.now
+        if self.backend.take_input(name, value, now):
+            return
+        self._pending[name] = value
         if not self._queued:
             self._queued = True
             self.kernel.schedule(now, _CONTROL, self._queued_reaction)
@@ -303,12 +314,14 @@ class MissionRun(RobotTaskLifecycle):
         """Site number -> phase of every running Robot-Task (a copy)."""
         return dict(self._phase)
 
-    input_lead_ns = 0
-    """How long before its instant an injection is handed to the reactor [ns] (a reactor
-    running on its own clock queues it until then)."""
+    def warn(self, source: str, message: str) -> None:
+        """Tell the observers (``on_warning``) what went wrong while the run goes on."""
+        for hook in self._hooks["on_warning"]:
+            hook(self.kernel.now, source, message)
 
     def _inject(self, injection: Injection) -> None:
-        self._post(injection.name, injection.value)
+        if not self.backend.take_input(injection.name, injection.value, injection.time_ns):
+            self._post(injection.name, injection.value)
 
     def _queued_reaction(self, _: object) -> None:
         self._queued = False
@@ -346,9 +359,9 @@ class MissionRun(RobotTaskLifecycle):
             step = reactor.step(inputs, now)  # the lean path: the leaf's precomputed result
         except OrccadError as error:
             raise ReactionError(error.message, error.location, error.notes) from None
-        self._apply(now, tuple(pending), step)
+        self.apply_reaction(now, tuple(pending), step)
 
-    def _apply(self, now: int, inputs: tuple[str, ...], step: Any) -> None:
+    def apply_reaction(self, now: int, inputs: tuple[str, ...], step: Any) -> None:
         """What the reaction at ``now`` to ``inputs`` decided (``step``, the reactor having
         made it): the hooks, the outputs, the exceptions, the Robot-Tasks started, killed and
         retuned; the run stops when the mission has ended."""
@@ -385,7 +398,8 @@ class MissionRun(RobotTaskLifecycle):
         reason: str | None = None
         try:  # aborted before it started (Ctrl-C while waiting for Foxglove): no event runs
             until_ns = self.kernel.now if self._stopped_by is not None else self.until_ns
-            self.sim.run(until_ns, realtime=self.realtime)
+            with self.backend.running():
+                self.sim.run(until_ns, realtime=self.realtime)
         except _RUN_FAILURES as error:
             status, reason = MissionStatus.FAILED, error.message
         except _LOCATED_FAILURES as error:
@@ -400,10 +414,11 @@ class MissionRun(RobotTaskLifecycle):
         if status is None:
             status, reason = self._final_status()
         stats = self.sim.stats()
-        return RunResult(self.plan.name, status, reason, self.kernel.now, wall, self.records,
-                         self.exceptions, stats, self.plan.tcs.modules, self.outputs,
-                         self.sim.lateness_s if self.realtime else None, self.seed,
-                         interrupted=reason in (_INTERRUPTED, _TERMINATED))
+        return self.backend.finish(RunResult(
+            self.plan.name, status, reason, self.kernel.now, wall, self.records,
+            self.exceptions, stats, self.plan.tcs.modules, self.outputs,
+            self.sim.lateness_s if self.realtime else None, self.seed,
+            interrupted=reason in (_INTERRUPTED, _TERMINATED)))
 
     def _final_status(self) -> tuple[MissionStatus, str | None]:
         reactor = self.reactor

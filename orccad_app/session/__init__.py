@@ -2,7 +2,9 @@
 
 A run is always assembled the same way (:class:`RunSession`): plan the mission with its
 overrides, type the injections against the plan's inputs, build the processors and the bus,
-make the :class:`~orccad_app.mission.run.MissionRun`, attach the property monitor, the trace
+make the Module-Task backend of the options' :class:`Execution` (in this process, or in a
+controller process in lockstep or real time) and the
+:class:`~orccad_app.mission.run.MissionRun`, attach the property monitor, the trace
 and the caller's observers, run with Ctrl-C and SIGTERM scoped to the run, and return one
 :class:`RunReport` (the result, what was injected from outside, the properties' verdicts)
 that every consumer renders::
@@ -19,8 +21,9 @@ needs the plan before the run (to build an observer from it, or to show it) make
 :class:`RunSession`, adds observers, then calls :meth:`RunSession.execute`.
 """
 
-from orccad_app.session.options import InputScript, RunOptions
+from orccad_app.session.options import ControllerOptions, Execution, InputScript, RunOptions
 from orccad_app.session.report import RunReport
 from orccad_app.session.run import RunSession, run_mission
 
-__all__ = ["RunOptions", "InputScript", "RunReport", "RunSession", "run_mission"]
+__all__ = ["ControllerOptions", "Execution", "InputScript", "RunOptions", "RunReport",
+           "RunSession", "run_mission"]

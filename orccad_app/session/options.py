@@ -2,17 +2,19 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import enum
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
-from orccad_app.mission.run import MissionRun
 from orccad_app.reactive.ir import SignalDecl
 from orccad_app.reactive.script import Instant
+from orccad_app.sil.controller.process import DEFAULT_HEARTBEAT_S
 
-__all__ = ["RunOptions", "InputScript", "MAX_RUN_S", "DEFAULT_UNTIL_S"]
+__all__ = ["ControllerOptions", "DEFAULT_UNTIL_S", "Execution", "InputScript", "MAX_RUN_S",
+           "RunOptions"]
 
 MAX_RUN_S = 365 * 24 * 3600.0
 """The longest run [s] (one year of simulated time)."""
@@ -64,6 +66,35 @@ class InputScript:
         return script_injections(self.read(inputs), tick_ns)
 
 
+class Execution(enum.Enum):
+    """Where the Module-Tasks' jobs run and what steps the automaton (the run façade picks
+    the run's :class:`~orccad_app.mission.backend.ModuleTaskBackend` from it)."""
+
+    SIMULATED = "simulated"
+    """In this process: the executive runs the Python Module-Tasks on simulated processors,
+    the Python reactor reacts (``orccad run``)."""
+    LOCKSTEP = "lockstep"
+    """In the controller process, one exchange per job over a Unix socket, on the executive's
+    timing model (``orccad sil --lockstep``)."""
+    REALTIME = "realtime"
+    """On the controller process's real-time threads on the wall clock, the plant over
+    shared memory (``orccad sil --realtime``)."""
+
+
+@dataclass(frozen=True)
+class ControllerOptions:
+    """The controller process of a lockstep or real-time run.
+
+    :param source: the mission file, named in the generated sources.
+    :param build_dir: where the generated C goes (``None``: a temporary directory).
+    :param heartbeat_s: the controller must answer each request within this [wall s].
+    """
+
+    source: str = ""
+    build_dir: Path | None = None
+    heartbeat_s: float = DEFAULT_HEARTBEAT_S
+
+
 @dataclass(frozen=True)
 class RunOptions:
     """Everything a caller chooses about one run (``orccad run``'s options).
@@ -89,10 +120,9 @@ class RunOptions:
         source's path).
     :param observers: observers of the run (executive callbacks and the mission hooks,
         :mod:`orccad_app.mission.observer`).
-    :param run_factory: makes the :class:`~orccad_app.mission.run.MissionRun` from the plan
-        and its keyword arguments (``seed``, ``until_ns``, ``injections``, ``processors``,
-        ``bus``, ``observers``, ``realtime``): a subclass for another way of executing the
-        Module-Tasks (``orccad sil``); default :class:`MissionRun` itself.
+    :param execution: where the Module-Tasks' jobs run (:class:`Execution`; the façade
+        makes the run's backend from it).
+    :param controller: the controller process of a lockstep or real-time run.
     :param signals_end_run: Ctrl-C and SIGTERM end the run after the current event (status
         ``aborted``, report and trace complete), a second one at once; the handlers are
         installed for the run only, and only from the main thread.
@@ -112,5 +142,6 @@ class RunOptions:
     trace_format: str | None = None
     trace_file: str | None = None
     observers: tuple[Any, ...] = ()
-    run_factory: Callable[..., MissionRun] | None = None
+    execution: Execution = Execution.SIMULATED
+    controller: ControllerOptions = field(default_factory=ControllerOptions)
     signals_end_run: bool = False

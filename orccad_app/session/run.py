@@ -8,11 +8,14 @@ Every way of running a mission goes through here (``orccad run``, campaigns, the
 2. **type** the injections once, against the plan's inputs (a pure input takes no value, a
    valued one a value of its declared type; plant faults finite), and add the input script's;
 3. build the **processors** (every processor of the plan with the options' scheduler and
-   context switch) and the **bus**, and the :class:`~orccad_app.mission.run.MissionRun`;
+   context switch) and the **bus**, the Module-Task **backend** of the options' execution
+   (:mod:`.backends`: in-process, or a controller process in lockstep or real time), and the
+   :class:`~orccad_app.mission.run.MissionRun`;
 4. attach the **property monitor** (:class:`~orccad_app.properties.PropertyMonitor`), the
    **trace** (:mod:`orccad_app.trace`) and the caller's **observers**;
 5. **run**, Ctrl-C and SIGTERM scoped to the run when asked (:mod:`.signals`), close the
-   trace and the observers' files, and return one :class:`~orccad_app.session.report.RunReport`.
+   trace, the observers' files and the backend (a controller process ended and reaped), and
+   return one :class:`~orccad_app.session.report.RunReport`.
 """
 
 from __future__ import annotations
@@ -25,12 +28,14 @@ from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.processor import Processor
 from orccad_app.lang import ast
+from orccad_app.mission.backend import ModuleTaskBackend
 from orccad_app.mission.injection import Injection, typed_injections
 from orccad_app.mission.overrides import plan_with_overrides
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import Source
 from orccad_app.properties.evaluate import PropertyMonitor
+from orccad_app.session.backends import module_task_backend
 from orccad_app.session.options import DEFAULT_UNTIL_S, MAX_RUN_S, RunOptions
 from orccad_app.session.report import RunReport
 from orccad_app.session.signals import signals_end_the_run
@@ -71,17 +76,25 @@ class RunSession:
         """The records of what the options inject (the report lists them)."""
         processors = [Processor(name, options.scheduler, options.context_switch_ns)
                       for name in self.plan.processor_names]
-        make = options.run_factory or MissionRun
-        self.run: MissionRun = make(self.plan, seed=options.seed, until_ns=self.until_ns,
-                                    injections=injections, processors=processors,
-                                    bus=Bus(transfer_ns=options.bus_transfer_ns),
-                                    observers=options.observers, realtime=options.realtime)
-        """The :class:`~orccad_app.mission.run.MissionRun` (observe it, do not reach in)."""
-        self.monitor = PropertyMonitor(source.program, mission, self.run)
-        """Judges every property of the mission on the run."""
+        self.backend: ModuleTaskBackend = module_task_backend(options, self.plan,
+                                                              self.until_ns)
+        """Where the Module-Tasks' jobs run (:mod:`.backends`); closed when the run ends."""
         self._closing: list[Callable[[], None]] = []
-        if options.trace is not None:
-            self._open_trace(options.trace)
+        try:
+            self.run = MissionRun(self.plan, seed=options.seed, until_ns=self.until_ns,
+                                  injections=injections, processors=processors,
+                                  bus=Bus(transfer_ns=options.bus_transfer_ns),
+                                  observers=options.observers, realtime=options.realtime,
+                                  backend=self.backend)
+            """The :class:`~orccad_app.mission.run.MissionRun` (observe it, do not reach
+            in)."""
+            self.monitor = PropertyMonitor(source.program, mission, self.run)
+            """Judges every property of the mission on the run."""
+            if options.trace is not None:
+                self._open_trace(options.trace)
+        except BaseException:  # a refused option: the controller process is ended at once
+            self.backend.close()
+            raise
         self.report: RunReport | None = None
         """The report, once :meth:`execute` has run."""
 
@@ -147,8 +160,11 @@ class RunSession:
                         starting(self.run)
                     result = self.run.run()
             finally:
-                for close in self._closing:
-                    close()
+                try:
+                    for close in self._closing:
+                        close()
+                finally:
+                    self.backend.close()
         except OSError as error:
             if self.options.trace is None:
                 raise
@@ -157,6 +173,23 @@ class RunSession:
         records = sorted(self.injected, key=lambda record: record.time_ns)
         self.report = RunReport(result, tuple(records), tuple(self.monitor.results()))
         return self.report
+
+
+    def close(self) -> None:
+        """End what the session holds without running (a controller process; the trace's
+        and observers' files): for a session that is not executed."""
+        try:
+            for close in self._closing:
+                close()
+        finally:
+            self._closing = []
+            self.backend.close()
+
+    def __enter__(self) -> RunSession:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
 
 def run_mission(source: Source, mission: ast.Mission, options: RunOptions = RunOptions(),

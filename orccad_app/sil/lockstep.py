@@ -9,9 +9,13 @@ execution times, never by the machine's speed, so a run is reproducible, and the
 ``orccad run``'s wherever the C Module-Tasks compute what the Python ones do (bit for bit for
 the arm's kinds; within a few ULP for the AUV's distances, see docs/deploy.md).
 
-:func:`~orccad_app.sil.build.executable.build_controller` writes and builds the controller of
-a plan; :func:`remote_sites` makes each run site start
-:class:`~orccad_app.sil.controller.remote.RemoteModule` proxies instead of Python instances.
+:class:`LockstepBackend` is the run's Module-Task backend
+(:class:`~orccad_app.mission.backend.ModuleTaskBackend`): the executive's timing model as
+in-process, the jobs' compute and the automaton's steps in the controller. :func:`lockstep`
+builds and starts the controller of a plan
+(:func:`~orccad_app.sil.build.executable.build_controller`) and makes each run site start
+:class:`~orccad_app.sil.controller.remote.RemoteModule` proxies instead of Python instances
+(:func:`remote_sites`).
 """
 
 from __future__ import annotations
@@ -19,20 +23,24 @@ from __future__ import annotations
 import dataclasses
 import tempfile
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 from typing import Any
 
 from orccad_app.codegen.generate import CProgram
+from orccad_app.mission.backend import InProcess
 from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.reactor import MissionReactor
+from orccad_app.reactive.automaton import Automaton
 from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
                                               ControllerProcess)
 from orccad_app.sil.controller.remote import RemoteSite
 from orccad_app.sil.generate.automaton import mission_automaton
 from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["lockstep", "remote_sites", "start_controller"]
+__all__ = ["LockstepBackend", "lockstep", "remote_sites", "start_controller"]
 
 
 class _NotInController:
@@ -82,3 +90,42 @@ def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
             yield controller
         finally:
             controller.close()
+
+
+class LockstepBackend(InProcess):
+    """``orccad sil --lockstep``: the executive releases, schedules and times the jobs as
+    in-process (:class:`~orccad_app.mission.backend.InProcess`), each job's compute is one
+    request to the controller process, and the mission's C automaton is stepped there
+    (:class:`~orccad_app.sil.controller.automaton.ControllerAutomaton`).
+
+    Made once the façade has planned the mission: the plan's automaton becomes the full one
+    (:func:`~orccad_app.sil.generate.automaton.mission_automaton`), the controller is written,
+    built (cached) and started, and the plan's sites start proxies. :meth:`close` ends and
+    reaps the controller.
+
+    :param plan: the run's plan.
+    :param source: the mission file (named in the generated sources).
+    :param build_dir: where the generated C goes (default a temporary directory).
+    :param heartbeat_s: the controller must answer each request within this [s].
+    """
+
+    def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+        super().__init__()
+        self._program = mission_automaton(plan)
+        self._stack = ExitStack()
+        self.controller: ControllerProcess = self._stack.enter_context(
+            lockstep(plan, source, build_dir, heartbeat_s, self._program))
+        """The controller process."""
+        self.automaton: ControllerAutomaton | None = None
+        """The mission's automaton in the controller, once the run is made."""
+
+    def reactor(self, plan: MissionPlan) -> MissionReactor:
+        """The controller's C automaton, stepped over the socket."""
+        assert isinstance(plan.automaton, Automaton)
+        self.automaton = ControllerAutomaton(self.controller, self._program, plan.automaton)
+        return self.automaton
+
+    def close(self) -> None:
+        """End and reap the controller."""
+        self._stack.close()

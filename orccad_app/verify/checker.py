@@ -26,8 +26,9 @@ from orccad_app.verify.lasso import Periodic, evaluate, holds_on_lasso
 from orccad_app.verify.letters import Alphabet
 from orccad_app.verify.model import Model, build_model
 from orccad_app.verify.search import Instant, Lasso, find_lasso
-from orccad_app.verify.symbolic.checker import (SymbolicCheck, builtin_outcome,
-                                                property_outcome, release, symbolic_model)
+from orccad_app.verify.symbolic.checker import (SymbolicCheck, builtin_outcome, counters_of,
+                                                parallel_tasks, property_outcome, release,
+                                                symbolic_model)
 from orccad_app.verify.tableau import Tableau
 
 __all__ = ["PropertyOutcome", "MissionReport", "check_mission", "check_formula", "applicable",
@@ -211,7 +212,12 @@ def check_mission(program: ast.Program, mission: ast.Mission, *, builtins: bool 
         raise OrccadError(f"unknown checker engine '{engine}' (one of {', '.join(ENGINES)})")
     states = None if progress is None else progress.states
     reason = ""
-    if engine != SYMBOLIC:
+    if engine == AUTO:
+        lazy = compose(program, mission, max_states=max_states, lazy=True)
+        reason = parallel_tasks(lazy)
+        if reason and counters_of(lazy):
+            reason = ""  # the explicit model tracks the counters: keep it while it fits
+    if engine == EXPLICIT or (engine == AUTO and not reason):
         limit = AUTO_EXPLICIT_TRANSITIONS if engine == AUTO else None
         try:
             composition = compose(program, mission, max_states=max_states, progress=states,

@@ -5,6 +5,7 @@ agrees with ``Reactor.step``."""
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import subprocess
@@ -227,3 +228,7 @@ def test_a_path_with_comment_markers_and_bytes_not_utf8(tmp_path):
     expected = os.path.join(folder, b"m.orc") + (
         f":1:{text.index('10 /') + 1}: error: run-time error in 10 / ?N: ".encode())
     assert done.returncode == 2 and done.stderr.startswith(expected), done.stderr
+    traced = subprocess.run([str(out / "run"), str(script), "--trace"], capture_output=True,
+                            text=True)
+    error = json.loads(traced.stdout.splitlines()[-1])["error"]
+    assert error["file"] == os.fsdecode(source)  # the byte 0xff as Python holds it: \udcff

@@ -8,8 +8,7 @@ from typing import Any
 
 from orccad_app.mission.plan import plan_mission
 from orccad_app.pipeline import load, select_mission
-from orccad_app.session import RunOptions, RunSession
-from orccad_app.sil.runs import ControllerRuns, SilMode
+from orccad_app.session import ControllerOptions, Execution, RunOptions, RunSession
 
 MISSIONS = Path(__file__).resolve().parents[2] / "missions"
 
@@ -20,13 +19,16 @@ def plan_of(file: str, mission: str | None = None):
     return plan_mission(source, select_mission(source, mission))
 
 
-def session_of(file: str, mission: str | None = None, runs: ControllerRuns | None = None,
+def session_of(file: str, mission: str | None = None,
+               execution: Execution = Execution.SIMULATED, heartbeat_s: float | None = None,
                **options: Any) -> RunSession:
     """The session of ``mission`` of shipped ``file`` (``options``: RunOptions fields), its
-    run made by ``runs`` when given."""
+    Module-Tasks run as ``execution`` says (a controller process with ``heartbeat_s``)."""
     source = load(str(MISSIONS / file))
+    controller = ControllerOptions(file, None, heartbeat_s) if heartbeat_s else \
+        ControllerOptions(file)
     return RunSession(source, select_mission(source, mission),
-                      RunOptions(run_factory=runs, **options))
+                      RunOptions(execution=execution, controller=controller, **options))
 
 
 def report(data: Any) -> dict:
@@ -41,12 +43,13 @@ def executive_report(file: str, mission: str | None = None, **options: Any) -> d
     return report(session_of(file, mission, **options).execute())
 
 
-def sil_report(file: str, mission: str | None = None, mode: SilMode = SilMode.LOCKSTEP,
+def sil_report(file: str, mission: str | None = None, mode: Execution = Execution.LOCKSTEP,
                **options: Any) -> dict:
     """``orccad sil``'s report (without the controller's section) of ``mission`` of
     ``file``; the controller process is gone when it returns."""
-    with ControllerRuns(mode, file) as runs:
-        got = report(session_of(file, mission, runs, **options).execute())
-        assert runs.controller is not None and runs.controller.alive
-    assert not runs.controller.alive
+    session = session_of(file, mission, mode, **options)
+    controller = session.backend.controller
+    assert controller.alive
+    got = report(session.execute())
+    assert not controller.alive
     return got

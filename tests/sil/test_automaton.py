@@ -13,11 +13,11 @@ import pytest
 
 from orccad_app.mission.injection import parse_injection
 from orccad_app.reactive.runtime import Reactor
-from orccad_app.sil import runs as sil_runs
+from orccad_app.sil import lockstep as sil_lockstep
 from orccad_app.sil.controller.automaton import ControllerAutomaton
-from orccad_app.sil.runs import ControllerRuns, SilMode
+from orccad_app.session import Execution
 
-from tests.sil.helpers import MISSIONS, executive_report, report, session_of
+from tests.sil.helpers import executive_report, report, session_of
 
 
 class _Twin(ControllerAutomaton):
@@ -49,7 +49,7 @@ class _Twin(ControllerAutomaton):
 @pytest.fixture
 def twin(monkeypatch):
     _Twin.compared = []
-    monkeypatch.setattr(sil_runs, "ControllerAutomaton", _Twin)
+    monkeypatch.setattr(sil_lockstep, "ControllerAutomaton", _Twin)
     return _Twin
 
 
@@ -64,11 +64,10 @@ def test_the_c_automaton_reacts_as_the_python_reactor_reaction_by_reaction(twin,
                                                                           inject, until_s):
     injections = (parse_injection(inject),) if inject else ()
     options = {"until_s": until_s} if until_s else {}
-    with ControllerRuns(SilMode.LOCKSTEP, str(MISSIONS / file)) as runs:
-        got = report(session_of(file, mission, runs, injections=injections,
-                                **options).execute())
-        assert isinstance(runs.automaton, _Twin) and runs.run is not None
-        assert runs.run.reactor is runs.automaton
+    session = session_of(file, mission, Execution.LOCKSTEP, injections=injections, **options)
+    got = report(session.execute())
+    assert isinstance(session.backend.automaton, _Twin)
+    assert session.run.reactor is session.backend.automaton
     reactions = twin.compared
     assert len(reactions) > 50  # every tick and every event, not a handful
     assert sum(1 for _, outputs in reactions if outputs) >= 2  # starts, ends, exceptions
@@ -84,13 +83,13 @@ def test_the_run_steps_the_controllers_automaton():
         def on_reaction(self, t_ns, inputs, outputs, status):
             seen.append(t_ns)
 
-    with ControllerRuns(SilMode.LOCKSTEP, str(MISSIONS / "arm_pid.orc")) as runs:
-        session = session_of("arm_pid.orc", None, runs, observers=(Reactions(),), until_s=0.5)
-        session.execute()
-        automaton = runs.automaton
-        assert isinstance(automaton, ControllerAutomaton)
-        assert automaton.instant == len(seen) > 100
-        assert runs.run is not None and runs.run.reactor is automaton
+    session = session_of("arm_pid.orc", None, Execution.LOCKSTEP, observers=(Reactions(),),
+                         until_s=0.5)
+    session.execute()
+    automaton = session.backend.automaton
+    assert isinstance(automaton, ControllerAutomaton)
+    assert automaton.instant == len(seen) > 100
+    assert session.run.reactor is automaton
 
 
 ROBOT_MISSION = """robot arm : arm3dof;

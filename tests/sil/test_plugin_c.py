@@ -14,9 +14,8 @@ import pytest
 from orccad_app.pipeline import load, select_mission
 from orccad_app.plugin_api import (REQUIRED, CImplementation, ModuleInstance, ModuleKind,
                                    ParamSpec, PortSpec, PluginHost, Timing, hookimpl)
-from orccad_app.session import RunOptions, RunSession
+from orccad_app.session import ControllerOptions, Execution, RunOptions, RunSession
 from orccad_app.sil.generate.layout import NoCImplementation
-from orccad_app.sil.runs import ControllerRuns, SilMode
 
 from tests.sil.helpers import MISSIONS, report
 
@@ -87,16 +86,17 @@ def _mission(tmp_path) -> Path:
     return path
 
 
-def _session(path: Path, kind: ModuleKind, runs: ControllerRuns | None = None) -> RunSession:
+def _session(path: Path, kind: ModuleKind,
+             execution: Execution = Execution.SIMULATED) -> RunSession:
     source = load(str(path), PluginHost.load([("sil_test_low_pass", _Plugin(kind))]))
-    return RunSession(source, select_mission(source, None), RunOptions(run_factory=runs))
+    return RunSession(source, select_mission(source, None),
+                      RunOptions(execution=execution, controller=ControllerOptions(str(path))))
 
 
 def test_a_plugin_kinds_c_runs_in_the_controller_as_its_python_does(tmp_path):
     path = _mission(tmp_path)
     expected = report(_session(path, LowPass()).execute())
-    with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:
-        got = report(_session(path, LowPass(), runs).execute())
+    got = report(_session(path, LowPass(), Execution.LOCKSTEP).execute())
     assert expected["status"] == "done"
     assert got == expected
 
@@ -104,7 +104,6 @@ def test_a_plugin_kinds_c_runs_in_the_controller_as_its_python_does(tmp_path):
 def test_a_plugin_kind_without_c_is_refused_with_its_name_and_the_reason(tmp_path):
     path = _mission(tmp_path)
     with pytest.raises(NoCImplementation, match="low_pass") as refused:
-        with ControllerRuns(SilMode.LOCKSTEP, str(path)) as runs:
-            _session(path, PythonOnlyLowPass(), runs)
+        _session(path, PythonOnlyLowPass(), Execution.LOCKSTEP)
     assert "exists only in Python" in refused.value.message
     assert "c_implementation" in refused.value.message

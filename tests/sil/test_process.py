@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from mcap.reader import make_reader
 
-from orccad_app.sil.runs import ControllerRuns, SilMode
+from orccad_app.session import Execution
 
 from tests.sil.helpers import MISSIONS, session_of
 
@@ -46,27 +46,30 @@ def _gone(pid: int) -> bool:
 
 
 class _SignalAt:
-    """Sends ``signum`` to the controller of ``runs`` at the first release at or after
-    ``at_ns``."""
+    """Sends ``signum`` to the controller process ``pid`` (set once the session has started
+    it) at the first release at or after ``at_ns``."""
 
-    def __init__(self, runs: ControllerRuns, signum: int, at_ns: int) -> None:
-        self.runs, self.signum, self.at_ns, self.sent = runs, signum, at_ns, False
+    def __init__(self, signum: int, at_ns: int) -> None:
+        self.signum, self.at_ns, self.sent = signum, at_ns, False
+        self.pid = 0
 
     def on_release(self, now: int, name: str, index: int) -> None:
         if now >= self.at_ns and not self.sent:
             self.sent = True
-            os.kill(self.runs.controller.pid, self.signum)
+            os.kill(self.pid, self.signum)
 
 
 @pytest.mark.parametrize("signum,words", [(signal.SIGKILL, "crashed: killed by SIGKILL"),
                                           (signal.SIGSTOP, "hung: no answer")])
 def test_a_crashed_or_hung_controller_fails_the_run_with_its_reason(tmp_path, signum, words):
     trace = tmp_path / "run.mcap"
-    with ControllerRuns(SilMode.LOCKSTEP, "arm_pid.orc", heartbeat_s=0.5) as runs:
-        session = session_of("arm_pid.orc", runs=runs, trace=str(trace),
-                             observers=(_SignalAt(runs, signum, 10**9),))
-        result = session.execute().result
-        assert _gone(runs.controller.pid)  # killed and reaped at once, not at the end
+    signal_at = _SignalAt(signum, 10**9)
+    session = session_of("arm_pid.orc", execution=Execution.LOCKSTEP, heartbeat_s=0.5,
+                         trace=str(trace), observers=(signal_at,))
+    signal_at.pid = session.backend.controller.pid
+    result = session.execute().result
+    assert session.backend.controller.failure is not None  # killed at once, in the run
+    assert _gone(signal_at.pid)  # and reaped
     assert result.status == "failed"
     assert words in result.reason
     assert 1.0 <= result.sim_time_ns / 1e9 < 1.01

@@ -15,7 +15,7 @@ import sys
 import pytest
 
 from orccad_app.mission.injection import parse_injection
-from orccad_app.sil.runs import ControllerRuns, SilMode
+from orccad_app.session import Execution
 
 from tests.sil.helpers import MISSIONS, session_of
 from tests.sil.test_process import _controllers_of, _gone
@@ -48,16 +48,15 @@ def _realtime(file: str, mission: str | None = None, **options):
     """The result and timings of a real-time SIL run of shipped ``file`` on a machine that
     kept time (:func:`on_a_real_time_machine`), and its controller runs."""
     def run():
-        with ControllerRuns(SilMode.REALTIME, file) as runs:
-            result = session_of(file, mission, runs, **options).execute().result
-            timings = {t.name: t for t in runs.timings()}
-        return result, timings, runs
+        session = session_of(file, mission, Execution.REALTIME, **options)
+        result = session.execute().result
+        return result, {t.name: t for t in session.backend.timings}, session.backend
     return on_a_real_time_machine(run)
 
 
 def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     inject = (parse_injection("TrackPID.TrackingLost@2.5"),)
-    result, timings, runs = _realtime("arm_recovery.orc", injections=inject)
+    result, timings, backend = _realtime("arm_recovery.orc", injections=inject)
     assert result.status == "done", result.reason
     assert [(r.name, r.outcome) for r in result.robot_tasks] == [
         ("Home", "good_end"), ("TrackPID", "TrackingLost"), ("Home", "good_end"),
@@ -70,7 +69,7 @@ def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     assert ctrl.predicted_s == pytest.approx(0.0003)
     assert timings["Park.ctrl"].released == 0  # never started
     assert _controllers_of(os.getpid()) == []
-    assert not os.path.exists(runs.run.shared_memory_path)  # removed once mapped: none left
+    assert not os.path.exists(backend.shared_memory_path)  # removed once mapped: none left
 
 
 def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
@@ -80,14 +79,15 @@ def test_a_controller_killed_in_real_time_fails_the_run_with_the_reason():
         def on_reaction(self, now, inputs, outputs, status):
             if now >= 500_000_000 and not self.sent:
                 self.sent = True
-                os.kill(runs.controller.pid, signal.SIGKILL)
+                os.kill(session.backend.controller.pid, signal.SIGKILL)
 
     kill = Kill()
-    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
-        result = session_of("arm_pid.orc", runs=runs, observers=(kill,)).execute().result
-        assert (result.status, kill.sent) == ("failed", True), result.reason
-        assert "killed by SIGKILL" in result.reason, result.reason
-        assert _gone(runs.controller.pid)  # reaped by the run, before the block's end
+    session = session_of("arm_pid.orc", execution=Execution.REALTIME, observers=(kill,))
+    result = session.execute().result
+    assert (result.status, kill.sent) == ("failed", True), result.reason
+    assert "killed by SIGKILL" in result.reason, result.reason
+    assert session.backend.controller.failure is not None  # killed by the run
+    assert _gone(session.backend.controller.pid)  # and reaped
     assert _controllers_of(os.getpid()) == []
 
 
@@ -109,16 +109,17 @@ def test_blocking_protocols_run_on_the_real_time_threads(tmp_path):
     trajectory and the law: the run ends as the executive's does, one law job per trajectory
     job (each waits for the other)."""
     from orccad_app.pipeline import load, select_mission
-    from orccad_app.session import RunOptions, RunSession
+    from orccad_app.session import ControllerOptions, RunOptions, RunSession
 
     path = _arm_pid_with(tmp_path, "asyn/syn", "syn/syn")
     source = load(path)
 
     def run():
-        with ControllerRuns(SilMode.REALTIME, path) as runs:
-            result = RunSession(source, select_mission(source, None),
-                                RunOptions(run_factory=runs)).execute().result
-            return result, {t.name: t for t in runs.timings()}
+        session = RunSession(source, select_mission(source, None),
+                             RunOptions(execution=Execution.REALTIME,
+                                        controller=ControllerOptions(path)))
+        result = session.execute().result
+        return result, {t.name: t for t in session.backend.timings}
 
     result, timings = on_a_real_time_machine(run)
     assert result.status == "done", result.reason
@@ -185,19 +186,19 @@ def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
     def run():
         ops.clear()
         samples.clear()
-        with ControllerRuns(SilMode.REALTIME, "arm_retune.orc") as runs:
-            session = session_of("arm_retune.orc", runs=runs, until_s=1.5)
-            _spied(runs, ops)
-            request, realtime_run = runs.controller.request, runs.run
-            law = realtime_run.table.index("TrackSoft.ctrl")
+        session = session_of("arm_retune.orc", execution=Execution.REALTIME, until_s=1.5)
+        controller = session.backend.controller
+        _spied(controller, ops)
+        request, kernel = controller.request, session.run.kernel
+        law = session.backend.table.index("TrackSoft.ctrl")
 
-            def sample(op, *args, **kwargs):
-                if op is Op.PING:
-                    samples.append((realtime_run.kernel.now, tuple(request(Op.PARAMS, law))))
-                return request(op, *args, **kwargs)
+        def sample(op, *args, **kwargs):
+            if op is Op.PING:
+                samples.append((kernel.now, tuple(request(Op.PARAMS, law))))
+            return request(op, *args, **kwargs)
 
-            runs.controller.request = sample
-            return (session.execute().result,)
+        controller.request = sample
+        return (session.execute().result,)
 
     (result,) = on_a_real_time_machine(run)
     assert Op.PARAM not in ops and Op.START not in ops
@@ -242,9 +243,9 @@ def test_without_sched_fifo_a_warning_says_why():
     assert "Measured on the controller's threads" in done.stdout
 
 
-def _spied(runs, ops):
-    """Record every request's operation sent to the controller of ``runs``."""
-    request, request_words = runs.controller.request, runs.controller.request_words
+def _spied(controller, ops):
+    """Record every request's operation sent to ``controller``."""
+    request, request_words = controller.request, controller.request_words
 
     def spy(op, *args, **kwargs):
         ops.append(op)
@@ -254,7 +255,7 @@ def _spied(runs, ops):
         ops.append(op)
         return request_words(op, *args, **kwargs)
 
-    runs.controller.request, runs.controller.request_words = spy, spy_words
+    controller.request, controller.request_words = spy, spy_words
 
 
 def test_the_automaton_is_a_task_of_the_controller():
@@ -274,13 +275,13 @@ def test_the_automaton_is_a_task_of_the_controller():
             reactions.append((t_ns, tuple(inputs), tuple(outputs)))
 
     inject = (parse_injection("TrackPID.TrackingLost@0.3"),)
-    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
-        session = session_of("arm_pid.orc", runs=runs, observers=(Reactions(),),
-                             injections=inject, until_s=1.0)
-        _spied(runs, ops)
-        result = session.execute().result
-        timings = {t.name: t for t in runs.timings()}
-        assert runs.automaton is not None and runs.automaton.instant == len(reactions)
+    session = session_of("arm_pid.orc", execution=Execution.REALTIME,
+                         observers=(Reactions(),), injections=inject, until_s=1.0)
+    _spied(session.backend.controller, ops)
+    result = session.execute().result
+    timings = {t.name: t for t in session.backend.timings}
+    automaton = session.backend.automaton
+    assert automaton is not None and automaton.instant == len(reactions)
     assert ops.count(Op.INPUT) == 1 and ops.count(Op.EPOCH) == 1
     assert not {Op.REACT, Op.START, Op.ACTIVATE, Op.KILL, Op.RESET} & set(ops), set(ops)
     assert result.status == "failed" and result.robot_tasks[0].outcome == "TrackingLost"
@@ -302,11 +303,11 @@ def test_a_start_with_run_time_arguments_is_bound_by_the_supervisor():
 
     ops: list[Op] = []
     inject = (parse_injection("Waypoint([15, 0, 5])@0.5"),)
-    with ControllerRuns(SilMode.REALTIME, "auv_waypoints.orc") as runs:
-        session = session_of("auv_waypoints.orc", runs=runs, injections=inject, until_s=1.2)
-        _spied(runs, ops)
-        result = session.execute().result
-        timings = {t.name: t for t in runs.timings()}
+    session = session_of("auv_waypoints.orc", execution=Execution.REALTIME, injections=inject,
+                         until_s=1.2)
+    _spied(session.backend.controller, ops)
+    result = session.execute().result
+    timings = {t.name: t for t in session.backend.timings}
     goto = result.robot_tasks[0]
     assert (goto.name, goto.start_ns, goto.args) == ("GoTo", 500_000_000,
                                                      {"target": [15.0, 0.0, 5.0]})
@@ -328,10 +329,10 @@ def test_a_constant_type_1_update_is_applied_by_the_automaton_task():
 
     def run():
         ops.clear()
-        with ControllerRuns(SilMode.REALTIME, "arm_recovery.orc") as runs:
-            session = session_of("arm_recovery.orc", runs=runs, injections=inject, until_s=2.6)
-            _spied(runs, ops)
-            return (session.execute().result,)
+        session = session_of("arm_recovery.orc", execution=Execution.REALTIME,
+                             injections=inject, until_s=2.6)
+        _spied(session.backend.controller, ops)
+        return (session.execute().result,)
 
     (result,) = on_a_real_time_machine(run)
     assert Op.PARAM not in ops and Op.START not in ops
@@ -367,23 +368,23 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
 
     # one run, whatever the machine's load: the threads' jobs are counted loosely below, and a
     # stalled plant server delays the records' reading, not the jobs
-    with ControllerRuns(SilMode.REALTIME, "arm_pid.orc") as runs:
-        session = session_of("arm_pid.orc", runs=runs, until_s=0.5, trace=str(table))
-        session.record(open_trace(mcap))
-        shared = runs.run._shared
-        read = shared.jobs
+    session = session_of("arm_pid.orc", execution=Execution.REALTIME, until_s=0.5,
+                         trace=str(table))
+    session.record(open_trace(mcap))
+    shared = session.backend._shared
+    read = shared.jobs
 
-        def overrun_once():  # the ring's overrun as the plant server would find it, once
-            batch = read()
-            if shared.ints[4] > 1000 and not overrun_once.done:
-                overrun_once.done = True
-                return dataclasses.replace(batch, lost=batch.lost + 5)
-            return batch
+    def overrun_once():  # the ring's overrun as the plant server would find it, once
+        batch = read()
+        if shared.ints[4] > 1000 and not overrun_once.done:
+            overrun_once.done = True
+            return dataclasses.replace(batch, lost=batch.lost + 5)
+        return batch
 
-        overrun_once.done = False
-        shared.jobs = overrun_once
-        result = session.execute().result
-        lost = runs.job_records_lost()
+    overrun_once.done = False
+    shared.jobs = overrun_once
+    result = session.execute().result
+    lost = session.backend.job_records_lost
     assert lost == 5  # counted (the ring itself lost none), the mission went on
     track = result.robot_tasks[0]  # (a stalled machine may lose track: ended earlier)
     span_ns = (500_000_000 if track.end_ns is None else track.end_ns) - track.start_ns

@@ -18,6 +18,7 @@ from orccad_app.reactive import ir
 from orccad_app.verify import data
 from orccad_app.robottask.atoms import ACTIVE, SIGNAL, STATUS, TRUE_ATOM, Atoms
 from orccad_app.robottask.composition import Composition
+from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify.builtins import BUILTINS
 from orccad_app.verify.counterexample import Script, make_script
 from orccad_app.verify.formula import F, atoms, conj, from_ast, neg
@@ -31,7 +32,8 @@ from orccad_app.verify.symbolic.model import SymbolicModel
 from orccad_app.verify.symbolic.runs import holds_at
 from orccad_app.verify.symbolic.witness import Witness
 
-__all__ = ["SymbolicCheck", "symbolic_model", "builtin_outcome", "property_outcome", "release"]
+__all__ = ["SymbolicCheck", "symbolic_model", "builtin_outcome", "property_outcome", "release",
+           "parallel_tasks", "counters_of"]
 
 
 @dataclass(frozen=True)
@@ -57,7 +59,7 @@ def symbolic_model(composition: Composition) -> tuple[SymbolicModel, Witness, Sy
     m = model.m
     control = m.exists(["failed_before"], reachable)
     sizes = SymbolicCheck(model.count(control) // 2, model.count(reachable),
-                          len(m.bdd), len(model.cur), circuit.walks, bool(_counters(composition)))
+                          len(m.bdd), len(model.cur), circuit.walks, bool(counters_of(composition)))
     return model, Witness(model), sizes
 
 
@@ -69,7 +71,7 @@ def release(model: SymbolicModel, witness: Witness) -> None:
     manager.release(circuit, model)
 
 
-def _counters(composition: Composition) -> tuple:
+def counters_of(composition: Composition) -> tuple:
     """The variables the explicit model would track exactly (see :mod:`..data`)."""
     prep = composition.automaton.prep  # type: ignore[union-attr]
     actions = []
@@ -88,6 +90,25 @@ def _counters(composition: Composition) -> tuple:
                 tracked.discard(action.var)
                 changed = True
     return tuple(tracked)
+
+
+def parallel_tasks(composition: Composition) -> str:
+    """Why the symbolic engine suits ``composition`` (empty if it does not): a ``par`` with
+    Robot-Tasks in two of its branches makes the explicit automaton the product of what each
+    branch tests."""
+    prep = composition.automaton.prep  # type: ignore[union-attr]
+    regions = [(lo, hi) for label, lo, hi in prep.marks if isinstance(label, RtLabel)]
+
+    def has_task(node) -> bool:
+        return any(node.lo <= lo and hi <= node.hi for lo, hi in regions)
+
+    stack = [prep.root]
+    while stack:
+        node = stack.pop()
+        if isinstance(node.src, ir.Par) and sum(map(has_task, node.children)) >= 2:
+            return f"Robot-Tasks in parallel at {node.src.loc}"
+        stack.extend(node.children)
+    return ""
 
 
 def builtin_outcome(model: SymbolicModel, witness: Witness, name: str, outcome_type):

@@ -99,17 +99,24 @@ class _Product:
         self.init = model.init & m.cube({b: False for b in self.bits})
         self.to_cur = {**model.to_cur, **dict(zip(self.bits_next, self.bits))}
         self.quantify = model.cur + model.free + self.bits
-        self.reachable = m.false
         self.rings: list[Node] = []
+        self._steps: dict[Node, Node] = {}
 
     # ------------------------------------------------------------------ steps
     def _steps_into(self, target: Node) -> Node:
-        """Steps (current variables, inputs, data, new bits) into ``target``."""
+        """Steps (current variables, inputs, data, new bits) into ``target`` (the last few
+        kept: Emerson–Lei asks the same set once per fairness set)."""
+        cached = self._steps.get(target)
+        if cached is not None:
+            return cached
+        if len(self._steps) > 64:
+            self._steps.clear()
         m = self.m
         moved = self.model.compose(target)
         support = m.support(moved)
         moved = m.rename(moved, {b: n for b, n in zip(self.bits, self.bits_next) if b in support})
-        return moved & self.relation
+        steps = self._steps[target] = moved & self.relation
+        return steps
 
     def pre(self, target: Node, edges: Node | None = None) -> Node:
         steps = self._steps_into(target)
@@ -128,30 +135,40 @@ class _Product:
         result = m.exists(self.bits + model.never_read, result)
         return m.rename(result, self.to_cur)
 
-    def explore(self) -> None:
+    def can_reach(self, goal: Node, within: Node) -> Node:
+        """The states of ``within`` with a path to ``goal`` (backward, by pre-images)."""
+        m = self.m
+        reached = frontier = goal & within
+        while frontier != m.false:
+            frontier = within & self.pre(frontier) & ~reached
+            reached |= frontier
+        return reached
+
+    def explore(self, within: Node, goal: Node) -> None:
+        """The breadth-first rings from the initial state inside ``within``, until one
+        meets ``goal``."""
         m = self.m
         reached = frontier = self.init
         self.rings = [self.init]
-        while True:
-            new = self.image(frontier) & ~reached
-            if new == m.false:
-                break
+        while (frontier & goal) == m.false:
+            new = self.image(frontier) & within & ~reached
+            assert new != m.false, "the goal is not reachable inside the set"
             reached |= new
             self.rings.append(new)
             frontier = new
-        self.reachable = reached
 
     # ------------------------------------------------------------------ fair states
     def fair_states(self) -> Node:
         """Emerson–Lei's greatest fixpoint, each set's constraint applied as soon as it is
         computed (the rounds then converge in fewer passes)."""
         m = self.m
-        z = self.reachable
+        z = self.model.reachable
         while True:
             old = z
             for edges in self.sets or [m.true]:
                 w = frontier = z & self.pre(z, edges)
                 while frontier != m.false:
+                    self.model.check_budget()
                     frontier = z & self.pre(frontier) & ~w
                     w |= frontier
                 z = w
@@ -244,9 +261,15 @@ def find_lasso_symbolic(model: SymbolicModel, goal: F, atoms: dict[tuple, Node],
                         fair: bool = True) -> SymbolicLasso | None:
     """A fair run of the model satisfying ``goal`` (the assumptions and the negated
     property), or None when there is none."""
+    m = model.m
     product = _Product(model, goal, atoms, fair)
-    product.explore()
+    # fair cycles among the model's reachable states, whatever the tableau's bits; then
+    # whether the initial state reaches one (only then are the product's rings built)
     fair_states = product.fair_states()
-    if fair_states == model.m.false:
+    if fair_states == m.false:
         return None
+    leads = product.can_reach(fair_states, model.reachable)
+    if (product.init & leads) == m.false:
+        return None
+    product.explore(leads, fair_states)
     return product.lasso(fair_states)

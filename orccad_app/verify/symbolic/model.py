@@ -26,10 +26,12 @@ from orccad_app.reactive.bdd import Node
 from orccad_app.reactive.circuit import (BOOT, FAILED_BEFORE, TERM, Circuit, input_var,
                                                 next_name)
 
-__all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES"]
+__all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES", "MAX_BDD_NODES"]
 
 #: Breadth-first images allowed for the reachable states (the mission's longest shortest run).
 MAX_IMAGES = 100_000
+#: BDD nodes the symbolic checker may hold (about 100 bytes each in CUDD: ~1.5 GB).
+MAX_BDD_NODES = 15_000_000
 
 
 class SymbolicBudgetExceeded(OrccadError):
@@ -123,6 +125,7 @@ class SymbolicModel:
                     f"mission {self.composition.name}: more than {MAX_IMAGES} instants to "
                     "reach every state", self.composition.mission.loc)
             new = self.image(frontier) & ~reached
+            self.check_budget()
             if new == m.false:
                 break
             reached = reached | new
@@ -130,6 +133,17 @@ class SymbolicModel:
             frontier = new
         self.reachable = reached
         return reached
+
+    def check_budget(self) -> None:
+        """Refuse the mission, located, once the BDDs hold more than :data:`MAX_BDD_NODES`
+        nodes, naming the parallel branches that multiply the states."""
+        if len(self.m.bdd) <= MAX_BDD_NODES:
+            return
+        composition = self.composition
+        raise SymbolicBudgetExceeded(
+            f"mission {composition.name} is beyond what can be proved here: its symbolic model "
+            f"needs more than {MAX_BDD_NODES} BDD nodes; {widest_par(self.circuit)}",
+            composition.mission.loc)
 
     def count(self, states: Node) -> int:
         return self.m.count(states, self.cur)
@@ -213,3 +227,22 @@ def _non_causal(name: str, loc: SourceLocation) -> OrccadError:
 
 def inputs_of(model: SymbolicModel) -> tuple[ir.SignalDecl, ...]:
     return model.composition.automaton.inputs
+
+
+def widest_par(circuit: Circuit) -> str:
+    """The ``par`` whose branches hold the most pauses: where the states multiply."""
+    best = None
+    stack = [circuit.prep.root]
+    while stack:
+        node = stack.pop()
+        if isinstance(node.src, ir.Par):
+            sizes = [child.hi - child.lo for child in node.children]
+            busy = sum(1 for size in sizes if size)
+            if busy >= 2 and (best is None or busy > best[0]):
+                best = (busy, node, sizes)
+        stack.extend(node.children)
+    if best is None:
+        return "it has no parallel branches with pauses"
+    busy, node, sizes = best
+    return (f"the {busy} parallel branches at {node.src.loc} ({', '.join(map(str, sizes))} "
+            "pauses each) multiply its states")

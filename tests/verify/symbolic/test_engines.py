@@ -74,10 +74,11 @@ def test_same_verdicts_on_robot_grids(robots, tasks):
     assert [o.name for o in symbolic.outcomes if not o.holds] == ["never_lost"]
 
 
-def test_auto_goes_symbolic_past_the_transition_budget():
+def test_auto_goes_symbolic_for_robot_tasks_in_parallel():
     program = program_of(_grid()(4, 2), "grid.orc")
     report = check_mission(program, program.missions[0])
-    assert report.engine == "symbolic" and "2000 transitions" in report.engine_reason
+    assert report.engine == "symbolic" and "Robot-Tasks in parallel at grid.orc:" in \
+        report.engine_reason
     assert report.automaton_states == 82  # 3^4 + 1, the explicit automaton's states
     small = load(ROOT / "missions/arm_pid.orc")
     assert check_mission(small.program, small.program.missions[0]).engine == "explicit"

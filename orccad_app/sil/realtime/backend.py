@@ -3,15 +3,16 @@
 ``orccad sil FILE --realtime``: the controller process (``orccad_app/sil/c/orccad_rt.c``) runs
 one thread per processor, releasing the active Module-Tasks with
 ``clock_nanosleep(TIMER_ABSTIME)`` at their periods on the wall clock, under ``SCHED_FIFO``
-where permitted. The mission's automaton is a task of the controller too (``orccad_rt_automaton.c``): it
-reacts at its ticks and at its observers' events, and records each reaction in the shared
-memory. This process is the **plant server and the mission's supervisor**: the executive's
-kernel paced to the wall clock (``MissionRun`` with ``realtime=1``) runs the MuJoCo plant but
-no Module-Task job and no reaction: every ``exchange_ns`` it brings the plant to now, writes
-the robot's sensors into the shared memory (:mod:`.shared`), applies the torques
-the controller wrote, and applies, in order, the reactions the automaton task recorded
-(``MissionRun._apply``: start, kill, type-1 updates, fresh ports go to the controller over
-the socket); an input (``--inject``) goes to the automaton task as ``OP_INPUT`` with its
+where permitted. The mission's automaton is a task of the controller too
+(``orccad_rt_automaton.c``): it reacts at its ticks and at its observers' events, and records
+each reaction in the shared memory. This process is the **plant server and the mission's
+supervisor**: the run's :class:`RealtimeBackend` paces the executive's kernel to the wall
+clock, which runs the MuJoCo plant but no Module-Task job and no reaction: every
+``exchange_ns`` it brings the plant to now, writes the robot's sensors into the shared memory
+(:mod:`.shared`), applies the torques the controller wrote, and applies, in order, the
+reactions the automaton task recorded (:meth:`~orccad_app.mission.backend.RunHost.
+apply_reaction`: start, kill, type-1 updates, fresh ports go to the controller over the
+socket); an input (``--inject``) goes to the automaton task as ``OP_INPUT`` with its
 instant. The outputs of the controller's last jobs go to the executive's write listeners (the
 trace, the task errors of the report); while a trace listens, each job's measured life cycle
 (a ring in the shared memory) goes to the observers' job callbacks (:mod:`.job_trace`).
@@ -31,10 +32,12 @@ little (docs/deploy.md).
 from __future__ import annotations
 
 import dataclasses
+import gc
+import os
 import tempfile
 import time
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Iterator, Sequence
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -45,10 +48,14 @@ from orccad_app.codegen.generate import CProgram
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
-from orccad_app.executive.simulation import TimingSource
-from orccad_app.mission.injection import Injection
+from orccad_app.executive.simulation import Simulation, TimingSource
+from orccad_app.mission.backend import RunHost
+from orccad_app.mission.lifecycle import site_phases
 from orccad_app.mission.plan import MissionPlan, SiteModules
-from orccad_app.mission.run import MissionRun, ReactionError
+from orccad_app.mission.reactor import MissionReactor
+from orccad_app.mission.result import RunResult
+from orccad_app.mission.run import ReactionError
+from orccad_app.reactive.automaton import Automaton
 from orccad_app.sil.build.executable import build_controller
 from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
@@ -59,10 +66,10 @@ from orccad_app.sil.generate.automaton import managed_sites, mission_automaton, 
 from orccad_app.sil.generate.library import C_DIR
 from orccad_app.sil.generate.table import ModuleTable
 from orccad_app.sil.realtime.job_trace import JobTrace
-from orccad_app.sil.realtime.shared import (JOB_RING, REACTION_RING, JobRecords, ReactionsLost,
-                                   SharedMemory)
+from orccad_app.sil.realtime.shared import (JOB_RING, REACTION_RING, JobRecords,
+                                           ReactionsLost, SharedMemory)
 
-__all__ = ["RealtimeRun", "ModuleTiming", "realtime", "module_timings"]
+__all__ = ["ModuleTiming", "RealtimeBackend", "realtime"]
 
 _HEARTBEAT_NS = 100_000_000
 _EXCHANGE = EventClass.DELIVERY
@@ -79,8 +86,6 @@ best Module-Task priority)."""
 def _fifo(priority: int) -> Iterator[bool]:
     """This thread under SCHED_FIFO at ``priority`` while in the block, when permitted (else
     unchanged: yields False)."""
-    import os
-
     if not hasattr(os, "sched_setscheduler") or os.environ.get("ORCCAD_NO_FIFO"):
         yield False
         return
@@ -119,91 +124,119 @@ class ModuleTiming:
     predicted_s: float | None
 
 
-class _ControllerSim:
-    """The executive's simulation as the mission layer sees it, with the Module-Tasks'
-    activations, kills and fresh ports sent to the controller instead of run here."""
+class RealtimeBackend:
+    """``orccad sil --realtime``: the Module-Tasks and the automaton run on the real-time
+    controller's threads, this process is the plant server (see the module docstring). A
+    :class:`~orccad_app.mission.backend.ModuleTaskBackend`.
 
-    def __init__(self, sim: Any, controller: ControllerProcess, table: ModuleTable,
-                 managed: frozenset[str]) -> None:
-        self._sim = sim
-        self._controller = controller
-        self._table = table
-        self._managed = managed  # the automaton task starts, kills and activates these
+    Made once the façade has planned the mission: the controller is written, built (cached)
+    and started, its shared memory mapped. :meth:`close` ends and reaps it and removes the
+    memory.
 
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._sim, name)
+    :param plan: the run's plan.
+    :param source: the mission file (named in the generated sources).
+    :param build_dir: where the generated C goes (default a temporary directory).
+    :param heartbeat_s: the controller must answer each request within this [s].
+    """
 
-    def _names(self, modules: Iterable[str] | str) -> list[str]:
-        names = [modules] if isinstance(modules, str) else list(modules)
-        return [name for name in names if name not in self._managed]
+    pacing: float | None = 1.0
+    input_lead_ns = _INPUT_LEAD_NS
+    reacts_on_ticks = False
+    """No tick here: the automaton task reacts at its own ticks in the controller."""
 
-    def activate(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
-        """One request for all ``modules``: their first releases are one instant."""
-        at = self._sim.kernel.now if at_ns is None else at_ns
-        indices = [float(self._table.index(name)) for name in self._names(modules)]
-        if indices:
-            self._controller.request(Op.ACTIVATE, 0, at / 1e9, indices)
-
-    def kill(self, modules: Iterable[str] | str, at_ns: int | None = None) -> None:
-        for name in self._names(modules):
-            self._controller.request(Op.KILL, self._table.index(name))
-
-    def reset_ports(self, modules: Iterable[str], at_ns: int | None = None) -> None:
-        for name in self._names(modules):
-            self._controller.request(Op.RESET, self._table.index(name))
-
-
-class RealtimeRun(MissionRun):
-    """A :class:`~orccad_app.mission.run.MissionRun` whose Module-Tasks run on the real-time
-    controller's threads (see the module docstring)."""
-
-    def __init__(self, plan: MissionPlan, table: ModuleTable, controller: ControllerProcess,
-                 shared: SharedMemory, *, reactor: ControllerAutomaton, **options: Any) -> None:
-        super().__init__(plan, realtime=1.0, reactor=reactor, **options)
-        self._automaton = reactor
-        self._table, self._controller, self._shared = table, controller, shared
-        self._managed_sites = [site for site in plan.sites if site.number in managed_sites(plan)]
-        managed = frozenset(name for site in self._managed_sites for name in site.modules)
-        self.sim = _ControllerSim(self.sim, controller, table, managed)  # type: ignore[assignment]
+    def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+        self._program = mission_automaton(plan)
+        self._stack = ExitStack()
+        self.table, self.controller, self._shared = self._stack.enter_context(
+            realtime(plan, source, build_dir, heartbeat_s, self._program))
+        """The controller's generated table (a Module-Task's index: ``table.index(name)``)
+        and the controller process."""
+        self.automaton: ControllerAutomaton | None = None
+        """The mission's automaton in the controller, once the run is made."""
+        self.shared_memory_path = self._shared.path
+        """The shared memory's file (removed as soon as the controller has mapped it)."""
+        self.timings: list[ModuleTiming] | None = None
+        """What was measured per Module-Task, once the run has ended."""
+        self._plan = plan
+        managed_numbers = managed_sites(plan)
+        self._managed_sites = [site for site in plan.sites if site.number in managed_numbers]
+        self._managed = frozenset(name for site in self._managed_sites for name in site.modules)
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
+        """How often the plant and the controller exchange [ns] (the shortest period)."""
         self._ports = [(k, port, port.robot, port.port)
-                       for k, port in enumerate(table.robot_ports)]
-        self._seen_actuators = [0] * len(table.robot_ports)
-        self._seqs = [0] * len(table.entries)
-        hooks = self.sim.hooks
+                       for k, port in enumerate(self.table.robot_ports)]
+        self._seen_actuators = [0] * len(self.table.robot_ports)
+        self._seqs = [0] * len(self.table.entries)
+        self._next_ping = 0
+        self._jobs_wanted = False  # decided at t = 0, once the observers are known
+        self._run: RunHost | None = None
+        self._simulation: Any = None
+        self._writes: list[Any] = []
+        self._jobs: JobTrace | None = None
+
+    def reactor(self, plan: MissionPlan) -> MissionReactor:
+        """The controller's C automaton, whose reactions are replayed here."""
+        assert isinstance(plan.automaton, Automaton)
+        self.automaton = ControllerAutomaton(self.controller, self._program, plan.automaton)
+        return self.automaton
+
+    def attach(self, run: RunHost, simulation: Simulation) -> None:
+        """The exchange scheduled at t = 0, before the instant's reactions: the epoch and
+        the first sensors are there before the automaton activates anything (a trajectory's
+        clock then starts with the plant's), and at every exchange the events are read
+        before the instant's tick."""
+        self._run, self._simulation = run, simulation
+        hooks = simulation.hooks
         self._writes = [(m, entry.name,
                          [(slot, port.name, port.type, port.dim,
                            hooks.write_listeners(entry.name, port.name))
                           for slot, port in enumerate(entry.layout.outputs)
                           if port.type != "event"])
-                        for m, entry in enumerate(table.entries)]
-        self._next_ping = 0
-        self._jobs = JobTrace(self.sim.hooks, table)
-        self._jobs_wanted = False  # decided at t = 0, once the observers are known
-        # before the instant's reactions: at t = 0 the epoch and the first sensors are there
-        # before the automaton activates anything (a trajectory's clock then starts with the
-        # plant's), and at every exchange the events are read before the instant's tick
-        self.kernel.schedule(0, _EXCHANGE, self._exchange)
+                        for m, entry in enumerate(self.table.entries)]
+        self._jobs = JobTrace(hooks, self.table)
+        run.kernel.schedule(0, _EXCHANGE, self._exchange)
 
-    @property
-    def table(self) -> ModuleTable:
-        """The controller's generated table (a Module-Task's index: ``table.index(name)``)."""
-        return self._table
+    # -- the Module-Tasks' lifecycle, sent to the controller (but the managed sites') ------
 
-    @property
-    def shared_memory_path(self) -> str:
-        """The shared memory's file (removed as soon as the controller has mapped it)."""
-        return self._shared.path
+    def _indices(self, modules: Sequence[str]) -> list[int]:
+        return [self.table.index(name) for name in modules if name not in self._managed]
+
+    def activate(self, modules: Sequence[str], at_ns: int) -> None:
+        """One request for all ``modules``: their first releases are one instant."""
+        indices = [float(index) for index in self._indices(modules)]
+        if indices:
+            self.controller.request(Op.ACTIVATE, 0, at_ns / 1e9, indices)
+
+    def kill(self, modules: Sequence[str], at_ns: int) -> None:
+        for index in self._indices(modules):
+            self.controller.request(Op.KILL, index)
+
+    def reset_ports(self, modules: Sequence[str], at_ns: int) -> None:
+        for index in self._indices(modules):
+            self.controller.request(Op.RESET, index)
+
+    def take_input(self, name: str, value: Any, at_ns: int) -> bool:
+        """An input (an injection handed ``input_lead_ns`` ahead, or raised now by an
+        observer's callback), queued in the controller for the automaton task's first
+        reaction at or after ``at_ns``, whatever the plant server's lateness."""
+        assert self.automaton is not None
+        self.controller.request_words(Op.INPUT, self.automaton.input_words(name, value, at_ns))
+        return True
+
+    # -- the exchange with the controller ---------------------------------------------------
 
     def _exchange(self, _: object) -> None:
-        now = self.kernel.now
+        run, simulation, shared = self._run, self._simulation, self._shared
+        assert run is not None and self._jobs is not None
+        kernel = run.kernel
+        now = kernel.now
         if now == 0:
-            self._shared.set_epoch(time.monotonic_ns())
+            shared.set_epoch(time.monotonic_ns())
             self._jobs_wanted = self._jobs.wanted  # before the first release
-            self._shared.want_jobs(self._jobs_wanted)
-        self.kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
-        plants = self.sim.plants
-        shared = self._shared
+            shared.want_jobs(self._jobs_wanted)
+        kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
+        plants = simulation.plants
         for k, port, robot, name in self._ports:
             plant = plants.get(robot)
             if plant is None:
@@ -216,10 +249,10 @@ class RealtimeRun(MissionRun):
             else:
                 shared.write_port(k, plant.sample(name))
         if now == 0:  # the automaton task starts once the first sensors are there: the
-            self._controller.request(Op.EPOCH)  # Module-Tasks it activates read them
-        self._apply_reactions()
+            self.controller.request(Op.EPOCH)  # Module-Tasks it activates read them
+        self._apply_reactions(run)
         if self._jobs_wanted:
-            self._hand_jobs(shared.jobs())
+            self._hand_jobs(shared.jobs(), now)
         for m, name, ports in self._writes:  # each job's outputs, to the write listeners
             if shared.seq(m) == self._seqs[m]:   # (the trace; the task error's samples)
                 continue
@@ -235,31 +268,14 @@ class RealtimeRun(MissionRun):
                     hook(now, name, port, value)
         if now >= self._next_ping:
             self._next_ping = now + _HEARTBEAT_NS
-            cycle = self._controller.request(Op.PING)
+            cycle = self.controller.request(Op.PING)
             if cycle:
                 raise self._deadlock(now, cycle)
 
-    input_lead_ns = _INPUT_LEAD_NS
-
-    def _tick(self, _: object) -> None:
-        """No tick here: the automaton task reacts at its own ticks in the controller."""
-
-    def _inject(self, injection: Injection) -> None:
-        """An injection (``--inject``, an input script), handed to the controller
-        ``input_lead_ns`` ahead: queued there for the automaton task's first reaction at or
-        after its instant, whatever the plant server's lateness."""
-        self._controller.request_words(Op.INPUT, self._automaton.input_words(
-            injection.name, injection.value, injection.time_ns))
-
-    def _post(self, name: str, value: Any) -> None:
-        """An input raised now (an observer's callback): queued in the controller for the
-        automaton task's first reaction at or after now."""
-        self._controller.request_words(
-            Op.INPUT, self._automaton.input_words(name, value, self.kernel.now))
-
-    def _apply_reactions(self) -> None:
+    def _apply_reactions(self, run: RunHost) -> None:
         """The reactions the automaton task made since the last exchange, applied in order
         (the Robot-Tasks started, killed and retuned over the socket; the report's records)."""
+        assert self.automaton is not None
         try:
             reactions = self._shared.reactions()
         except ReactionsLost as lost:
@@ -267,31 +283,33 @@ class RealtimeRun(MissionRun):
                                     f"reactions behind the automaton task ({lost} lost)") from None
         for words in reactions:
             try:
-                at_ns, inputs, step = self._automaton.replay(words)
+                at_ns, inputs, step = self.automaton.replay(words)
             except OrccadError as error:
                 raise ReactionError(error.message, error.location, error.notes) from None
-            self._retire_restarted(step.outputs)
-            self._apply(at_ns, inputs, step)
-            if self.reactor.finished:
+            self._retire_restarted(run, step.outputs)
+            run.apply_reaction(at_ns, inputs, step)
+            if run.reactor.finished:
                 break
 
-    def _retire_restarted(self, outputs: tuple[str, ...]) -> None:
+    def _retire_restarted(self, run: RunHost, outputs: tuple[str, ...]) -> None:
         """The sites the automaton task restarted in this reaction have fresh Module-Tasks in
         the controller already: their previous proxies write no parameter any more (a type-1
         update of the previous run, applied in the same reaction, is dropped with it)."""
         starting = [site for site in self._managed_sites if site.start_signal in outputs]
-        phases = self._phases() if starting else {}
+        if not starting:
+            return
+        before, after = run.phases, site_phases(run.reactor.labels)
         for site in starting:
-            if self._phase.get(site.number, 0) > 0 and phases.get(site.number, 0) > 0:
+            if before.get(site.number, 0) > 0 and after.get(site.number, 0) > 0:
                 for name in site.modules:
-                    compute = self.plan.tcs.module(name).compute
+                    compute = self._plan.tcs.module(name).compute
                     if isinstance(compute, RemoteModule):
                         compute.retire()
 
     def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its
         Module-Task, the connection and whether it reads), as the executive words it."""
-        table = self._table
+        table = self.table
         waits, ports = [], []
         for at in range(0, len(cycle), 3):
             module, reading = table.entries[int(cycle[at])].name, bool(cycle[at + 2])
@@ -306,51 +324,53 @@ class RealtimeRun(MissionRun):
         return DeadlockError(f"deadlock on the controller's threads at t = {now} ns: "
                              + "; ".join(waits), tuple(ports), now)
 
-    def run(self) -> Any:
-        """The run, with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
+    # -- around the run, and after it -------------------------------------------------------
+
+    @contextmanager
+    def running(self) -> Iterator[None]:
+        """The run with this thread (the plant server) under ``SCHED_FIFO`` where permitted,
         below the controller's threads, and Python's cyclic garbage collector paused, so that
         the plant keeps to the wall clock on a busy machine; both restored after."""
-        import gc
-
         gc.collect()  # the cyclic collector paused during the run: a pause of the plant
         gc.disable()  # server is a plant falling behind the wall clock
         try:
             with _fifo(_PLANT_FIFO_PRIORITY):
-                result = super().run()
+                yield
         finally:
             gc.enable()
-        self._end_jobs()
-        result.stats = dataclasses.replace(result.stats, timing=TimingSource.MEASURED)
-        return result
 
-    def _end_jobs(self) -> None:
-        """The job records up to the run's end handed on (the controller records no more)."""
+    def finish(self, result: RunResult) -> RunResult:
+        """The job records up to the run's end handed on (the controller records no more),
+        the runtime statistics filled with what was measured (:attr:`timings`), the timing
+        source ``measured``."""
         if self._jobs_wanted:
             self._shared.want_jobs(False)
-            self._hand_jobs(self._shared.jobs(), end=True)
+            self._hand_jobs(self._shared.jobs(), result.sim_time_ns, end=True)
+        self.timings = self._measured()
+        return dataclasses.replace(result, stats=dataclasses.replace(
+            result.stats, timing=TimingSource.MEASURED))
 
-    def _hand_jobs(self, batch: JobRecords, end: bool = False) -> None:
+    def _hand_jobs(self, batch: JobRecords, now: int, end: bool = False) -> None:
         """The controller's job records to the observers (:class:`JobTrace`); a warning to
         them when the ring was overrun (the records lost are counted, the run goes on)."""
+        assert self._run is not None and self._jobs is not None
         if batch.lost:
-            message = (f"{batch.lost} job records lost from the trace: the plant server fell "
-                       f"more than {JOB_RING} records behind the controller")
-            for hook in self._hooks["on_warning"]:
-                hook(self.kernel.now, "sil", message)
-        self._jobs.hand(batch, self.kernel.now, end)
+            self._run.warn("sil", f"{batch.lost} job records lost from the trace: the plant "
+                                  f"server fell more than {JOB_RING} records behind the "
+                                  f"controller")
+        self._jobs.hand(batch, now, end)
 
     @property
     def job_records_lost(self) -> int:
         """Job records the controller overwrote in the shared memory's ring before the
         plant server could hand them to the trace (0 unless it fell far behind)."""
-        return self._jobs.lost
+        return 0 if self._jobs is None else self._jobs.lost
 
-    def timings(self) -> list[ModuleTiming]:
-        """What was measured per Module-Task (read once the run has ended), the runtime
-        statistics of the report filled with it."""
-        predicted = _predicted_response_s(self.plan)
+    def _measured(self) -> list[ModuleTiming]:
+        """What was measured per Module-Task, the runtime statistics filled with it."""
+        predicted = _predicted_response_s(self._plan)
         timings = []
-        for m, entry in enumerate(self._table.entries):
+        for m, entry in enumerate(self.table.entries):
             mirror = self._shared.mirror(m)
             late = self._shared.latenesses_ns(m) / 1e9
             lateness = None if not late.size else (float(np.median(late)),
@@ -359,11 +379,15 @@ class RealtimeRun(MissionRun):
             timings.append(ModuleTiming(entry.name, mirror.released, lateness, mirror.overruns,
                                         mirror.misses, mirror.response_max_ns / 1e9,
                                         predicted.get(entry.name)))
-            stats = self.sim.tasks[entry.name].stats
+            stats = self._simulation.tasks[entry.name].stats
             stats.released = stats.completed = mirror.released
             stats.overruns, stats.late = mirror.overruns, mirror.misses
             stats.response_max_ns = int(mirror.response_max_ns)
         return timings
+
+    def close(self) -> None:
+        """End and reap the controller and remove its shared memory."""
+        self._stack.close()
 
 
 def _predicted_response_s(plan: MissionPlan) -> dict[str, float]:
@@ -379,11 +403,6 @@ def _predicted_response_s(plan: MissionPlan) -> dict[str, float]:
             if timing is not None and timing.response_ns is not None:
                 bounds[name] = timing.response_ns / 1e9
     return bounds
-
-
-def module_timings(run: RealtimeRun) -> list[ModuleTiming]:
-    """:meth:`RealtimeRun.timings`."""
-    return run.timings()
 
 
 @contextmanager
