@@ -46,12 +46,10 @@ class NotStatic(Exception):
 
 @dataclass(frozen=True)
 class Event:
-    """One scheduled event: ``activation`` is where it runs (registers, inputs and the data
-    tests before it); ``first`` (emissions) is where no earlier event of the instant gave
-    its incarnation a value (``None``: it is the only one that can)."""
+    """One scheduled event: ``activation.sure`` is where it runs (a function of the
+    registers, the inputs and the data tests before it)."""
 
     activation: Activation
-    first: Node | None = None
 
 
 def variables_read(expr: ir.Expr | None) -> set:
@@ -126,7 +124,7 @@ def schedule(circuit: Circuit) -> list[Event]:
                 raise NotStatic("an event becomes sure after a later one touching the same "
                                 "data (its path waits for a signal's status)", _loc(earlier))
     _check_tests_before(circuit, events)
-    return _with_firsts(circuit, events)
+    return [Event(a) for a in events]
 
 
 def _old_after_new(written: set, read: set) -> bool:
@@ -192,19 +190,3 @@ def _independent(m, f: Node, decided: dict[int, Node], a: Activation | None) -> 
         if one != zero:
             raise NotStatic(f"a data test (number {number}) decides an event before it is "
                             "evaluated", _loc(a) if a is not None else None)
-
-
-def _with_firsts(circuit: Circuit, events: list[Activation]) -> list[Event]:
-    """Each emission with where it is the first of its incarnation in the instant (a new
-    incarnation's initial value is no emission: the engine's ``_schedule``)."""
-    m = circuit.manager
-    done: dict = {}
-    out = []
-    for a in events:
-        if a.kind == "emit":
-            before = done.get(a.key)
-            out.append(Event(a, None if before is None else ~before))
-            done[a.key] = (before if before is not None else m.false) | a.sure
-        else:
-            out.append(Event(a))
-    return out
