@@ -191,6 +191,8 @@ class _Plan:
             return [plain]
         flag = f"em{self.multiple[a.key]}"
         mine = self.order[id(a)]
+        if mine == 1:  # the first in the walk: no other emission of it ran before
+            return [plain, f"{flag} = 1;"]
         lines = [f"if ({flag} == 0) {{ {plain} }}"]
         expr = a.expr
         if target.combine is not None:

@@ -89,7 +89,17 @@ def _loc(a: Activation) -> SourceLocation | None:
 
 
 def schedule(circuit: Circuit) -> list[Event]:
-    """The events of ``circuit`` in a static order, or :class:`NotStatic`."""
+    """The events of ``circuit`` in a static order, or :class:`NotStatic` (raised from a
+    frame holding no BDD node: a traceback kept alive must not keep CUDD nodes past their
+    manager)."""
+    try:
+        return _schedule(circuit)
+    except NotStatic as error:
+        problem = NotStatic(error.reason, error.loc)
+    raise problem
+
+
+def _schedule(circuit: Circuit) -> list[Event]:
     m = circuit.manager
     if circuit.undecided:
         where, loc, name = circuit.undecided[0]

@@ -82,12 +82,22 @@ def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
     if generator == "explicit":
         return explicit(("asked for (--generator explicit)",))
     found = circuit_of(kernel)
+    try:
+        return _choose(found, generator, circuit, explicit, kernel, max_states)
+    finally:
+        found.manager.release(found)  # CUDD: no node may outlive its manager
+
+
+def _choose(found: Circuit, generator: str, circuit, explicit, kernel: ir.Program,
+            max_states: int) -> CProgram:
+    """:func:`generate_chosen` once the circuit is built."""
     if generator == "circuit":
         try:
             return circuit(found, "asked for (--generator circuit)")
         except NotStatic as error:
-            raise CodegenError(f"--generator circuit: {error.reason}; the explicit generator "
-                               "orders these events (--generator explicit)",
+            raise CodegenError(f"--generator circuit: the circuit's data events have no "
+                               f"static order: {error.reason}; the explicit generator orders "
+                               "them (--generator explicit)",
                                error.loc or kernel.loc) from None
     try:
         trial = circuit(found, "")
@@ -95,6 +105,8 @@ def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
         where = f" ({error.loc})" if error.loc is not None else ""
         return explicit((f"the circuit's data events have no static order: {error.reason}"
                          f"{where}",))
+    except CodegenError as error:  # e.g. a combination the explicit automaton never makes
+        return explicit((f"the circuit's C has no translation: {error.message}",))
     lines = trial.source.count("\n")
     budget = max(1_000, TRANSITIONS_PER_LINE * lines)
     try:

@@ -19,7 +19,11 @@ __all__ = ["circuit_program", "mission_circuit", "agree_circuit"]
 
 def circuit_program(program: ir.Program, prefix: str, hints=None) -> CProgram:
     """The circuit C of a kernel ``program`` (:class:`NotStatic` when it has none)."""
-    return generate_circuit(circuit_of(program), prefix, hints=hints)
+    circuit = circuit_of(program)
+    try:
+        return generate_circuit(circuit, prefix, hints=hints)
+    finally:
+        circuit.manager.release(circuit)
 
 
 def mission_circuit(composition: Composition, prefix: str) -> CProgram:
