@@ -25,17 +25,19 @@ from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.helpers import helpers_for
 from orccad_app.codegen.header import header_text
 from orccad_app.codegen.interface import ROLE_CODES, Interface
-from orccad_app.codegen.names import c_identifier
+from orccad_app.codegen.names import c_identifier, own_macros
 from orccad_app.codegen.reaction import Graph, intern
+from orccad_app.codegen.sites import SiteInfo, phase_columns, site_tables
 from orccad_app.codegen.static_types import CType, CodegenError, Kind, TypeTable, infer
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import ABORTED, DONE, FAILED, RUNNING, Automaton
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import SignalRoles
 
 __all__ = ["CProgram", "generate", "STATUS_CODES"]
 
-STATUS_CODES = {RUNNING: 0, DONE: 1, FAILED: 2, ABORTED: 3}
+STATUS_CODES = {Status.RUNNING: 0, Status.DONE: 1, Status.FAILED: 2, Status.ABORTED: 3}
 
 
 @dataclass(frozen=True)
@@ -59,10 +61,16 @@ class CProgram:
 
 
 def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = None,
+<<<<<<< HEAD
              sites: tuple[str, ...] = (), hints: dict[ir.SignalDecl, CType] | None = None,
              origin: str = "", note: tuple[str, ...] = ()) -> CProgram:
+=======
+             sites: tuple[SiteInfo, ...] = (),
+             hints: dict[ir.SignalDecl, CType] | None = None, origin: str = "") -> CProgram:
+>>>>>>> main
     """The C of ``automaton`` with identifiers prefixed ``prefix``; ``roles``: the role of
-    each generated signal, ``sites``: the Robot-Task of each run site (number order),
+    each generated signal, ``sites``: what each run site starts (number order,
+    :mod:`.sites`),
     ``hints``: types known from elsewhere; ``origin``: what it was generated from (a
     comment; ``note``: header lines saying why this generator). Raises
     :class:`CodegenError` (located) for what has no C translation."""
@@ -74,7 +82,8 @@ def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = N
     strings = StringTable(_strings(graph, tests, signals, types))
     places = _places(types, graph, tests)
     errors = ErrorTable()
-    interface = Interface.make(program.inputs, program.outputs, types.places, roles)
+    interface = Interface.make(program.inputs, program.outputs, types.places, roles,
+                               own_macros(prefix))
     reason = _reason_places(program, places)
     writer = ExprWriter(types, places, errors, strings)
     functions = []
@@ -176,7 +185,7 @@ def _places(types: TypeTable, graph: Graph, tests: list[ir.Expr]) -> Places:
 
 def _reason_places(program: ir.Program, places: Places) -> dict[str, Place | None]:
     found: dict[str, Place | None] = {}
-    for status, decl in ((FAILED, program.failed), (ABORTED, program.aborted)):
+    for status, decl in ((Status.FAILED, program.failed), (Status.ABORTED, program.aborted)):
         place = places.values.get(decl) if decl is not None else None
         if place is not None and place.ctype.kind is not Kind.STRING:
             raise CodegenError(f"the {status} reason {decl.name} is not a string",  # type: ignore[union-attr]
@@ -275,7 +284,7 @@ def step_epilogue(prefix: str, reason) -> list[str]:
         f"{prefix.upper()}_ABORTED) {{",
         "        m->status = st;",
         f"        m->reason = (st == {prefix.upper()}_FAILED) ? "
-        f"{_reason(reason[FAILED])} : {_reason(reason[ABORTED])};",
+        f"{_reason(reason[Status.FAILED])} : {_reason(reason[Status.ABORTED])};",
         "    }",
         f"}} else if (st != {prefix.upper()}_RUNNING && m->status == "
         f"{prefix.upper()}_RUNNING) {{",
@@ -345,8 +354,12 @@ def _reset(prefix: str, automaton: Automaton, places: Places, strings: StringTab
 
 
 def _tables(prefix: str, interface: Interface, strings: StringTable, errors: ErrorTable,
+<<<<<<< HEAD
             sites: tuple[str, ...], phases: list[list[int]], state_count: int,
             phase_function: str | None = None) -> str:
+=======
+            sites: tuple[SiteInfo, ...], phases: list[list[int]], state_count: int) -> str:
+>>>>>>> main
     out = []
     names = ", ".join(c_string(s) for s in strings.names) or "0"
     out.append(f"const char *const {prefix}_string_names[{max(1, len(strings.names))}] = "
@@ -369,13 +382,20 @@ def _tables(prefix: str, interface: Interface, strings: StringTable, errors: Err
         body = ",\n    ".join(rows) or '{"", 0, 0, 0, "", "", 0, 0}'
         out.append(f"const orccad_signal_info {prefix}_{side}[{max(1, len(signals))}] = {{\n"
                    f"    {body}\n}};")
-    site_names = ", ".join(c_string(s) for s in sites) or "0"
+    site_names = ", ".join(c_string(s.task) for s in sites) or "0"
     out.append(f"const char *const {prefix}_sites[{max(1, len(sites))}] = {{{site_names}}};")
+<<<<<<< HEAD
     if phase_function is not None:
         out.append(phase_function)
     elif sites:
+=======
+    outputs = {s.decl.name: index for index, s in enumerate(interface.outputs)}
+    out += site_tables(prefix, sites, outputs)
+    if sites:
+>>>>>>> main
         rows = ",\n    ".join("{" + ", ".join(map(str, row)) + "}" for row in phases)
-        out.append(f"static const unsigned char phase_table[{state_count}][{len(sites)}] = "
+        out.append(phase_columns(sites) + "\n"
+                   f"static const unsigned char phase_table[{state_count}][{len(sites)}] = "
                    f"{{\n    {rows}\n}};")
         out.append(_function(f"int {prefix}_phase(const {prefix}_mem *m, int site)", [
             f"if (site < 0 || site >= {len(sites)} || m->state < 0 || m->state >= "

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any, Iterable
 
-from orccad_app.diagnostics import OrccadError
+from orccad_app.diagnostics import OrccadError, cut, value_excerpt
 from orccad_app.lang.limits import MAX_INT, MIN_INT
 
 __all__ = ["Injection", "parse_injection", "typed_injection", "typed_injections"]
@@ -57,16 +57,18 @@ def parse_injection(text: str) -> Injection:
         return _fault_injection(text, *fault.groups())
     match = _INJECTION.match(text)
     if match is None:
-        raise OrccadError(f"bad injection {text!r}: expected SIGNAL@SECONDS or "
+        raise OrccadError(f"bad injection {cut(repr(text))}: expected SIGNAL@SECONDS or "
                           f"SIGNAL(value)@SECONDS, e.g. Stop@2.5")
     name, raw, when = match.groups()
     try:
         seconds = float(when)
         value = None if raw is None else _value(raw.strip())
     except ValueError:
-        raise OrccadError(f"bad injection {text!r}: cannot read the time or the value") from None
+        raise OrccadError(f"bad injection {cut(repr(text))}: cannot read the time or the "
+                          f"value (expected SIGNAL(VALUE)@SECONDS, VALUE a number, true, "
+                          f"false or a vector of numbers [x, y, ...])") from None
     if not seconds >= 0:
-        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
+        raise OrccadError(f"bad injection {cut(repr(text))}: the time must be >= 0 s")
     return Injection(name, int(round(seconds * 1e9)), value)
 
 
@@ -75,10 +77,11 @@ def _fault_injection(text: str, name: str, raw: str, when: str) -> Injection:
         seconds = float(when)
         value = _value(raw[:-1].strip() if raw.endswith("%") else raw)
     except ValueError:
-        raise OrccadError(f"bad injection {text!r}: expected ROBOT.FAULT=VALUE@SECONDS, "
+        raise OrccadError(f"bad injection {cut(repr(text))}: expected "
+                          f"ROBOT.FAULT=VALUE@SECONDS, "
                           f"e.g. auv.leak=1@120 or auv.battery=5%@60") from None
     if not seconds >= 0:
-        raise OrccadError(f"bad injection {text!r}: the time must be >= 0 s")
+        raise OrccadError(f"bad injection {cut(repr(text))}: the time must be >= 0 s")
     return Injection(name, int(round(seconds * 1e9)), value, fault=True)
 
 
@@ -107,25 +110,26 @@ def _typed_value(name: str, kind: str, value: Any) -> Any:
     if kind == "vector":
         if not isinstance(value, (tuple, list)) or not all(_real(v) for v in value):
             raise OrccadError(f"--inject {name}: {name} carries a vector: write "
-                              f"{name}([x, y, ...])@T, got {value!r}")
+                              f"{name}([x, y, ...])@T, got {cut(repr(value))}")
         if not all(math.isfinite(v) for v in value):
             raise OrccadError(f"--inject {name}: every component must be a finite number, "
-                              f"got {list(value)}")
+                              f"got {value_excerpt(value)}")
         return tuple(float(v) for v in value)
     if kind == "bool":
         if not isinstance(value, bool):
             raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
-                              f"got {value!r}")
+                              f"got {cut(repr(value))}")
         return value
     if kind == "int":
         if not isinstance(value, int) or isinstance(value, bool):
-            raise OrccadError(f"--inject {name}: {name} carries an int, got {value!r}")
+            raise OrccadError(f"--inject {name}: {name} carries an int, got {cut(repr(value))}")
         if not MIN_INT <= value <= MAX_INT:
             raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
         return value
     if kind in ("float", "duration"):
         if not _real(value):
-            raise OrccadError(f"--inject {name}: {name} carries a {kind}, got {value!r}")
+            raise OrccadError(f"--inject {name}: {name} carries a {kind}, "
+                              f"got {cut(repr(value))}")
         if not math.isfinite(value):
             raise OrccadError(f"--inject {name}: the value must be a finite number, "
                               f"got {value}")

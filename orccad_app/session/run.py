@@ -85,7 +85,7 @@ class RunSession:
                                   injections=injections, processors=processors,
                                   bus=Bus(transfer_ns=options.bus_transfer_ns),
                                   observers=options.observers, realtime=options.realtime,
-                                  backend=self.backend)
+                                  backend=self.backend, delays=options.delays)
             """The :class:`~orccad_app.mission.run.MissionRun` (observe it, do not reach
             in)."""
             self.monitor = PropertyMonitor(source.program, mission, self.run)

@@ -34,7 +34,7 @@ static int64_t consumed[ORC_AUTOMATON_N_EVENTS + 1];           /* events already
 static double queued[MAX_QUEUED][ORC_AUTOMATON_IN_WORDS];      /* word 0: due instant [ns] */
 static int n_queued;
 static double request[ORC_AUTOMATON_IN_WORDS], reply[ORC_AUTOMATON_OUT_WORDS];
-static int started, failed;
+static int started, failed, mission_status;
 static int64_t last_clock = -1;
 
 /* The run sites whose lifecycle the task applies: {managed, start output's presence word in
@@ -310,12 +310,18 @@ static void react(int64_t clock)
     }
     last_clock = clock;
     failed = orc_word_int(&reply[0]) < 0;
+    mission_status = failed ? -1 : (int)orc_word_int(&reply[0]);
     if (!failed) {
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
         adjust(clock);
         lifecycle(at > now ? at : now);
     }
     orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
+}
+
+int orc_automaton_status(void)
+{
+    return failed && mission_status >= 0 ? -1 : mission_status;
 }
 
 void *orc_automaton_task(void *unused)

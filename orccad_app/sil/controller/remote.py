@@ -18,12 +18,13 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.mission.plan import SiteModules
+from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.reactive.automaton import Automaton
 from orccad_app.sil.controller.process import ControllerFailure, ControllerProcess, Op
 from orccad_app.sil.generate.layout import CLayout, c_layout, same_word
 from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["RemoteModule", "RemoteSite"]
+__all__ = ["ControllerRun", "RemoteModule", "RemoteSite", "remote_plan"]
 
 
 class RemoteModule:
@@ -173,3 +174,34 @@ class RemoteSite(SiteModules):
                                          shadow, start=not self.managed,
                                          c_owned=self.c_owned.get(name, frozenset()))
         return proxies
+
+
+@dataclasses.dataclass(frozen=True)
+class ControllerRun:
+    """A started controller and the plan a run of it runs.
+
+    :param controller: the controller process.
+    :param table: its generated table.
+    :param plan: a copy of the mission's plan (:func:`remote_plan`): the full automaton, run
+        sites whose starts make :class:`RemoteModule` proxies.
+    """
+
+    controller: ControllerProcess
+    table: ModuleTable
+    plan: MissionPlan
+
+
+def remote_plan(plan: MissionPlan, automaton: Automaton, table: ModuleTable,
+                controller: ControllerProcess, managed: frozenset[int] = frozenset(),
+                c_owned: Mapping[str, frozenset[int]] | None = None) -> MissionPlan:
+    """A copy of ``plan`` (``plan`` itself unchanged) whose automaton is the full
+    ``automaton`` the controller runs and whose run sites start their Module-Tasks in
+    ``controller``; the sites numbered in ``managed`` are started by the controller itself,
+    the parameter words ``c_owned`` of their Module-Tasks written by it alone."""
+    sites: list[SiteModules] = []
+    for site in plan.sites:
+        fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
+        own = site.number in managed
+        sites.append(RemoteSite(**fields, controller=controller, table=table, managed=own,
+                                c_owned=(c_owned or {}) if own else {}))
+    return dataclasses.replace(plan, automaton=automaton, sites=sites)

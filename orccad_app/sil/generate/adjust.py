@@ -40,6 +40,7 @@ from orccad_app.mission.plan import MissionPlan, ParamUpdate, SiteModules
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.sil.generate.table import ModuleTable
 from orccad_app.sil.generate.layout import c_layout, same_word
+from orccad_app.tcs.module_task import ModuleTask
 from orccad_app.tcs.phasing import Activation
 
 __all__ = ["AdjustForm", "CAdjust", "adjust_lines", "c_adjustments", "c_expression",
@@ -176,13 +177,18 @@ def _candidate(plan: MissionPlan, site: SiteModules, exception: str, update: Par
     values = tuple(c_expression(expr, update.env, read) for expr in form.expressions)
     duration = 0
     if form.ramp is not None:
-        if plan.tcs.module(update.module).activation is not Activation.PERIODIC:
+        if _module_task(plan, update.module).activation is not Activation.PERIODIC:
             raise _NotInC  # stepped every minimum inter-arrival: the executive's grid
         duration = form.ramp.duration_ns
     return _Candidate(CAdjust(site.number, exception, module, signal,
                               AdjustForm.RAMP if duration else AdjustForm.COMPUTED, words,
                               values, duration, _range_check(spec)),
                       (update.module, update.param), tuple(reads))
+
+
+def _module_task(plan: MissionPlan, name: str) -> ModuleTask:
+    """The Module-Task ``name`` of the plan's TCS."""
+    return next(task for task in plan.tcs.module_tasks if task.name == name)
 
 
 def _fresh(site: SiteModules, module: str) -> Any:
@@ -341,7 +347,11 @@ def adjust_lines(adjusts: tuple[CAdjust, ...], presence: Mapping[str, int]) -> l
     each output's presence word in the reply. The rows are in the outputs' order, the order
     in which the mission layer applies a reaction's updates."""
     adjusts = tuple(sorted(adjusts, key=lambda adjust: presence[adjust.signal]))
-    rows, offsets, values, computed, checks = [], [], [], [], []
+    rows: list[str] = []
+    offsets: list[str] = []
+    values: list[str] = []
+    computed: list[str] = []
+    checks: list[str] = []
     for a, adjust in enumerate(adjusts):
         rows.append(f"{{{adjust.site}, {presence[adjust.signal]}, {adjust.module}, "
                     f"{int(adjust.form)}, {len(offsets)}, {len(adjust.words)}}}")
