@@ -33,7 +33,9 @@ from orccad_app.codegen.generate import (
 from orccad_app.codegen.header import header_text
 from orccad_app.codegen.helpers import helpers_for
 from orccad_app.codegen.interface import Interface
+from orccad_app.codegen.names import own_macros
 from orccad_app.codegen.reaction import ActionRef, Graph
+from orccad_app.codegen.sites import SiteInfo
 from orccad_app.codegen.static_types import CType, infer
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import ABORTED, DONE, FAILED, RUNNING
@@ -65,7 +67,7 @@ def circuit_of(program: ir.Program) -> Circuit:
 
 
 def generate_circuit(circuit: Circuit, prefix: str, *, roles: SignalRoles | None = None,
-                     sites: tuple[str, ...] = (),
+                     sites: tuple[SiteInfo, ...] = (),
                      hints: dict[ir.SignalDecl, CType] | None = None, origin: str = "",
                      note: tuple[str, ...] = ()) -> CProgram:
     """The C of ``circuit`` (see :func:`.generate.generate` for the parameters; ``note``:
@@ -83,7 +85,8 @@ def generate_circuit(circuit: Circuit, prefix: str, *, roles: SignalRoles | None
     strings = StringTable(_strings(graph, tests, signals, types))
     places = _places(types, graph, tests)
     errors = ErrorTable()
-    interface = Interface.make(program.inputs, program.outputs, types.places, roles)
+    interface = Interface.make(program.inputs, program.outputs, types.places, roles,
+                               own_macros(prefix))
     reason = _reason_places(program, places)
     writer = ExprWriter(types, places, errors, strings)
     functions = []

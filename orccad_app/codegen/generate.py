@@ -61,13 +61,9 @@ class CProgram:
 
 
 def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = None,
-<<<<<<< HEAD
-             sites: tuple[str, ...] = (), hints: dict[ir.SignalDecl, CType] | None = None,
-             origin: str = "", note: tuple[str, ...] = ()) -> CProgram:
-=======
              sites: tuple[SiteInfo, ...] = (),
-             hints: dict[ir.SignalDecl, CType] | None = None, origin: str = "") -> CProgram:
->>>>>>> main
+             hints: dict[ir.SignalDecl, CType] | None = None, origin: str = "",
+             note: tuple[str, ...] = ()) -> CProgram:
     """The C of ``automaton`` with identifiers prefixed ``prefix``; ``roles``: the role of
     each generated signal, ``sites``: what each run site starts (number order,
     :mod:`.sites`),
@@ -354,12 +350,8 @@ def _reset(prefix: str, automaton: Automaton, places: Places, strings: StringTab
 
 
 def _tables(prefix: str, interface: Interface, strings: StringTable, errors: ErrorTable,
-<<<<<<< HEAD
-            sites: tuple[str, ...], phases: list[list[int]], state_count: int,
+            sites: tuple[SiteInfo, ...], phases: list[list[int]], state_count: int,
             phase_function: str | None = None) -> str:
-=======
-            sites: tuple[SiteInfo, ...], phases: list[list[int]], state_count: int) -> str:
->>>>>>> main
     out = []
     names = ", ".join(c_string(s) for s in strings.names) or "0"
     out.append(f"const char *const {prefix}_string_names[{max(1, len(strings.names))}] = "
@@ -384,15 +376,11 @@ def _tables(prefix: str, interface: Interface, strings: StringTable, errors: Err
                    f"    {body}\n}};")
     site_names = ", ".join(c_string(s.task) for s in sites) or "0"
     out.append(f"const char *const {prefix}_sites[{max(1, len(sites))}] = {{{site_names}}};")
-<<<<<<< HEAD
+    outputs = {s.decl.name: index for index, s in enumerate(interface.outputs)}
+    out += site_tables(prefix, sites, outputs)
     if phase_function is not None:
         out.append(phase_function)
     elif sites:
-=======
-    outputs = {s.decl.name: index for index, s in enumerate(interface.outputs)}
-    out += site_tables(prefix, sites, outputs)
-    if sites:
->>>>>>> main
         rows = ",\n    ".join("{" + ", ".join(map(str, row)) + "}" for row in phases)
         out.append(phase_columns(sites) + "\n"
                    f"static const unsigned char phase_table[{state_count}][{len(sites)}] = "

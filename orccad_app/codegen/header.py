@@ -68,17 +68,12 @@ typedef struct {
 
 
 def header_text(prefix: str, automaton: Automaton, interface: Interface, places: Places,
-<<<<<<< HEAD
-            strings: StringTable, errors: ErrorTable, sites: tuple[str, ...],
+            strings: StringTable, errors: ErrorTable, sites: tuple[SiteInfo, ...],
             origin: str, *, form: str | None = None, note: tuple[str, ...] = (),
             memory: tuple[str, ...] = ()) -> str:
     """The header; ``form`` replaces the description of what the code is (the explicit
     automaton by default), ``note`` adds comment lines (which generator, and why),
     ``memory`` adds members to the memory struct."""
-=======
-            strings: StringTable, errors: ErrorTable, sites: tuple[SiteInfo, ...],
-            origin: str) -> str:
->>>>>>> main
     up = prefix.upper()
     guard = header_guard(prefix)
     program = automaton.program

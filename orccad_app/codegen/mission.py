@@ -21,12 +21,9 @@ from orccad_app.lang import ast
 from orccad_app.lang.run_args import param_type
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton
-<<<<<<< HEAD
 from orccad_app.reactive.circuit import Circuit
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, StateBudgetExceeded, compile_program
-=======
 from orccad_app.robottask.application import RunSite
->>>>>>> main
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
@@ -48,30 +45,18 @@ def generate_mission(composition: Composition, prefix: str, origin: str = "") ->
                              prefix, origin)
 
 
-<<<<<<< HEAD
-def generate_composed(automaton: Automaton | object, roles: SignalRoles, sites: tuple[str, ...],
-                      robottasks: Iterable[ast.RobotTask], prefix: str,
-                      origin: str = "", note: tuple[str, ...] = ()) -> CProgram:
-    """The C of a composed mission automaton from its parts: ``roles`` of its signals, the
-    Robot-Task of each run site (site order) and the program's Robot-Tasks (their parameters
-    type the run-time argument outputs)."""
-    if not isinstance(automaton, Automaton):
-        raise CodegenError("the generator needs the full automaton (compiled, not lazy)")
-    return generate(automaton, prefix, roles=roles, sites=sites,
-                    hints=_argument_types(automaton.outputs, roles, robottasks), origin=origin,
-                    note=note)
-=======
 def generate_composed(automaton: Automaton | object, roles: SignalRoles,
                       sites: tuple[RunSite, ...], robottasks: Iterable[ast.RobotTask],
-                      prefix: str, origin: str = "") -> CProgram:
+                      prefix: str, origin: str = "", note: tuple[str, ...] = ()) -> CProgram:
     """The C of a composed mission automaton from its parts: ``roles`` of its signals, its
     run sites (what each starts goes into the header and the site table, :mod:`.sites`) and
-    the program's Robot-Tasks (their parameters type the run-time argument outputs)."""
+    the program's Robot-Tasks (their parameters type the run-time argument outputs);
+    ``note``: header lines saying why this generator."""
     if not isinstance(automaton, Automaton):
         raise CodegenError("the generator needs the full automaton (compiled, not lazy)")
     return generate(automaton, prefix, roles=roles, sites=site_infos(sites),
-                    hints=_argument_types(automaton, roles, robottasks), origin=origin)
->>>>>>> main
+                    hints=_argument_types(automaton.outputs, roles, robottasks), origin=origin,
+                    note=note)
 
 
 def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
@@ -81,7 +66,7 @@ def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
     explicit automaton's is no larger (its step is a decision tree, the fastest) or the
     circuit's data events have no static order. The header says which and why."""
     kernel = composition.automaton.program
-    sites = tuple(site.task for site in composition.sites)
+    sites = tuple(composition.sites)
     tasks = composition.program.robottasks
     hints = _argument_types(kernel.outputs, composition.roles, tasks)
 
@@ -93,7 +78,8 @@ def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
                                  ("generator: explicit automaton: " + note[0], *note[1:]))
 
     def circuit(circuit: Circuit, note: str) -> CProgram:
-        return generate_circuit(circuit, prefix, roles=composition.roles, sites=sites,
+        return generate_circuit(circuit, prefix, roles=composition.roles,
+                                sites=site_infos(sites),
                                 hints=hints, origin=origin,
                                 note=("generator: circuit: " + note,))
 
