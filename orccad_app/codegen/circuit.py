@@ -38,7 +38,7 @@ from orccad_app.codegen.reaction import ActionRef, Graph
 from orccad_app.codegen.sites import SiteInfo
 from orccad_app.codegen.static_types import CType, infer
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import ABORTED, DONE, FAILED, RUNNING
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.bdd import Node
 from orccad_app.reactive.circuit import TERM, Circuit, build_circuit, register
 from orccad_app.reactive.prepare import Prepared, prepare
@@ -303,7 +303,7 @@ class _Step:
         for signal in self.interface.outputs:
             emitted[signal.decl] = self.ref(c.emitted.get(signal.decl, self.m.false))
         status = []
-        for value, decl in ((ABORTED, program.aborted), (FAILED, program.failed)):
+        for value, decl in ((Status.ABORTED, program.aborted), (Status.FAILED, program.failed)):
             if decl is not None:
                 status.append((value, self.ref(c.emitted.get(decl, self.m.false))))
         code0 = self.ref(c.code0)
@@ -330,8 +330,8 @@ class _Step:
                 body.append(f"if (out->{signal.field}) {{ {copy} }}")
         term = f"m->reg[{self.register_index[TERM]}]"
         chain = "".join(f"{cond} ? {STATUS_CODES[value]} : " for value, cond in status)
-        body.append(f"st = {chain}({term} || {code0}) ? {STATUS_CODES[DONE]} : "
-                    f"{STATUS_CODES[RUNNING]};")
+        body.append(f"st = {chain}({term} || {code0}) ? {STATUS_CODES[Status.DONE]} : "
+                    f"{STATUS_CODES[Status.RUNNING]};")
         body += [f"nx[{i}] = {text};" for i, text in enumerate(nexts)]
         body += [f"for (i = 0; i < {len(c.registers)}; ++i) m->reg[i] = nx[i];",
                  "out->status = st;", "out->state = 0;"]
