@@ -22,7 +22,6 @@ NAME_PARSING = re.compile(r"""["']\.["'] (?:not )?in |\.rsplit\(["']\.["']|"""
 
 ALLOWED = {
     "orccad_app/robottask/signals.py": "SignalRoles itself",
-    "orccad_app/campaign/spec.py": "checks the user's ROBOT.FAULT=VALUE@TIME text, not a signal",
 }
 """Files that may match :data:`NAME_PARSING`, and why."""
 

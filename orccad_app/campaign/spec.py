@@ -46,6 +46,7 @@ from typing import Any
 from orccad_app.campaign.distributions import (Distribution, DistributionError, Kind,
                                                parse_distribution)
 from orccad_app.diagnostics import OrccadError, SourceLocation, cut
+from orccad_app.mission.injection import PlantFault
 
 __all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "ControllerEntry", "InjectEntry",
            "Check", "load_spec", "CONTROLLER_KEYS",
@@ -107,10 +108,13 @@ class ControllerEntry:
 
 @dataclass(frozen=True)
 class InjectEntry:
-    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s]."""
+    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s].
+
+    :param fault: the plant fault ``name`` sets, ``None`` for an automaton input.
+    """
 
     name: str
-    fault: bool
+    fault: PlantFault | None
     value: Distribution | None
     time: Distribution
     probability: float
@@ -333,8 +337,12 @@ class _Reader:
                             f"SIGNAL(VALUE)@TIME or ROBOT.FAULT=VALUE@TIME (TIME and VALUE "
                             f"numbers or distributions)", *key, "event")
         name, fault_value, signal_value, when = match.groups()
-        fault = fault_value is not None
-        raw = fault_value if fault else signal_value
+        fault = None if fault_value is None else PlantFault.named(name)
+        if fault_value is not None and fault is None:
+            raise self.fail(f"bad event {cut(repr(text))}: a plant fault is "
+                            "ROBOT.FAULT=VALUE@TIME",
+                            *key, "event")
+        raw = signal_value if fault is None else fault_value
         value = None
         if raw is not None:
             raw = raw.strip()
@@ -344,9 +352,6 @@ class _Reader:
                                 f"inject a vector input with orccad run --inject "
                                 f"'{name}([x, y, ...])@T'", *key, "event")
             value = self.dist(raw[:-1] if raw.endswith("%") else raw, *key, "event")
-        if fault and "." not in name:
-            raise self.fail(f"bad event {cut(repr(text))}: a plant fault is ROBOT.FAULT=VALUE@TIME",
-                            *key, "event")
         time = self.dist(when.strip().removesuffix("s") if when.strip().endswith(")s")
                          else when.strip(), *key, "event")
         if time.bounds[0] < 0:

@@ -151,7 +151,7 @@ def refuse_trace_over_inputs(args: argparse.Namespace, source: Any) -> None:
 
 def _warn_first_instant(injections) -> None:
     for injection in injections:
-        if injection.time_ns == 0 and not injection.fault:
+        if injection.time_ns == 0 and injection.fault is None:
             print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
                   "first instant, where only 'immediate' tests see it (await, abort ... when "
                   "and each look from the next instant on)", file=sys.stderr)

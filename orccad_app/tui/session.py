@@ -403,13 +403,14 @@ class LiveSession:
         when the user aborted it. The live run records no trace: a trace costs more than the
         run."""
 
-        from orccad_app.mission.injection import Injection
+        from orccad_app.mission.injection import Injection, PlantFault
 
         tick = self.run.tick_ns
         user = []
         for record in self.observer.injected:
             last = record.time_ns if record.until_ns is None else record.until_ns
-            user += [Injection(record.name, time_ns, record.value, record.fault)
+            fault = PlantFault.named(record.name) if record.fault else None
+            user += [Injection(record.name, time_ns, record.value, fault)
                      for time_ns in range(record.time_ns, last + 1, tick)]
         options = self.session.options
         replay = RunSession(self.session.source, self.session.mission, dataclasses.replace(
