@@ -281,7 +281,8 @@ def _run(args: argparse.Namespace) -> int:
     timings = (backend.timings or []) if isinstance(backend, RealtimeBackend) else None
     modules = len(session.plan.tcs.module_tasks)
     controller: dict[str, Any] = {"mode": execution.value, "pid": backend.controller.pid,
-                                  "module_tasks": modules}
+                                  "module_tasks": modules,
+                                  "supervisor_writes": backend.controller.supervisor_writes}
     how = ("real-time threads, the plant over shared memory" if timings is not None
            else "lockstep over a Unix socket")
     lines = [f"Controller: process {backend.controller.pid}, {modules} Module-Tasks in C, {how}"]

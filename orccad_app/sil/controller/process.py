@@ -75,6 +75,9 @@ class ControllerProcess:
                  arguments: tuple[str, ...] = (), wrapper: tuple[str, ...] = ()) -> None:
         self.heartbeat_s = heartbeat_s
         self.failure: str | None = None
+        self.supervisor_writes = 0
+        """Parameter words the supervisor wrote into the controller (``PARAM``: run-time
+        arguments and type-1 updates the controller does not apply itself)."""
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.process = subprocess.Popen(

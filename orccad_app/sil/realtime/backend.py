@@ -60,6 +60,7 @@ from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFa
                                               ControllerProcess, Op)
 from orccad_app.sil.controller.remote import ControllerRun, RemoteModule, remote_plan
 from orccad_app.sil.generate.adjust import c_adjustments, c_owned_words
+from orccad_app.sil.generate.binds import c_binds
 from orccad_app.sil.generate.automaton import (MissionProgram, managed_sites, mission_automaton,
                                               reaction_words)
 from orccad_app.sil.generate.library import C_DIR
@@ -442,8 +443,12 @@ def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
         try:
             managed = managed_sites(plan)
             owned = c_owned_words(c_adjustments(plan, table, managed), table)
+            bound: dict[str, set[int]] = {}
+            for bind in c_binds(plan)[0]:
+                bound.setdefault(bind.module, set()).add(bind.offset)
             yield ControllerRun(controller, table, remote_plan(
-                plan, automaton.automaton, table, controller, managed, owned)), shared
+                plan, automaton.automaton, table, controller, managed, owned,
+                {name: frozenset(words) for name, words in bound.items()})), shared
         finally:
             controller.close()
     finally:
