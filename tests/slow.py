@@ -23,6 +23,8 @@ SLOW = frozenset({
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_in_real_time_runs_the_same_robot_tasks",
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_ends_as_orccad_run",
     "tests/lsp/test_command.py::test_an_editor_that_goes_away_leaves_no_server_and_no_proof_behind",
+    "tests/lsp/test_stream.py::test_shutdown_then_exit_is_0_and_the_end_of_the_stream_ends_it_too",
+    "tests/fuzz/test_fuzz_lsp.py::test_any_sequence_of_hostile_frames_leaves_the_server_answering",
     "tests/lsp/test_proof.py::test_a_false_property_gets_an_error_with_its_counterexample_script",
     "tests/lsp/test_proof.py::test_every_property_of_arm_recovery_is_proved",
     "tests/reactive/test_reference.py::test_compiled_automaton_agrees_with_the_reference_interpreter",
