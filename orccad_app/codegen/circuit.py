@@ -21,6 +21,7 @@ Robot-Tasks' marked regions.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from orccad_app.codegen.cexpr import ExprWriter, StringTable, c_comment
@@ -46,7 +47,17 @@ from orccad_app.reactive.reads import made
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel
 from orccad_app.robottask.signals import SignalRoles
 
-__all__ = ["generate_circuit", "circuit_of"]
+__all__ = ["generate_circuit", "circuit_of", "GATES_PER_FUNCTION"]
+
+#: node definitions per gate function (``static void gN``)
+GATES_PER_FUNCTION = 200
+
+
+@dataclass(frozen=True)
+class _Gate:
+    """A line defining a BDD node's wire."""
+
+    text: str
 
 
 @dataclass(frozen=True)
@@ -100,7 +111,9 @@ def generate_circuit(circuit: Circuit, prefix: str, *, roles: SignalRoles | None
                                  f"these inputs violate 'relation {r.text}' (declared at "
                                  f"{r.loc})")) for r in program.relations]
     registers = len(circuit.registers)
-    step = _Step(circuit, plan, interface, places).text(prefix, errors, relations, reason)
+    writer_step = _Step(circuit, plan, interface, places)
+    step = writer_step.text(prefix, errors, relations, reason)
+    functions += writer_step.gates
     shape = _Shape(program)
     form = (f" * The circuit of mission {c_comment(program.name)} ({registers} registers, "
             f"{len(events)} data events), as C99.")
@@ -234,7 +247,8 @@ class _Step:
         self.interface = interface
         self.places = places
         self.slot: dict[int, int] = {}
-        self.lines: list[str] = []
+        self.lines: list = []               # C lines, and _Gate lines (node definitions)
+        self.gates: list[str] = []          # the functions computing runs of nodes
         self.register_index = {name: i for i, name in enumerate(circuit.registers)}
         program = circuit.prep.program
         fields = {s.decl: s.field for s in interface.inputs}
@@ -286,7 +300,39 @@ class _Step:
             else:
                 text = f"{v} ? {hi} : {lo}"
             number = self.slot[int(u)] = len(self.slot)
-            self.lines.append(f"x[{number}] = {text};")
+            self.lines.append(_Gate(f"x[{number}] = {text};"))
+
+    def _grouped(self, prefix: str) -> list[str]:
+        """The step's lines, each run of node definitions moved into a function of at most
+        :data:`GATES_PER_FUNCTION` lines (a compiler optimizes many small functions much
+        faster than one function of thousands of statements)."""
+        out: list[str] = []
+        run: list[str] = []
+        tests = bool(self.plan.tests)
+        signature = (f"static void g{{}}(const {prefix}_mem *m, const {prefix}_in *in, "
+                     + ("const bool *t, " if tests else "") + "unsigned char *x)")
+        call = "g{}(m, in, " + ("t, " if tests else "") + "x);"
+
+        def flush() -> None:
+            if run:
+                number = len(self.gates)
+                text = "\n".join(run)
+                unused = [f"(void){name};" for name in ("m", "in", "t")
+                          if (name != "t" or tests) and not re.search(rf"\b{name}\b", text)]
+                self.gates.append(_function(signature.format(number), unused + run))
+                out.append(call.format(number))
+                run.clear()
+
+        for line in self.lines:
+            if isinstance(line, _Gate):
+                run.append(line.text)
+                if len(run) >= GATES_PER_FUNCTION:
+                    flush()
+            else:
+                flush()
+                out.append(line)
+        flush()
+        return out
 
     def text(self, prefix: str, errors: ErrorTable, relations, reason) -> str:
         c, plan = self.c, self.plan
@@ -321,7 +367,7 @@ class _Step:
         body += [f"unsigned char nx[{len(c.registers)}];", "int i;", "int st;", "(void)in;"]
         body += step_prologue(self.interface, self.places, errors, relations)
         body += [f"if (m->reg[0] > 1 || m->reg[1] > 1) return {errors.state};"]
-        body += self.lines
+        body += self._grouped(prefix)
         for signal in self.interface.outputs:
             body.append(f"out->{signal.field} = {emitted[signal.decl]};")
             place = self.places.values.get(signal.decl)
