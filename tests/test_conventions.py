@@ -145,3 +145,21 @@ def test_every_test_marked_slow_exists():
     for node in sorted(SLOW):
         path, function = node.split("::")
         assert f"def {function}(" in (ROOT / path).read_text(encoding="utf-8"), node
+
+
+def test_no_package_imports_another_packages_private_names():
+    """A name with a leading underscore is its package's own: another package of orccad_app
+    (or a built-in plugin) that needs it asks for a public one (issue 36: codegen imported
+    reactive's ``_divide``)."""
+    found = []
+    for path in sorted([*(ROOT / "orccad_app").rglob("*.py"), *(ROOT / "plugins").rglob("*.py")]):
+        relative = path.relative_to(ROOT)
+        own = relative.parts[1] if relative.parts[0] == "orccad_app" else relative.parts[0]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not (isinstance(node, ast.ImportFrom) and node.module
+                    and node.module.startswith("orccad_app.")):
+                continue
+            other = node.module.split(".")[1]
+            found += [f"{relative}:{node.lineno}: {node.module}.{alias.name}"
+                      for alias in node.names if alias.name.startswith("_") and other != own]
+    assert not found, "\n".join(found)

@@ -22,7 +22,6 @@ NAME_PARSING = re.compile(r"""["']\.["'] (?:not )?in |\.rsplit\(["']\.["']|"""
 
 ALLOWED = {
     "orccad_app/robottask/signals.py": "SignalRoles itself",
-    "orccad_app/campaign/spec.py": "checks the user's ROBOT.FAULT=VALUE@TIME text, not a signal",
 }
 """Files that may match :data:`NAME_PARSING`, and why."""
 
@@ -112,3 +111,93 @@ def test_module_tasks_run_behind_one_backend_not_a_mission_run_subclass():
     assert not subclasses, "\n".join(subclasses)
     assert not made, "MissionRun made outside the mission layer and the façade:\n" + \
         "\n".join(made)
+
+
+#: The words of :mod:`orccad_app.reactive.status` (the run's status vocabulary).
+STATUS_WORDS = frozenset({"running", "done", "failed", "aborted", "recovering", "timeout"})
+
+STATUS_MODULE = "orccad_app/reactive/status.py"
+
+HOMONYMS = {
+    "orccad_app/lang/transform_formula.py": (3, "the formula keywords done, failed, aborted: "
+                                             "lang is below reactive (the grammar's words, "
+                                             "tied to Status by the next test)"),
+    "orccad_app/tui/widgets/orc_lexer.py": (3, "the same keywords, for the highlighter"),
+    "orccad_app/tui/screens/campaign.py": (7, "a campaign command's state (idle, running, "
+                                           "finished, interrupted, failed), not a run's"),
+    "orccad_app/robottask/labels.py": (1, "Phase.ACTIVE's word for people"),
+    "orccad_app/commands/check.py": (1, "the JSON count of failed properties"),
+    "orccad_app/campaign/runner.py": (1, "PrefixCounts.done, an attribute in __slots__"),
+    "orccad_app/lsp/lifecycle.py": (1, "the language server's lifecycle phase"),
+}
+"""Files that write a status word for another concept: how many times, and why."""
+
+
+def _status_literals(path: Path) -> list[int]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return sorted(node.lineno for node in ast.walk(tree)
+                  if isinstance(node, ast.Constant) and node.value in STATUS_WORDS)
+
+
+def test_status_words_are_written_only_where_the_status_enum_is_born():
+    """``"done"``, ``"failed"``… are :class:`~orccad_app.reactive.status.Status` and
+    :class:`~orccad_app.reactive.status.MissionStatus` members everywhere but their module
+    (issue 36): a new literal fails here, as does one more in a file of :data:`HOMONYMS`."""
+    found = []
+    for path in sorted([*PACKAGE.rglob("*.py"), *(ROOT / "plugins").rglob("*.py")]):
+        relative = path.relative_to(ROOT).as_posix()
+        if relative == STATUS_MODULE:
+            continue
+        lines = _status_literals(path)
+        allowed = HOMONYMS.get(relative, (0, ""))[0]
+        if len(lines) != allowed:
+            found.append(f"{relative}: {len(lines)} status words (allowed {allowed}) at lines "
+                         + ", ".join(map(str, lines)))
+    assert not found, "status words outside reactive/status.py:\n" + "\n".join(found)
+
+
+def test_the_status_words_are_the_enums_values():
+    from orccad_app.reactive.status import MissionStatus, Status
+
+    assert {*Status, *MissionStatus} == STATUS_WORDS
+    assert _status_literals(ROOT / STATUS_MODULE)  # the test reads what it counts
+
+
+def test_the_formula_status_keywords_are_the_ended_statuses():
+    from orccad_app.lang.parser import parse
+    from orccad_app.reactive.status import Status
+
+    for status in Status:
+        if status is Status.RUNNING:
+            continue
+        text = f"property M.p: eventually {status};\n"
+        formula = parse(text, "<t>").properties[0].formula
+        assert formula.operand.status == status and Status(formula.operand.status) is status
+
+
+TASK_ERROR_HOMONYMS = {
+    "orccad_app/control/closed_loop.py": 2,  # a closed-loop record's column
+    "orccad_app/control/laws/fast.py": 1,  # LawOutput's attribute e
+    "orccad_app/lang/limits.py": 1,  # the exponent of a number's text
+    "orccad_app/tui/screens/report.py": 1,  # a key binding
+    "orccad_app/tui/screens/run.py": 1,  # a key binding
+    "orccad_app/verify/stl.py": 2,  # the prefix of an event variable
+}
+"""Files that write ``"e"`` for something else than the task-error port, and how often."""
+
+
+def test_the_task_error_port_is_named_once():
+    """The control law's ``e`` output, read by observers, the run's tracking error and
+    ``robot.e`` properties, is :data:`orccad_app.control.ports.TASK_ERROR` (the plugins'
+    ``plugin_api.TASK_ERROR``) everywhere else (issue 36)."""
+    found = []
+    for path in _python_files():
+        relative = path.relative_to(ROOT).as_posix()
+        if relative == "orccad_app/control/ports.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        lines = sorted(node.lineno for node in ast.walk(tree)
+                       if isinstance(node, ast.Constant) and node.value == "e")
+        if len(lines) != TASK_ERROR_HOMONYMS.get(relative, 0):
+            found.append(f"{relative}: \"e\" at lines {', '.join(map(str, lines))}")
+    assert not found, "the task-error port written as \"e\":\n" + "\n".join(found)

@@ -27,6 +27,7 @@ import numpy as np
 
 from orccad_app.executive.observer import Observer
 from orccad_app.mission.run import MissionRun
+from orccad_app.reactive.status import MissionStatus
 
 __all__ = ["SignalExtrema", "run_metrics", "check_results"]
 
@@ -90,7 +91,8 @@ def run_metrics(result: Any, extrema: SignalExtrema) -> dict[str, float | None]:
     """The metrics of a run (see the module docstring)."""
     metrics: dict[str, float | None] = {
         "sim_time_s": result.sim_time_ns / 1e9,
-        "completion_time_s": result.sim_time_ns / 1e9 if result.status == "done" else None,
+        "completion_time_s": (result.sim_time_ns / 1e9 if result.status == MissionStatus.DONE
+                              else None),
         "deadline_misses": float(sum(task.deadline_misses
                                      for task in result.stats.tasks.values())),
     }

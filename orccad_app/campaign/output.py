@@ -7,6 +7,7 @@ from typing import Any
 
 from orccad_app.campaign.runner import CampaignResult, PrefixCounts
 from orccad_app.jsonout import plain
+from orccad_app.reactive.status import MissionStatus
 
 __all__ = ["result_dict", "format_result", "Progress"]
 
@@ -70,7 +71,7 @@ def format_result(result: CampaignResult) -> str:
             lines += ["", f"Closest to violation of {prop}:"]
             lines += [f"  run {w['run']:>4}  robustness {_num(w['robustness'])}:  "
                       f"{result.replays.get(w['run'], '')}" for w in worst]
-    failing = [r for r in result.records if r.status != "done"][:5]
+    failing = [r for r in result.records if r.status != MissionStatus.DONE][:5]
     if failing:
         lines += ["", "Replay (first runs not done):"]
         lines += [f"  run {r.index:>4}  {r.outcome}:  {result.replays.get(r.index, '')}"

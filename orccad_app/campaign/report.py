@@ -26,6 +26,7 @@ from typing import Any
 from orccad_app.campaign.runner import CampaignResult
 from orccad_app.campaign.stats import influence
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.status import MissionStatus
 
 __all__ = ["write_report", "figures", "worst_runs"]
 
@@ -41,9 +42,13 @@ def _pyplot() -> Any:
     return plt
 
 
+_ALWAYS_SHOWN = frozenset(MissionStatus) - {MissionStatus.RECOVERING}
+"""The outcomes drawn even when no run had them."""
+
+
 def _outcomes(plt: Any, result: CampaignResult) -> Any:
     shown = [(k, e) for k, e in result.estimates.items() if e["runs"] and
-             (e["count"] or k in ("done", "failed", "aborted", "timeout"))]
+             (e["count"] or k in _ALWAYS_SHOWN)]
     fig, ax = plt.subplots(figsize=(7, 0.45 * len(shown) + 1.2))
     names = [k for k, _ in shown]
     p = [e["p"] for _, e in shown]
@@ -75,7 +80,7 @@ def _robustness(plt: Any, result: CampaignResult) -> Any | None:
 
 
 def _completion(plt: Any, result: CampaignResult) -> Any | None:
-    times = [r.sim_time_s for r in result.records if r.status == "done"]
+    times = [r.sim_time_s for r in result.records if r.status == MissionStatus.DONE]
     if not times:
         return None
     fig, ax = plt.subplots(figsize=(6, 3))
@@ -97,7 +102,8 @@ def _score(result: CampaignResult) -> tuple[str, dict[int, float]]:
         return f"robustness of {name}", {
             r.index: value for r in result.records if name in r.properties
             if (value := r.properties[name].robustness) is not None}
-    return "done (1) or not (0)", {r.index: float(r.status == "done") for r in result.records}
+    return "done (1) or not (0)", {r.index: float(r.status == MissionStatus.DONE)
+                                   for r in result.records}
 
 
 def worst_runs(records: list, score: dict[int, float]) -> list:

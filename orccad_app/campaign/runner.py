@@ -33,6 +33,7 @@ from orccad_app.campaign.stats import (EventCounts, Hypothesis, Sprt, chernoff_r
 from orccad_app.campaign.store import CampaignStore
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.status import MissionStatus
 
 __all__ = ["CampaignOptions", "CampaignResult", "Campaign", "PrefixCounts"]
 
@@ -157,7 +158,8 @@ class Campaign:
                                   "setting this campaign does not draw (an edited row?)")
             prefix.waiting[record.index] = record
             recorded += 1
-        backend = backend or make_backend(self.options.workers, self.options.cluster)
+        pending = self.limit - sum(1 for index in self.store.done() if index < self.limit)
+        backend = backend or make_backend(self.options.workers, self.options.cluster, pending)
         self.backend = backend
         interrupted = False
         try:
@@ -247,7 +249,7 @@ class Campaign:
                 wall: float) -> CampaignResult:
         summary = summarize(used)
         wanted = {w["run"] for worst in summary["closest_to_violation"].values() for w in worst}
-        wanted |= {r.index for r in used if r.status != "done"}
+        wanted |= {r.index for r in used if r.status != MissionStatus.DONE}
         replays = {r.index: self.replay(r.setting) for r in used if r.index in wanted}
         sprt = self._sprt(used).as_dict() if self.hypothesis is not None else None
         if stopped == "runs" and self.options.epsilon is not None and self.options.runs is None:
@@ -275,5 +277,5 @@ class PrefixCounts:
     def add(self, record: RunRecord) -> None:
         """Fold the run ``length`` in."""
         self.length += 1
-        self.done += record.status == "done"
+        self.done += record.status == MissionStatus.DONE
         self.counts.add(record)

@@ -16,6 +16,10 @@
     [timing]                        # Module-Task period / WCET / BCET [ms] (--timing)
     "Survey.pilot.wcet_ms" = "U(0.5, 5)"
 
+    [controller]                    # a real controller's delays [µs] (--exchange-us,
+    exchange_us = "U(0, 1000)"      # --jitter-us: docs/executive.md)
+    jitter_us = "U(0, 200)"
+
     [[inject]]                      # an input or a plant fault at a random time (--inject)
     event = "auv.leak=1@U(20, 170)"
     probability = 0.3               # Bernoulli occurrence (default 1)
@@ -32,6 +36,7 @@ offending key and exits 2. Names are checked against the mission later
 
 from __future__ import annotations
 
+import math
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -40,15 +45,22 @@ from typing import Any
 
 from orccad_app.campaign.distributions import (Distribution, DistributionError, Kind,
                                                parse_distribution)
-from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.diagnostics import OrccadError, SourceLocation, cut
+from orccad_app.mission.injection import PlantFault
 
-__all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "InjectEntry", "Check", "load_spec",
+__all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "ControllerEntry", "InjectEntry",
+           "Check", "load_spec", "CONTROLLER_KEYS",
            "parse_spec", "SpecLocator", "DEFAULT_SEEDS", "MAX_RUNS", "MAX_UNTIL_S", "MAX_SEED"]
 
 DEFAULT_SEEDS = parse_distribution(f"UI(0, {2 ** 31 - 1})")
 _TOP = ("mission", "runs", "seed", "until_s", "seeds", "signals", "params", "timing",
-        "inject", "check")
+        "controller", "inject", "check")
+CONTROLLER_KEYS = ("exchange_us", "jitter_us")
+"""The keys of ``[controller]``: ``orccad run``'s ``--exchange-us`` and ``--jitter-us``."""
+MAX_DELAY_US = 1e6
+"""The largest exchange period or release jitter a spec may draw [µs] (1 s)."""
 _EVENT = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:=(.*?)|\((.*)\))?\s*@(.+)$", re.S)
+_DRAWS = "U(a, b), UI(a, b), N(mu, sigma), N(mu, sigma, lo, hi), choice(v, ...) or B(p)"
 _METRIC = re.compile(r"^(?:(max|min)\(([A-Za-z_][\w.]*(?:\[\d+\])?)\)|sim_time_s|"
                      r"completion_time_s|deadline_misses|"
                      r"([A-Za-z_]\w*)\.tracking_error\.(max|rms))$")
@@ -85,11 +97,24 @@ class TimingEntry:
 
 
 @dataclass(frozen=True)
+class ControllerEntry:
+    """``exchange_us = DIST`` or ``jitter_us = DIST`` of ``[controller]`` [µs]: the delays a
+    real controller adds (:mod:`orccad_app.executive.delays`)."""
+
+    target: str
+    dist: Distribution
+    key: tuple
+
+
+@dataclass(frozen=True)
 class InjectEntry:
-    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s]."""
+    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s].
+
+    :param fault: the plant fault ``name`` sets, ``None`` for an automaton input.
+    """
 
     name: str
-    fault: bool
+    fault: PlantFault | None
     value: Distribution | None
     time: Distribution
     probability: float
@@ -122,6 +147,7 @@ class CampaignSpec:
     signals: tuple[str, ...] = ()
     params: tuple[ParamEntry, ...] = ()
     timings: tuple[TimingEntry, ...] = ()
+    controller: tuple[ControllerEntry, ...] = ()
     injections: tuple[InjectEntry, ...] = ()
     checks: tuple[Check, ...] = ()
     locator: SpecLocator | None = field(default=None, compare=False)
@@ -219,7 +245,7 @@ class _Reader:
             if isinstance(until, bool) or not isinstance(until, (int, float)) \
                     or not 0 < until <= MAX_UNTIL_S:
                 raise self.fail(f"until_s must be a number of seconds in (0, {MAX_UNTIL_S:g}] "
-                                f"(one year), got {until!r}", "until_s")
+                                f"(one year), got {cut(repr(until))}", "until_s")
             values["until_s"] = float(until)
         if "seeds" in data:
             seeds = self.dist(data["seeds"], "seeds")
@@ -232,6 +258,8 @@ class _Reader:
                                  for k, v in self.table("params").items())
         values["timings"] = tuple(TimingEntry(k, self.dist(v, "timing", k), ("timing", k))
                                   for k, v in self.table("timing").items())
+        values["controller"] = tuple(self.controller(k, v)
+                                     for k, v in self.table("controller").items())
         values["injections"] = tuple(self.inject(i, item)
                                      for i, item in enumerate(self.array("inject")))
         values["checks"] = tuple(self.check(i, item)
@@ -244,14 +272,14 @@ class _Reader:
 
     def string(self, value: Any, *key: Any) -> str:
         if not isinstance(value, str) or not value.strip():
-            raise self.fail(f"{key[-1]} must be a non-empty string, got {value!r}", *key)
+            raise self.fail(f"{key[-1]} must be a non-empty string, got {cut(repr(value))}", *key)
         return value.strip()
 
     def integer(self, value: Any, minimum: int, *key: Any, maximum: int = 2**63 - 1) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or not \
                 minimum <= value <= maximum:
             raise self.fail(f"{key[-1]} must be an integer in [{minimum}, {maximum}], got "
-                            f"{value!r}", *key)
+                            f"{cut(repr(value))}", *key)
         return value
 
     def dist(self, value: Any, *key: Any) -> Distribution:
@@ -277,9 +305,21 @@ class _Reader:
             raise self.fail("signals must be a list of ROBOT.PORT strings", "signals")
         for signal in value:
             if not re.fullmatch(r"[A-Za-z_]\w*\.[A-Za-z_]\w*(\[\d+\])?", signal):
-                raise self.fail(f"signal {signal!r}: expected ROBOT.PORT or ROBOT.PORT[i]",
+                raise self.fail(f"signal {cut(repr(signal))}: expected ROBOT.PORT or ROBOT.PORT[i]",
                                 "signals")
         return tuple(value)
+
+    def controller(self, name: str, value: Any) -> ControllerEntry:
+        key = ("controller", name)
+        if name not in CONTROLLER_KEYS:
+            raise self.fail(f"unknown key '{name}' in [controller] (keys: "
+                            f"{', '.join(CONTROLLER_KEYS)})", *key)
+        dist = self.dist(value, *key)
+        low, high = dist.bounds
+        if not 0 <= low <= high <= MAX_DELAY_US:
+            raise self.fail(f"{name} must draw microseconds in [0, {MAX_DELAY_US:g}], got "
+                            f"{value!r}", *key)
+        return ControllerEntry(name, dist, key)
 
     def inject(self, index: int, item: dict[str, Any]) -> InjectEntry:
         key = ("inject", index)
@@ -293,27 +333,33 @@ class _Reader:
         text = self.string(item["event"], *key, "event")
         match = _EVENT.match(text)
         if match is None:
-            raise self.fail(f"bad event {text!r}: expected SIGNAL@TIME, SIGNAL(VALUE)@TIME or "
-                            f"ROBOT.FAULT=VALUE@TIME (TIME and VALUE numbers or "
-                            f"distributions)", *key, "event")
+            raise self.fail(f"bad event {cut(repr(text))}: expected SIGNAL@TIME, "
+                            f"SIGNAL(VALUE)@TIME or ROBOT.FAULT=VALUE@TIME (TIME and VALUE "
+                            f"numbers or distributions)", *key, "event")
         name, fault_value, signal_value, when = match.groups()
-        fault = fault_value is not None
-        raw = fault_value if fault else signal_value
+        fault = None if fault_value is None else PlantFault.named(name)
+        if fault_value is not None and fault is None:
+            raise self.fail(f"bad event {cut(repr(text))}: a plant fault is "
+                            "ROBOT.FAULT=VALUE@TIME",
+                            *key, "event")
+        raw = signal_value if fault is None else fault_value
         value = None
         if raw is not None:
             raw = raw.strip()
+            if raw.startswith("["):
+                raise self.fail(f"event {cut(repr(text))}: a campaign draws numbers, not "
+                                f"vectors: VALUE is a number or a distribution ({_DRAWS}); "
+                                f"inject a vector input with orccad run --inject "
+                                f"'{name}([x, y, ...])@T'", *key, "event")
             value = self.dist(raw[:-1] if raw.endswith("%") else raw, *key, "event")
-        if fault and "." not in name:
-            raise self.fail(f"bad event {text!r}: a plant fault is ROBOT.FAULT=VALUE@TIME",
-                            *key, "event")
         time = self.dist(when.strip().removesuffix("s") if when.strip().endswith(")s")
                          else when.strip(), *key, "event")
         if time.bounds[0] < 0:
-            raise self.fail(f"event {text!r}: times must be >= 0 s", *key, "event")
+            raise self.fail(f"event {cut(repr(text))}: times must be >= 0 s", *key, "event")
         probability = item.get("probability", 1.0)
         if (isinstance(probability, bool) or not isinstance(probability, (int, float))
                 or not 0 <= probability <= 1):
-            raise self.fail(f"probability must be a number in [0, 1], got {probability!r}",
+            raise self.fail(f"probability must be a number in [0, 1], got {cut(repr(probability))}",
                             *key, "probability")
         return InjectEntry(name, fault, value, time, float(probability), key)
 
@@ -325,18 +371,20 @@ class _Reader:
                                 f"below, above)", *key, name)
         name = self.string(item.get("name"), *key, "name")
         if not re.fullmatch(r"[A-Za-z_]\w*", name):
-            raise self.fail(f"check name {name!r} must be an identifier", *key, "name")
+            raise self.fail(f"check name {cut(repr(name))} must be an identifier", *key, "name")
         metric = self.string(item.get("metric"), *key, "metric")
         if not _METRIC.match(metric):
-            raise self.fail(f"unknown metric {metric!r}: expected max(ROBOT.PORT), "
+            raise self.fail(f"unknown metric {cut(repr(metric))}: expected max(ROBOT.PORT), "
                             f"min(ROBOT.PORT), sim_time_s, completion_time_s, deadline_misses "
                             f"or TASK.tracking_error.max|rms", *key, "metric")
         bounds = {}
         for side in ("below", "above"):
             value = item.get(side)
             if value is not None and (isinstance(value, bool)
-                                      or not isinstance(value, (int, float))):
-                raise self.fail(f"{side} must be a number, got {value!r}", *key, side)
+                                      or not isinstance(value, (int, float))
+                                      or not math.isfinite(value)):
+                raise self.fail(f"{side} must be a finite number, got {cut(repr(value))}",
+                                *key, side)
             bounds[side] = None if value is None else float(value)
         if bounds["below"] is None and bounds["above"] is None:
             raise self.fail("a check needs 'below' and/or 'above'", *key)

@@ -28,6 +28,7 @@ from typing import Any, Iterable
 
 from orccad_app.campaign.adapter import RUN_STATUSES, RunRecord
 from orccad_app.diagnostics import OrccadError
+from orccad_app.reactive.status import MissionStatus
 
 __all__ = ["clopper_pearson", "chernoff_runs", "Hypothesis", "Sprt", "EventCounts",
            "event_counts", "estimates", "estimates_of", "precise_enough", "summarize",
@@ -230,7 +231,7 @@ def _quantile(ordered: list[float], q: float) -> float:
 def summarize(records: list[RunRecord], closest: int = 5) -> dict[str, Any]:
     """Distributions: completion time, each property's robustness, each metric; and per
     property the runs closest to violation (smallest robustness)."""
-    done = [r.sim_time_s for r in records if r.status == "done"]
+    done = [r.sim_time_s for r in records if r.status == MissionStatus.DONE]
     props = sorted({name for r in records for name in r.properties})
     robustness = {}
     worst = {}

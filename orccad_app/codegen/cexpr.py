@@ -18,7 +18,7 @@ from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.static_types import ARITHMETIC, BOOL, INT, NEVER, CType, Kind, TypeTable
 from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
-from orccad_app.reactive.expr import _divide, format_expr
+from orccad_app.reactive.expr import divide, format_expr
 
 __all__ = ["Places", "Place", "ExprWriter", "c_type", "c_literal", "c_string", "c_comment",
            "StringTable"]
@@ -26,7 +26,7 @@ __all__ = ["Places", "Place", "ExprWriter", "c_type", "c_literal", "c_string", "
 
 def _python_message(left: object, right: object) -> str:
     try:
-        _divide(left, right)
+        divide(left, right)
     except ZeroDivisionError as error:
         return str(error)
     raise AssertionError("no division by zero")  # pragma: no cover

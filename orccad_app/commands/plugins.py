@@ -2,8 +2,9 @@
 
 Lists the loaded plugins, then robot types, control laws, task functions, trajectories,
 observers and module kinds with their providing plugin and a one-line summary.
-``--verbose`` adds parameters, ports and default timing; ``--json`` prints one JSON
-document. Plugins that failed are reported on stderr (``warning: plugin 'x' disabled: …``)
+``--verbose`` adds parameters, ports, default timing and, for module kinds and observers,
+where their C is (the runtime library's, the plugin's file, or none: Python only; ``c`` in
+the JSON); ``--json`` prints one JSON document. Plugins that failed are reported on stderr (``warning: plugin 'x' disabled: …``)
 and the listing still shows what the others provide.
 """
 
@@ -38,7 +39,7 @@ def register(subparsers: Any) -> None:
                     "disables the named plugins.")
     parser.add_argument("--json", action="store_true", help="print JSON")
     parser.add_argument("-v", "--verbose", action="store_true",
-                        help="also list parameters, ports and timing")
+                        help="also list parameters, ports, timing and which kinds have C")
     parser.set_defaults(func=run)
 
 
@@ -85,9 +86,12 @@ def _item(category: str, item: Any) -> dict[str, Any]:
                     joint_limits=[_plain(limit) for limit in item.joint_limits],
                     end_effector=item.end_effector)
     elif category in ("observers", "module_kinds"):
+        from orccad_app.sil.generate.layout import kind_c
+
         timing = item.default_timing
         info.update(ports=_ports(item.ports), default_timing={
-            "period_ns": timing.period_ns, "wcet_ns": timing.wcet_ns, "bcet_ns": timing.bcet_ns})
+            "period_ns": timing.period_ns, "wcet_ns": timing.wcet_ns, "bcet_ns": timing.bcet_ns},
+            c=kind_c(item))
     return info
 
 
@@ -135,6 +139,9 @@ def _details(entry: dict[str, Any]) -> list[str]:
     if timing:
         lines.append(f"      timing period {timing['period_ns'] / 1e6:g} ms, "
                      f"wcet {timing['wcet_ns'] / 1e6:g} ms")
+    if "c" in entry:
+        where = entry["c"] or "none: Python only (orccad sil and codegen --module-tasks refuse it)"
+        lines.append(f"      C     {where}")
     if "mjcf" in entry:
         lines.append(f"      mjcf  {entry['mjcf']}")
     return lines

@@ -50,6 +50,7 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.diagnostics import OrccadError, SourceLocation
     from orccad_app.reactive.runtime import Reactor, RelationViolation
     from orccad_app.reactive.script import parse_script
+    from orccad_app.reactive.status import Status
 
     source = load(args.file)
     source.print_warnings()
@@ -83,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
             status = reaction.status + (f" {reaction.reason}" if reaction.reason else "")
             print(f"{number:>4}  {clock}{_inputs(instant.inputs):<{input_width}} -> "
                   f"{outputs or '-':<20} [{status}]")
-    return 1 if reactor.status in ("failed", "aborted") else 0
+    return 1 if reactor.status in (Status.FAILED, Status.ABORTED) else 0
 
 
 def _clock(clock_ns: int) -> str:

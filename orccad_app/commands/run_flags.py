@@ -3,7 +3,8 @@
 Both commands run a mission through the run façade (:mod:`orccad_app.session`) and print the
 same report: the same injections (``--inject``, ``--inject-from``), overrides (``--set``,
 ``--timing``), trace (``--trace``, ``--trace-format``), live views (``--foxglove``,
-``--ros2-zenoh``), scheduling (``--scheduler``, ``--context-switch-us``, ``--bus-us``),
+``--ros2-zenoh``), scheduling (``--scheduler``, ``--context-switch-us``, ``--bus-us``), a
+real controller's delays (``--exchange-us``, ``--jitter-us``),
 ``--json``, and the same exit status. Only the standard library is imported at module level
 (building the parser stays fast).
 """
@@ -15,8 +16,8 @@ import math
 import sys
 from typing import Any
 
-from orccad_app.commands.arguments import (bounded_int, checked_injection, non_negative_int,
-                                           seconds)
+from orccad_app.commands.arguments import (bounded_int, checked_injection, delay_us,
+                                           non_negative_int, seconds)
 
 __all__ = ["add_run_flags", "check_run_flags", "run_options", "refuse_trace_over_inputs",
            "observe", "render"]
@@ -89,6 +90,13 @@ def add_run_flags(parser: argparse.ArgumentParser) -> None:
                         metavar="US", help="context-switch overhead [µs] (default 0)")
     parser.add_argument("--bus-us", type=bounded_int(0, 10**9), default=0, metavar="US",
                         help="bus transfer time per message [µs] (default 0)")
+    parser.add_argument("--exchange-us", type=delay_us, default=0, metavar="US",
+                        help="model a real controller's I/O: the robot's ports exchanged every "
+                             "US µs (a sensor up to US old, a torque applied up to US late; "
+                             "the phase from the seed); default 0, the ideal exchange")
+    parser.add_argument("--jitter-us", type=delay_us, default=0, metavar="US",
+                        help="model a real controller's release jitter: each periodic release "
+                             "late by a uniform draw in [0, US] µs (from the seed); default 0")
 
 
 def check_run_flags(args: argparse.Namespace) -> None:
@@ -120,8 +128,10 @@ def check_run_flags(args: argparse.Namespace) -> None:
         require("--trace-format rosbag2")
     if args.ros2_zenoh is not None:
         from orccad_app.ros2 import require
+        from orccad_app.ros2.endpoint import check_endpoint
 
         require("--ros2-zenoh", zenoh=True)
+        check_endpoint(args.ros2_zenoh)
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
     if args.foxglove:
@@ -141,7 +151,7 @@ def refuse_trace_over_inputs(args: argparse.Namespace, source: Any) -> None:
 
 def _warn_first_instant(injections) -> None:
     for injection in injections:
-        if injection.time_ns == 0 and not injection.fault:
+        if injection.time_ns == 0 and injection.fault is None:
             print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
                   "first instant, where only 'immediate' tests see it (await, abort ... when "
                   "and each look from the next instant on)", file=sys.stderr)
@@ -152,6 +162,7 @@ def run_options(args: argparse.Namespace, realtime: float | None) -> Any:
     and overrides parsed: a malformed one is refused before the file is loaded); paced at
     ``realtime`` (simulated s per wall s, ``None``: as fast as possible; a live view paces at
     1 by default)."""
+    from orccad_app.executive.delays import ControllerDelays
     from orccad_app.mission.overrides import PlanOverrides
     from orccad_app.session import InputScript, RunOptions
 
@@ -165,6 +176,7 @@ def run_options(args: argparse.Namespace, realtime: float | None) -> Any:
                       seed=args.seed, until_s=args.until, scheduler=args.scheduler,
                       context_switch_ns=args.context_switch_us * 1000,
                       bus_transfer_ns=args.bus_us * 1000,
+                      delays=ControllerDelays(args.exchange_us, args.jitter_us),
                       realtime=1.0 if live and realtime is None else realtime,
                       trace=args.trace, trace_format=args.trace_format, trace_file=args.file,
                       signals_end_run=True)
@@ -216,14 +228,21 @@ def _bridge(args: argparse.Namespace, session: Any) -> None:
     bridge = MissionBridge(session.run, [args.ros2_zenoh])
 
     def close() -> None:
+        reached = bridge.bridge.reached()
         bridge.close()
         print(f"orccad: ROS 2: {bridge.raised} inputs raised, {bridge.applied} joint "
-              "commands applied", file=sys.stderr, flush=True)
+              "commands applied" + ("" if reached else f"; no Zenoh router or peer was "
+                                                       f"reached at {args.ros2_zenoh}"),
+              file=sys.stderr, flush=True)
 
     session.add_observer(bridge, close)
     print(f"orccad: ROS 2 over Zenoh via {args.ros2_zenoh} (domain "
           f"{bridge.bridge.domain_id}): /joint_states, /joint_commands, /orccad/input/*, "
           "/orccad/output/*", file=sys.stderr, flush=True)
+    if not bridge.bridge.reached():
+        print(f"orccad: warning: --ros2-zenoh {args.ros2_zenoh}: no Zenoh router or peer "
+              "reached (is rmw_zenoh's router running? ros2 run rmw_zenoh_cpp rmw_zenohd); "
+              "the run goes on, and connects if one comes", file=sys.stderr, flush=True)
 
 
 def observe(args: argparse.Namespace, session: Any) -> Any:

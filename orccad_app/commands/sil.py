@@ -3,7 +3,8 @@ controller process.
 
 ::
 
-    orccad sil FILE [--mission M] (--lockstep | --realtime) [--heartbeat-s S] [--build-dir DIR]
+    orccad sil FILE [--mission M] (--lockstep | --realtime | --check-kinds)
+                    [--heartbeat-s S] [--build-dir DIR] [--check-jobs N] [--check-rtol R]
                     [every flag of orccad run but its --realtime FACTOR]
 
 The Module-Tasks of every Robot-Task the mission runs are emitted as C
@@ -107,6 +108,51 @@ def _heartbeat(text: str) -> float:
     return value
 
 
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= 100_000:
+        raise argparse.ArgumentTypeError(f"expected a number of jobs in [1, 100000], got "
+                                         f"{text!r}")
+    return value
+
+
+def _rtol(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"expected a relative tolerance in [0, 1], got "
+                                         f"{text!r}")
+    return value
+
+
+def _check_kinds(args: argparse.Namespace) -> int:
+    """``--check-kinds``: every Module-Task's C against its Python on random inputs."""
+    from orccad_app.mission.overrides import plan_with_overrides
+    from orccad_app.pipeline import load, select_mission
+    from orccad_app.sil.lockstep import check_kinds
+
+    options = run_options(args, None)
+    source = load(args.file)
+    source.print_warnings()
+    mission = select_mission(source, args.mission)
+    plan = plan_with_overrides(source, mission, options.overrides)
+    compared, difference = check_kinds(plan, args.file, args.check_jobs, args.seed,
+                                       rtol=args.check_rtol,
+                                       build_dir=check_build_dir(args.build_dir))
+    how = "bit for bit" if args.check_rtol == 0.0 else f"within {args.check_rtol:g} relative"
+    if difference is not None:
+        print(f"C and Python differ: {difference.text()}")
+        return 1
+    print(f"C and Python agree ({how}) on {compared} Module-Tasks, {args.check_jobs} jobs "
+          f"each, random inputs of seed {args.seed}")
+    return 0
+
+
 def register(sub) -> None:
     parser = sub.add_parser("sil", help="run the mission's Module-Tasks as a C controller "
                                         "process against the plant",
@@ -123,10 +169,25 @@ def register(sub) -> None:
                       help="real threads per processor, wall-clock periods "
                            "(clock_nanosleep, SCHED_FIFO where permitted), the plant over "
                            "shared memory; the report adds the measured release lateness")
+    mode.add_argument("--check-kinds", action="store_true",
+                      help="no run: feed every Module-Task of the mission, in C and in Python, "
+                           "the same random inputs (--check-jobs, --seed) and report the first "
+                           "output that differs (exit 1), bit for bit unless --check-rtol")
+    parser.add_argument("--check-jobs", type=_jobs, default=100, metavar="N",
+                        help="jobs per Module-Task for --check-kinds (default 100)")
+    parser.add_argument("--check-rtol", type=_rtol, default=0.0, metavar="R",
+                        help="--check-kinds: equal within R relative (default 0: bit for bit)")
     add_run_flags(parser)
     parser.add_argument("--heartbeat-s", type=_heartbeat, default=None, metavar="S",
                         help="the controller must answer each request within S wall seconds "
                              "(default 10), else the run ends failed")
+    parser.add_argument("--controller", metavar="EXE",
+                        help="run this controller instead of building one: the ./controller "
+                             "that make builds in the tree of 'orccad codegen --controller' "
+                             "(maybe cross-built; it must be built for this mission)")
+    parser.add_argument("--controller-wrapper", metavar="CMD",
+                        help="start --controller through CMD (e.g. qemu-aarch64 for an "
+                             "aarch64 build on an x86 machine; binfmt needs none)")
     parser.add_argument("--build-dir", metavar="DIR",
                         help="where the generated C goes: a new or empty folder, or one a "
                              "previous SIL build wrote (default: a temporary directory)")
@@ -157,12 +218,42 @@ def _timing_lines(timings) -> list[str]:
     return lines
 
 
+def _prebuilt(args: argparse.Namespace) -> Any:
+    """``--controller`` (and its ``--controller-wrapper``), checked before the file is
+    loaded; ``None`` to build the controller."""
+    import shlex
+    import shutil
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.sil.build.executable import Prebuilt
+
+    if args.controller is None:
+        if args.controller_wrapper is not None:
+            raise OrccadError("--controller-wrapper needs --controller")
+        return None
+    if args.build_dir is not None:
+        raise OrccadError("--build-dir: nothing is built with --controller (drop one)")
+    wrapper: tuple[str, ...] = ()
+    if args.controller_wrapper is not None:
+        try:
+            wrapper = tuple(shlex.split(args.controller_wrapper))
+        except ValueError as error:
+            raise OrccadError(f"--controller-wrapper: {error}") from None
+        if not wrapper or shutil.which(wrapper[0]) is None:
+            raise OrccadError(f"--controller-wrapper {args.controller_wrapper!r}: no such "
+                              "command on PATH (for an aarch64 controller: apt-get install "
+                              "qemu-user)")
+    return Prebuilt(Path(args.controller), wrapper).checked()
+
+
 def run(args: argparse.Namespace) -> int:
     with terminate_as_interrupt():
         return _run(args)
 
 
 def _run(args: argparse.Namespace) -> int:
+    if args.check_kinds:
+        return _check_kinds(args)
     from orccad_app.pipeline import load, select_mission
     from orccad_app.session import ControllerOptions, Execution, RunSession
     from orccad_app.session.backends import refuse_in_realtime
@@ -179,9 +270,10 @@ def _run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     refuse_trace_over_inputs(args, source)
+    prebuilt = _prebuilt(args)
     build_dir = check_build_dir(args.build_dir)
     options = dataclasses.replace(options, execution=execution, controller=ControllerOptions(
-        args.file, build_dir, args.heartbeat_s or DEFAULT_HEARTBEAT_S))
+        args.file, build_dir, args.heartbeat_s or DEFAULT_HEARTBEAT_S, prebuilt))
     session = RunSession(source, mission, options)
     report = session.execute(starting=observe(args, session))
     backend = session.backend
@@ -189,7 +281,8 @@ def _run(args: argparse.Namespace) -> int:
     timings = (backend.timings or []) if isinstance(backend, RealtimeBackend) else None
     modules = len(session.plan.tcs.module_tasks)
     controller: dict[str, Any] = {"mode": execution.value, "pid": backend.controller.pid,
-                                  "module_tasks": modules}
+                                  "module_tasks": modules,
+                                  "supervisor_writes": backend.controller.supervisor_writes}
     how = ("real-time threads, the plant over shared memory" if timings is not None
            else "lockstep over a Unix socket")
     lines = [f"Controller: process {backend.controller.pid}, {modules} Module-Tasks in C, {how}"]

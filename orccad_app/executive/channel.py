@@ -27,6 +27,7 @@ from orccad_app.tcs.protocol import Protocol
 
 if TYPE_CHECKING:
     from orccad_app.executive.bus import Bus
+    from orccad_app.executive.delays import PortExchange
     from orccad_app.executive.job import Job, JobOwner
 
 __all__ = ["Channel", "make_channel", "SensorChannel", "ActuatorChannel"]
@@ -390,33 +391,42 @@ class AsynSynDF(Channel):
 
 
 class SensorChannel(Channel):
-    """A plant sensor feeding a Module-Task input: sampled at the instant of the read."""
+    """A plant sensor feeding a Module-Task input: sampled at the instant of the read, or
+    at the last exchange of a :class:`~orccad_app.executive.delays.PortExchange`."""
 
-    __slots__ = ("plant", "port")
+    __slots__ = ("plant", "port", "exchange")
 
     def __init__(self, connection: Connection, consumer: JobOwner | None, plant: Any) -> None:
         super().__init__(connection, None, consumer, None, None)
         self.plant = plant
         self.port = connection.producer_port
+        self.exchange: PortExchange | None = None
 
     def read(self, job: Job) -> Any:
         self.reads += 1
+        if self.exchange is not None:
+            return self.exchange.sensor(self.plant, self.port)
         return self.plant.sample(self.port)
 
 
 class ActuatorChannel(Channel):
-    """A Module-Task output driving a plant actuator: held until the next write."""
+    """A Module-Task output driving a plant actuator: held until the next write (applied at
+    once, or at the next exchange of a :class:`~orccad_app.executive.delays.PortExchange`)."""
 
-    __slots__ = ("plant", "port")
+    __slots__ = ("plant", "port", "exchange")
 
     def __init__(self, connection: Connection, producer: JobOwner, plant: Any) -> None:
         super().__init__(connection, producer, None, None, None)
         self.plant = plant
         self.port = connection.consumer_port
+        self.exchange: PortExchange | None = None
 
     def write(self, job: Job, value: Any) -> bool:
         self.writes += 1
-        self.plant.actuate(self.port, value)
+        if self.exchange is not None:
+            self.exchange.actuate(self.plant, self.port, value, self.producer)
+        else:
+            self.plant.actuate(self.port, value)
         return True
 
 

@@ -29,6 +29,7 @@ from orccad_app.executive.bus import Bus, BusStats
 from orccad_app.executive.channel import (ActuatorChannel, Channel, SensorChannel,
                                           make_channel)
 from orccad_app.executive.context import RunContext
+from orccad_app.executive.delays import ControllerDelays, PortExchange
 from orccad_app.executive.hooks import Hooks
 from orccad_app.executive.job import Job, TaskStats
 from orccad_app.executive.kernel import EventClass, Kernel
@@ -101,11 +102,15 @@ class Simulation:
     :param plants: plant objects, one per physical resource of the TCS, matched by
         ``plant.resource.name`` (see :class:`~orccad_app.executive.plant.MujocoPlant`).
     :param observers: :class:`~orccad_app.executive.observer.Observer` instances.
+    :param delays: what a real controller adds to the ideal timing (the robot's ports
+        exchanged on a period, the releases' jitter: :mod:`orccad_app.executive.delays`);
+        default none.
     """
 
     def __init__(self, tcs: TCS, *, seed: int = 0, processors: Iterable[Processor] = (),
                  bus: Bus | None = None, plants: Iterable[Any] = (),
-                 observers: Iterable[Observer] = (), check: bool = True) -> None:
+                 observers: Iterable[Observer] = (), check: bool = True,
+                 delays: ControllerDelays = ControllerDelays()) -> None:
         if check:
             tcs.check()
         self.tcs = tcs
@@ -133,6 +138,9 @@ class Simulation:
         """Paced runs: per processed instant, how late it ran behind the wall clock [s]
         (0 when on time)."""
         self._wire()
+        self.exchange: PortExchange | None = None
+        """The robot's ports' exchange when ``delays`` gives it a period."""
+        self._model_delays(delays)
         self.sporadic = sporadic_releases(tcs, self.kernel, self.tasks)
         """The interrupt wiring of the sporadic Module-Tasks (``None`` without any)."""
         if self.sporadic is not None:
@@ -190,6 +198,19 @@ class Simulation:
                 runtime.writes.append((port.name, port.is_event, None))
                 for channel in writes.get(f"{task.name}.{port.name}", ()):
                     runtime.writes.append((port.name, port.is_event, channel))
+
+    def _model_delays(self, delays: ControllerDelays) -> None:
+        if delays.exchange_ns:
+            self.exchange = PortExchange(self.kernel, delays.exchange_ns)
+            for channel in self.channels.values():
+                if isinstance(channel, SensorChannel):
+                    channel.exchange = self.exchange
+                    self.exchange.watch(channel.plant, channel.port)
+                elif isinstance(channel, ActuatorChannel):
+                    channel.exchange = self.exchange
+        if delays.jitter_ns:
+            for runtime in self.tasks.values():
+                runtime.jitter(delays.jitter_ns)
 
     def _channel(self, connection: Any) -> Channel:
         producer = self.tcs.module(connection.producer_module)

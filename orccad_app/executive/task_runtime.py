@@ -22,11 +22,13 @@ drawn in blocks of 256 with ``Generator.integers(bcet, wcet, endpoint=True)``.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.block import BLOCK
 from orccad_app.executive.context import RunContext
+from orccad_app.executive.delays import jitter_draws
 from orccad_app.executive.job import (ABORTED, BLOCKED, DONE, READING, READY, WAKING, WRITING,
                                       Job, TaskStats)
 from orccad_app.executive.kernel import EventClass
@@ -75,6 +77,16 @@ class ModuleTaskRuntime:
         self._rng = None
         if task.bcet_ns is not None and task.bcet_ns < task.wcet_ns:
             self._rng = context.kernel.stream(f"mt/{task.name}/duration")
+        self._jitter: Iterator[int] | None = None
+        self._late_entry: list | None = None
+
+    def jitter(self, jitter_ns: int) -> None:
+        """Make each periodic release late by a uniform draw in ``[0, jitter_ns]`` (a real
+        controller's thread lateness, :mod:`orccad_app.executive.delays`; the period's grid
+        kept, the job's response time and deadline counted from its grid instant); call it
+        before the run."""
+        if jitter_ns > 0 and self.task.activation is not Activation.SPORADIC:
+            self._jitter = jitter_draws(self._kernel, self.name, jitter_ns)
 
     # -- activation --------------------------------------------------------------------------
 
@@ -97,6 +109,8 @@ class ModuleTaskRuntime:
             return
         self.active = False
         self._kernel.cancel(self._release_entry)
+        self._kernel.cancel(self._late_entry)
+        self._late_entry = None
         job = self.job
         if job is not None:
             self.job = None
@@ -127,11 +141,34 @@ class ModuleTaskRuntime:
         now = kernel.now
         task = self.task
         self._release_entry = kernel.schedule(now + task.period_ns, _RELEASE, self._release)
-        self.release_job(now)
+        if self._jitter is None:
+            self.release_job(now)
+        else:
+            self._release_late(now, next(self._jitter))
 
-    def release_job(self, now: int) -> None:
+    def _release_late(self, grid_ns: int, late_ns: int) -> None:
+        """The release of grid instant ``grid_ns``, ``late_ns`` late; a late release still
+        waiting goes first (releases never pass each other)."""
+        waiting = self._late_entry
+        if waiting is not None:
+            self._kernel.cancel(waiting)
+            self._late_entry = None
+            self.release_job(self._kernel.now, waiting[-1])
+        if late_ns == 0:
+            self.release_job(grid_ns)
+        else:
+            self._late_entry = self._kernel.schedule(grid_ns + late_ns, _RELEASE,
+                                                     self._released_late, grid_ns)
+
+    def _released_late(self, grid_ns: int) -> None:
+        self._late_entry = None
+        self.release_job(self._kernel.now, grid_ns)
+
+    def release_job(self, now: int, grid_ns: int | None = None) -> None:
         """Release a job now (a periodic release, or a sporadic one's interrupt); skipped and
-        counted as an overrun while the previous job is unfinished."""
+        counted as an overrun while the previous job is unfinished. ``grid_ns``: the
+        instant the release was due (a late one's), from which its response time and
+        deadline count."""
         kernel = self._kernel
         task = self.task
         if self.job is not None:
@@ -142,7 +179,8 @@ class ModuleTaskRuntime:
         index = self._count
         self._count += 1
         duration = task.wcet_ns if self._rng is None else self._duration()
-        job = Job(self, index, kernel._seq, now, now + task.deadline_ns, duration)
+        due = now if grid_ns is None else grid_ns
+        job = Job(self, index, kernel._seq, due, due + task.deadline_ns, duration)
         self.job = job
         self.stats.released += 1
         for hook in self._hooks.on_release:

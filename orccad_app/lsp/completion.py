@@ -104,7 +104,7 @@ def _value(value: Any) -> str:
 
 def _registry_items(host: Any, attributes: tuple[str, ...], what: str,
                     snippets: bool) -> list[types.CompletionItem]:
-    items = []
+    items: list[types.CompletionItem] = []
     if host is None:
         return items
     for attribute in attributes:

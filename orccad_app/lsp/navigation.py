@@ -48,8 +48,8 @@ def name_location(decl: Declaration, path: str, lines: TextLines,
                 types.Position(number, file_lines.utf16(number, match.start())),
                 types.Position(number, file_lines.utf16(number, match.end()))))
     line = max(loc.line - 1, 0)
-    start = types.Position(line, file_lines.utf16(line, max(loc.col - 1, 0)))
-    return types.Location(uri_of_path(loc.file), types.Range(start, start))
+    at = types.Position(line, file_lines.utf16(line, max(loc.col - 1, 0)))
+    return types.Location(uri_of_path(loc.file), types.Range(at, at))
 
 
 def definition(index: Index, toks: list[Tok], path: str, lines: TextLines, line: int,

@@ -15,7 +15,7 @@ typed interface with three implementations:
   (:meth:`RunHost.apply_reaction`).
 
 The run calls a backend at these points, each documented on :class:`ModuleTaskBackend`:
-:meth:`~ModuleTaskBackend.reactor` when it is made, :meth:`~ModuleTaskBackend.attach` once its
+:meth:`~ModuleTaskBackend.run_plan` and :meth:`~ModuleTaskBackend.reactor` when it is made, :meth:`~ModuleTaskBackend.attach` once its
 simulation is built (before any event), :meth:`~ModuleTaskBackend.activate`,
 :meth:`~ModuleTaskBackend.kill` and :meth:`~ModuleTaskBackend.reset_ports` as the automaton's
 state starts and ends Robot-Tasks, :meth:`~ModuleTaskBackend.take_input` for every input raised,
@@ -71,8 +71,13 @@ class ModuleTaskBackend(Protocol):
     reacts_on_ticks: bool
     """The run reacts on its periodic tick (``False``: the backend's automaton keeps its own)."""
 
+    def run_plan(self, plan: MissionPlan) -> MissionPlan:
+        """The plan the run runs, from the one it was given (``plan`` itself, or a copy:
+        never ``plan`` changed); called first, when the run is made."""
+
     def reactor(self, plan: MissionPlan) -> MissionReactor:
-        """What steps ``plan``'s automaton; called once, when the run is made."""
+        """What steps ``plan``'s automaton (the run's plan); called once, when the run is
+        made."""
 
     def attach(self, run: RunHost, simulation: Simulation) -> None:
         """Called once the run's executive ``simulation`` is built, before any event runs."""
@@ -111,6 +116,10 @@ class InProcess:
 
     def __init__(self) -> None:
         self._simulation: Simulation | None = None
+
+    def run_plan(self, plan: MissionPlan) -> MissionPlan:
+        """``plan`` itself."""
+        return plan
 
     def reactor(self, plan: MissionPlan) -> MissionReactor:
         """A :class:`~orccad_app.reactive.runtime.Reactor` of the plan's automaton."""

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from typing import Any, Protocol
 
+from orccad_app.reactive.status import Status
+
 __all__ = ["MissionReactor"]
 
 
@@ -16,7 +18,7 @@ class MissionReactor(Protocol):
     automaton in ``orccad sil``)."""
 
     state: int
-    status: str
+    status: Status
     reason: str | None
 
     def step(self, inputs: Any = frozenset(), clock_ns: int | None = None) -> Any:

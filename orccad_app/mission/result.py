@@ -11,6 +11,7 @@ import numpy as np
 
 from orccad_app.executive.simulation import RunStats
 from orccad_app.jsonout import plain
+from orccad_app.reactive.status import MissionStatus, Status
 
 if TYPE_CHECKING:  # traces read results without the language front end
     from orccad_app.lang.ast_robottask import ExceptionType
@@ -18,14 +19,14 @@ if TYPE_CHECKING:  # traces read results without the language front end
 _dot = np.dot
 
 __all__ = ["RobotTaskRecord", "ExceptionRecord", "UpdateRecord", "RampRecord", "RunResult",
-           "ErrorSamples", "MissionStatus", "STATUSES", "RECOVERING", "TaskOutcome"]
+           "ErrorSamples", "MissionStatus", "STATUSES", "TaskOutcome"]
 
 
 class TaskOutcome(enum.StrEnum):
     """How a Robot-Task run ended (its value is the word of reports and traces, except
     ``RAISED``, written as the exception's name: :attr:`RobotTaskRecord.outcome`)."""
 
-    RUNNING = "running"
+    RUNNING = Status.RUNNING.value
     """Still running at the end of the run."""
     GOOD_END = "good_end"
     """Ended normally (``X.good_end``)."""
@@ -34,25 +35,6 @@ class TaskOutcome(enum.StrEnum):
     KILLED = "killed"
     """Killed by an enclosing preemption."""
 
-
-class MissionStatus(enum.StrEnum):
-    """How a mission run ended (its value is the word of reports and traces)."""
-
-    DONE = "done"
-    """The mission ended normally."""
-    FAILED = "failed"
-    """An uncaught type-2 exception, or a run-time failure (deadlock, diverging plant,
-    failing module)."""
-    ABORTED = "aborted"
-    """A type-3 exception, its ``on fatal`` recovery (if any) finished; or Ctrl-C, SIGTERM."""
-    RECOVERING = "recovering"
-    """A type-3 exception with the ``on fatal`` recovery still running at the horizon (the
-    reason names the exception; where the recovery would end is unknown)."""
-    TIMEOUT = "timeout"
-    """Still running at the horizon."""
-
-
-RECOVERING = MissionStatus.RECOVERING
 
 STATUSES = tuple(MissionStatus)
 """Every final status, in :class:`MissionStatus`'s order."""

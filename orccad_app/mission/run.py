@@ -51,9 +51,11 @@ from __future__ import annotations
 import time
 from typing import Any, Iterable
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.deadlock import DeadlockError
+from orccad_app.executive.delays import ControllerDelays
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.observer import Observer
 from orccad_app.executive.plant import MujocoPlant, PlantDivergenceError
@@ -62,13 +64,14 @@ from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.mission.backend import InProcess, ModuleTaskBackend
 from orccad_app.mission.budget import DEFAULT_UNTIL_NS, check_run_budget
-from orccad_app.mission.injection import Injection, typed_injection
+from orccad_app.mission.injection import Injection, PlantFault, typed_injection
 from orccad_app.mission.lifecycle import RobotTaskLifecycle
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.observer import MISSION_HOOKS
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.result import ExceptionRecord, MissionStatus, RobotTaskRecord, RunResult
 from orccad_app.mission.updates import TypeOneUpdates, UpdateError
+from orccad_app.reactive.status import at_horizon
 from orccad_app.robottask.binding import ArgumentError
 from orccad_app.robottask.labels import Phase
 
@@ -104,11 +107,11 @@ class _Link(Observer):
         self._run.signal(name, value)
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
-        if port == "e":
+        if port == TASK_ERROR:
             self._run.task_error(module, value)
 
     def wants_write(self, module: str, port: str) -> bool:
-        return port == "e"
+        return port == TASK_ERROR
 
 
 class MissionRun(RobotTaskLifecycle):
@@ -126,20 +129,24 @@ class MissionRun(RobotTaskLifecycle):
     :param backend: where the Module-Tasks' jobs run and what steps the automaton (default
         :class:`~orccad_app.mission.backend.InProcess`: this process, the Python reactor);
         its pacing, when it has one, replaces ``realtime``.
+    :param delays: the exchange delay and release jitter a real controller adds
+        (:mod:`orccad_app.executive.delays`; default none: the ideal exchange).
     """
 
     def __init__(self, plan: MissionPlan, *, seed: int = 0,
                  until_ns: int = DEFAULT_UNTIL_NS, injections: Iterable[Injection] = (),
                  processors: Iterable[Processor] = (), bus: Bus | None = None,
                  observers: Iterable[Any] = (), realtime: float | None = None,
-                 tick_ns: int | None = None, backend: ModuleTaskBackend | None = None) -> None:
+                 tick_ns: int | None = None, backend: ModuleTaskBackend | None = None,
+                 delays: ControllerDelays = ControllerDelays()) -> None:
         if not isinstance(until_ns, int) or until_ns <= 0:
             raise OrccadError(f"--until must be > 0 s, got {until_ns!r} ns")
+        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
+        plan = self.backend.run_plan(plan)
         self.plan = plan
         self.seed = seed
         self.until_ns = until_ns
         check_run_budget(plan, until_ns)
-        self.backend: ModuleTaskBackend = backend if backend is not None else InProcess()
         self.realtime = realtime if self.backend.pacing is None else self.backend.pacing
         self.tick_ns = tick_ns or plan.tick_ns
         self.reactor: MissionReactor = self.backend.reactor(plan)
@@ -149,7 +156,8 @@ class MissionRun(RobotTaskLifecycle):
         self._on_reaction = self._hooks["on_reaction"]
         plants: list[MujocoPlant] = [spec.build() for spec in plan.plants]
         self.sim = Simulation(plan.tcs, seed=seed, processors=processors, bus=bus,
-                              plants=plants, observers=[_Link(self), *observers])
+                              plants=plants, observers=[_Link(self), *observers],
+                              delays=delays)
         self.kernel = self.sim.kernel
         self._updates = TypeOneUpdates(self.kernel, plan.tcs, self.sim.hooks.on_param)
         self._signals = plan.signals
@@ -182,8 +190,8 @@ class MissionRun(RobotTaskLifecycle):
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
         inputs = {s.name: s for s in self.plan.automaton.inputs}
         for injection in injections:
-            if injection.fault:
-                self._schedule_fault(injection)
+            if injection.fault is not None:
+                self._schedule_fault(injection, injection.fault)
                 continue
             if injection.name not in inputs:
                 known = ", ".join(sorted(inputs)) or "none"
@@ -198,8 +206,8 @@ class MissionRun(RobotTaskLifecycle):
         if self.backend.reacts_on_ticks:
             self.kernel.schedule(0, _CONTROL, self._tick)
 
-    def _schedule_fault(self, injection: Injection) -> None:
-        robot, fault = injection.robot_fault
+    def _schedule_fault(self, injection: Injection, plant_fault: PlantFault) -> None:
+        robot, fault = plant_fault.robot, plant_fault.fault
         plant = self.sim.plants.get(robot)
         if plant is None:
             raise OrccadError(f"--inject {injection.name}: no robot '{robot}' in mission "
@@ -422,11 +430,7 @@ class MissionRun(RobotTaskLifecycle):
 
     def _final_status(self) -> tuple[MissionStatus, str | None]:
         reactor = self.reactor
-        if reactor.finished:  # the automaton's own word: done, failed or aborted
-            return MissionStatus(reactor.status), reactor.reason
-        if reactor.status == MissionStatus.ABORTED:  # the 'on fatal' recovery was cut by the
-            return MissionStatus.RECOVERING, reactor.reason  # horizon
-        if reactor.status == MissionStatus.FAILED:
-            return MissionStatus.FAILED, reactor.reason
-        return (MissionStatus.TIMEOUT,
-                f"the mission was still running at {self.until_ns / 1e9:g} s")
+        status = at_horizon(reactor.status, reactor.finished)
+        if status is MissionStatus.TIMEOUT:
+            return status, f"the mission was still running at {self.until_ns / 1e9:g} s"
+        return status, reactor.reason

@@ -20,15 +20,12 @@ from typing import Iterator, Union
 
 from orccad_app.diagnostics import SourceLocation
 from orccad_app.reactive import ir
+from orccad_app.reactive.status import Status
 
 __all__ = [
     "InputTest", "DataBranch", "Action", "Leaf", "Node", "Transition", "Automaton",
-    "transitions", "RUNNING", "DONE", "FAILED", "ABORTED", "TERMINAL",
+    "transitions", "TERMINAL",
 ]
-
-#: Status of an instant: the program goes on, terminated normally, failed (uncaught type-2
-#: exception) or aborted (type-3 exception).
-RUNNING, DONE, FAILED, ABORTED = "running", "done", "failed", "aborted"
 
 #: The control-state key of a terminated program, while compiling.
 TERMINAL = ("terminated",)
@@ -38,7 +35,7 @@ TERMINAL = ("terminated",)
 class Leaf:
     target: object  # a state number once compiled (a control-state key while exploring)
     emitted: tuple[ir.SignalDecl, ...]  # outputs, in declaration order
-    status: str = RUNNING
+    status: Status = Status.RUNNING
 
 
 @dataclass(frozen=True, slots=True)
@@ -77,7 +74,7 @@ class Transition:
     data: tuple[tuple[int, bool], ...]
     actions: tuple[Action, ...]
     emitted: tuple[ir.SignalDecl, ...]
-    status: str
+    status: Status
     target: int
 
 

@@ -22,8 +22,8 @@ from typing import Callable
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, TERMINAL, Action,
-                                          Automaton, DataBranch, InputTest, Leaf)
+from orccad_app.reactive.automaton import TERMINAL, Action, Automaton, DataBranch, InputTest, Leaf
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.engine import BOOT, Outcome, react
 from orccad_app.reactive.minimize import minimize
 from orccad_app.reactive.prepare import TERMINATED, Prepared, prepare
@@ -127,7 +127,7 @@ class _Explorer:
     def tree(self, state) -> object:
         self.leaves = 0
         if state == TERMINAL:
-            return Leaf(TERMINAL, (), DONE)
+            return Leaf(TERMINAL, (), Status.DONE)
         return self._inputs(state, {})
 
     def _inputs(self, state, valuation: dict, runs: list[Outcome] | None = None,
@@ -205,11 +205,11 @@ class _Explorer:
         emitted = tuple(s for s in program.outputs if s in outcome.emitted)
         target = TERMINAL if outcome.code == TERMINATED else outcome.state
         if program.aborted is not None and program.aborted in outcome.emitted:
-            status = ABORTED
+            status = Status.ABORTED
         elif program.failed is not None and program.failed in outcome.emitted:
-            status = FAILED
+            status = Status.FAILED
         else:
-            status = DONE if outcome.code == TERMINATED else RUNNING
+            status = Status.DONE if outcome.code == TERMINATED else Status.RUNNING
         return Leaf(target, emitted, status)
 
     def _ambiguous(self, event) -> OrccadError:

@@ -8,6 +8,7 @@ from typing import Any
 from orccad_app.reactive.automaton import Automaton, Transition, transitions
 from orccad_app.reactive.expr import format_expr
 from orccad_app.reactive.labels import MissionLabel, in_missions, sub_mission_labels
+from orccad_app.reactive.status import Status
 
 __all__ = ["to_summary", "to_json", "to_dict", "to_dot", "guard_text", "sub_missions",
            "mission_labels"]
@@ -101,7 +102,7 @@ def to_summary(automaton: Automaton) -> str:
         tail = f" / {', '.join(effects)}" if effects else ""
         # the terminated state's own loop keeps the status its entry set (done, failed or
         # aborted): labelling it would say "[done]" after a failure
-        ended = t.status != "running" and t.source != automaton.terminal
+        ended = t.status != Status.RUNNING and t.source != automaton.terminal
         status = f" [{t.status}]" if ended else ""
         lines.append(f"  {guard_text(automaton, t)}{tail} -> {t.target}{status}")
     return "\n".join(lines)
@@ -133,7 +134,8 @@ def to_dot(automaton: Automaton) -> str:
              '  edge [fontname="Helvetica", fontsize=10];',
              '  start [shape=point];', f"  start -> s{automaton.initial};"]
     for state in range(automaton.state_count):
-        final = any(t.status != "running" for t in transitions(state, automaton.trees[state]))
+        final = any(t.status != Status.RUNNING
+                    for t in transitions(state, automaton.trees[state]))
         shape = "doublecircle" if final else "circle"
         lines.append(f"  s{state} [label={_quote(str(state))}, shape={shape}];")
     for t in automaton.transitions():

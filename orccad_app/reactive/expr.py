@@ -13,7 +13,7 @@ from typing import Any, Callable
 from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 
-__all__ = ["Store", "compile_expr", "format_expr", "format_test", "Unset"]
+__all__ = ["Store", "Unset", "compile_expr", "divide", "format_expr", "format_test"]
 
 _BINARY: dict[str, Callable[[Any, Any], Any]] = {
     "+": operator.add, "-": operator.sub, "*": operator.mul,
@@ -23,7 +23,7 @@ _BINARY: dict[str, Callable[[Any, Any], Any]] = {
 }
 
 
-def _divide(left: Any, right: Any) -> Any:
+def divide(left: Any, right: Any) -> Any:
     """``/``: integer division truncating toward zero when both sides are integers (as in
     Esterel and C: ``7 / 2`` is 3, ``-7 / 2`` is -3), else real division."""
     if type(left) is int and type(right) is int:
@@ -32,7 +32,7 @@ def _divide(left: Any, right: Any) -> Any:
     return operator.truediv(left, right)
 
 
-_BINARY["/"] = _divide
+_BINARY["/"] = divide
 
 
 def _checked(value: Any) -> Any:

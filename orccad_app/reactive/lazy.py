@@ -30,6 +30,7 @@ from typing import Container, Iterator
 
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import TERMINAL, Action, DataBranch, InputTest, Leaf, Node
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.compiler import (DEFAULT_MAX_STATES, MAX_LEAVES_PER_STATE,
                                           StateBudgetExceeded, _Explorer,
                                           _forced, _labels, _labels_by_pause, _variables,
@@ -158,6 +159,8 @@ class LazyAutomaton:
         """Build the path of state ``state``'s tree that ``inputs`` select (if not built yet);
         returns the state's lowered tree."""
         order, tree = self._explore(state, inputs)
+        if len(self.data_tests) != len(self.prep.data_tests):  # a fresh pre(?S) test made
+            self.data_tests = tuple(self.prep.data_tests)
         lowered = lower(self._numbered(tree), self.data_tests)
         if not order:
             self.roots[state] = lowered
@@ -179,7 +182,7 @@ class LazyAutomaton:
         ``inputs``) and the data part of its tree for them (leaf targets: control keys)."""
         key = self.keys[state]
         if key == TERMINAL:
-            return [], Leaf(TERMINAL, (), "done")
+            return [], Leaf(TERMINAL, (), Status.DONE)
         prep, explorer = self.prep, self._explorer
         asked: dict = {}
         order: list = []

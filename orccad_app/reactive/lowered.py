@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Action, DataBranch, InputTest, Leaf, Node
 from orccad_app.reactive.expr import compile_expr
+from orccad_app.reactive.status import Status
 
 __all__ = ["Step", "lower", "LEAF", "INPUT", "DATA", "ACTION"]
 
@@ -38,7 +39,7 @@ class Step:
 
     outputs: tuple[str, ...]
     valued: tuple[ir.SignalDecl, ...]
-    status: str
+    status: Status
     target: int
 
 

@@ -17,8 +17,8 @@ from typing import Any, Mapping
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import (ABORTED, FAILED, RUNNING, Action, Automaton,
-                                          DataBranch, InputTest)
+from orccad_app.reactive.automaton import Action, Automaton, DataBranch, InputTest
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.expr import Store, Unset, format_expr
 from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.lowered import ACTION, DATA, INPUT, Step, lower
@@ -30,6 +30,7 @@ class RelationViolation(OrccadError):
     """The inputs of an instant violate a declared ``relation`` (located at the relation)."""
 
 _SETS = (frozenset, set)
+_FAILING = (Status.FAILED, Status.ABORTED)
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,7 +43,7 @@ class Reaction:
 
     outputs: tuple[str, ...]
     values: dict[str, Any] = field(default_factory=dict)
-    status: str = "running"
+    status: Status = Status.RUNNING
     state: int = 0
     reason: str | None = None
 
@@ -109,11 +110,11 @@ class Reactor(AutomatonPosition):
         self._inputs = {s.name: s for s in automaton.inputs}
         self.state = automaton.initial
         self.store = Store()
-        self.status = RUNNING
+        self.status: Status = Status.RUNNING
         self.reason: str | None = None
         self.instant = 0
         program = automaton.program
-        self._reasons = {FAILED: program.failed, ABORTED: program.aborted}
+        self._reasons = {Status.FAILED: program.failed, Status.ABORTED: program.aborted}
         for decl in (*program.inputs, *program.outputs):
             if decl.init is not None:
                 self.store.values[decl] = decl.init
@@ -183,7 +184,7 @@ class Reactor(AutomatonPosition):
                               getattr(expr, "loc", None)) from None
         step: Step = node[1]
         self.state = step.target
-        if step.status != RUNNING:
+        if step.status != Status.RUNNING:
             self._settle(step.status)
         return step
 
@@ -199,12 +200,12 @@ class Reactor(AutomatonPosition):
                 raise RelationViolation(f"these inputs violate 'relation {relation.text}' "
                                         f"(declared at {relation.loc})", relation.loc)
 
-    def _settle(self, status: str) -> None:
+    def _settle(self, status: Status) -> None:
         """The mission's status after an instant of status ``status`` (not ``running``)."""
-        if status in (FAILED, ABORTED) and self.status not in (FAILED, ABORTED):
+        if status in _FAILING and self.status not in _FAILING:
             self.status = status
             self.reason = self.store.values.get(self._reasons[status])
-        elif self.status == RUNNING:
+        elif self.status == Status.RUNNING:
             self.status = status
 
     def values(self, step: Step) -> dict[str, Any]:

@@ -18,6 +18,7 @@ from xml.sax.saxutils import quoteattr
 
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Action, Automaton, InputTest, Leaf
+from orccad_app.reactive.status import Status
 
 __all__ = ["to_scxml", "identifier"]
 
@@ -68,7 +69,7 @@ class _Writer:
             emitted = " ".join(s.name for s in tree.emitted)
             out.append(f'    <transition target="s{tree.target}">')
             out.append(f'      <assign location="emitted" expr={quoteattr(repr(emitted))}/>')
-            out.append(f'      <assign location="status" expr={quoteattr(repr(tree.status))}/>')
+            out.append(f'      <assign location="status" expr={quoteattr(repr(tree.status.value))}/>')
             out.append("    </transition>")
             out.append("  </state>")
             return sid
@@ -111,7 +112,7 @@ def to_scxml(automaton: Automaton) -> str:
         react = [f'    <transition event="react" target="{root}">', *copies, "    </transition>"] \
             if copies else [f'    <transition event="react" target="{root}"/>']
         body[index:index] = [f'  <state id="s{state}">', *react, "  </state>"]
-    data = [("emitted", "''"), ("status", "'running'"), ("clock", "0")]
+    data = [("emitted", "''"), ("status", repr(Status.RUNNING.value)), ("clock", "0")]
     data += [(f"in_{identifier(s.name)}", "False") for s in automaton.inputs]
     data += [(name, "None") for name in writer.vars.values()]
     data += [(f"value_{identifier(s.name)}", "None")

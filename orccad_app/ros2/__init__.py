@@ -13,6 +13,8 @@ naming what to install (exit status 2).
 
 from __future__ import annotations
 
+import importlib
+
 from orccad_app.diagnostics import OrccadError
 
 __all__ = ["require", "INSTALL_HINT"]
@@ -24,7 +26,7 @@ def require(option: str, zenoh: bool = False) -> None:
     """Raise, naming ``option`` and what to install, when the extra is missing."""
     try:
         import rosbags.rosbag2  # noqa: F401 - CDR and rosbag2
-        if zenoh:
-            import zenoh  # noqa: F401 - the transport
+        if zenoh:  # the transport
+            importlib.import_module("zenoh")
     except ImportError:
         raise OrccadError(f"{option} needs the ros2 extra: {INSTALL_HINT}") from None

@@ -37,6 +37,10 @@ def refuse_in_realtime(options: RunOptions) -> None:
         raise OrccadError("orccad sil --realtime: --context-switch-us: the controller's "
                           "threads pay the machine's own context switches (measured in the "
                           f"release lateness), a declared overhead is simulated ({why})")
+    if not options.delays.ideal:
+        raise OrccadError("orccad sil --realtime: --exchange-us and --jitter-us model the "
+                          "delays a real controller adds; here they are the machine's own "
+                          f"(measured in the release lateness) ({why})")
     if options.bus_transfer_ns:
         raise OrccadError("orccad sil --realtime: --bus-us: the controller's Module-Tasks "
                           "exchange through their own memory, a bus delay is simulated "
@@ -57,7 +61,8 @@ def module_task_backend(options: RunOptions, plan: MissionPlan,
 
         refuse_in_realtime(options)
         return RealtimeBackend(plan, controller.source, controller.build_dir,
-                               controller.heartbeat_s)
+                               controller.heartbeat_s, controller.prebuilt)
     from orccad_app.sil.lockstep import LockstepBackend
 
-    return LockstepBackend(plan, controller.source, controller.build_dir, controller.heartbeat_s)
+    return LockstepBackend(plan, controller.source, controller.build_dir, controller.heartbeat_s,
+                           controller.prebuilt)

@@ -7,10 +7,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from orccad_app.executive.delays import ControllerDelays
 from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
 from orccad_app.reactive.ir import SignalDecl
 from orccad_app.reactive.script import Instant
+from orccad_app.sil.build.executable import Prebuilt
 from orccad_app.sil.controller.process import DEFAULT_HEARTBEAT_S
 
 __all__ = ["ControllerOptions", "DEFAULT_UNTIL_S", "Execution", "InputScript", "MAX_RUN_S",
@@ -88,11 +90,14 @@ class ControllerOptions:
     :param source: the mission file, named in the generated sources.
     :param build_dir: where the generated C goes (``None``: a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [wall s].
+    :param prebuilt: a controller built elsewhere (``--controller``, maybe through a
+        ``--controller-wrapper``), run instead of building one.
     """
 
     source: str = ""
     build_dir: Path | None = None
     heartbeat_s: float = DEFAULT_HEARTBEAT_S
+    prebuilt: Prebuilt | None = None
 
 
 @dataclass(frozen=True)
@@ -111,6 +116,9 @@ class RunOptions:
     :param scheduler: every processor's policy, ``fp`` or ``edf``.
     :param context_switch_ns: the context-switch overhead [ns].
     :param bus_transfer_ns: the bus's transfer time per message [ns].
+    :param delays: the exchange delay and release jitter a real controller adds
+        (``--exchange-us``, ``--jitter-us``: :mod:`orccad_app.executive.delays`); default
+        none, the executive's ideal exchange.
     :param realtime: ``None`` as fast as possible, else simulated s per wall s.
     :param trace: a trace file to write (``.csv`` or ``.mcap``; a directory for
         ``rosbag2``), ``None`` for none.
@@ -137,6 +145,7 @@ class RunOptions:
     scheduler: str = "fp"
     context_switch_ns: int = 0
     bus_transfer_ns: int = 0
+    delays: ControllerDelays = field(default_factory=ControllerDelays)
     realtime: float | None = None
     trace: str | None = None
     trace_format: str | None = None

@@ -15,79 +15,67 @@ in-process, the jobs' compute and the automaton's steps in the controller. :func
 builds and starts the controller of a plan
 (:func:`~orccad_app.sil.build.executable.build_controller`) and makes each run site start
 :class:`~orccad_app.sil.controller.remote.RemoteModule` proxies instead of Python instances
-(:func:`remote_sites`).
+(:func:`~orccad_app.sil.controller.remote.remote_plan`).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import tempfile
 from collections.abc import Iterator
 from contextlib import ExitStack, contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from orccad_app.codegen.generate import CProgram
+import numpy as np
+
 from orccad_app.mission.backend import InProcess
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.reactor import MissionReactor
-from orccad_app.reactive.automaton import Automaton
-from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.build.executable import Prebuilt, build_controller, controller_table
 from orccad_app.sil.controller.automaton import ControllerAutomaton
-from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
-                                              ControllerProcess)
-from orccad_app.sil.controller.remote import RemoteSite
-from orccad_app.sil.generate.automaton import mission_automaton
+from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerProcess)
+from orccad_app.sil.controller.remote import ControllerRun, remote_plan
+from orccad_app.sil.generate.automaton import MissionProgram, mission_automaton
 from orccad_app.sil.generate.table import ModuleTable
 
-__all__ = ["LockstepBackend", "lockstep", "remote_sites", "start_controller"]
-
-
-class _NotInController:
-    """The plan's own compute objects, replaced: a job before a start would be a bug."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-
-    def compute(self, t_s: float, inputs: Any) -> dict[str, Any]:
-        raise ControllerFailure(f"module-task '{self.name}' computed outside the controller "
-                                f"process")
+__all__ = ["KindDifference", "LockstepBackend", "check_kinds", "lockstep", "random_inputs",
+           "start_controller"]
 
 
 def start_controller(table: ModuleTable, executable: Path,
-                     heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> ControllerProcess:
-    """Start the controller process of ``table``."""
+                     heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                     prebuilt: Prebuilt | None = None) -> ControllerProcess:
+    """Start the controller process of ``table`` (a ``prebuilt`` one: its combined main's
+    ``--lockstep``, through its wrapper)."""
+    if prebuilt is not None:
+        return ControllerProcess(prebuilt.executable, len(table.entries), table.digest,
+                                 heartbeat_s, ("--lockstep",), prebuilt.wrapper)
     return ControllerProcess(executable, len(table.entries), table.digest, heartbeat_s)
-
-
-def remote_sites(plan: MissionPlan, table: ModuleTable,
-                 controller: ControllerProcess) -> None:
-    """Make every run site of ``plan`` start its Module-Tasks in ``controller`` (in place:
-    the plan's sites are replaced)."""
-    sites = []
-    for site in plan.sites:
-        fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
-        sites.append(RemoteSite(**fields, controller=controller, table=table))
-    plan.sites = sites
-    for task in plan.tcs.module_tasks:
-        task.compute = _NotInController(task.name)
 
 
 @contextmanager
 def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
              heartbeat_s: float = DEFAULT_HEARTBEAT_S,
-             automaton: CProgram | None = None) -> Iterator[ControllerProcess]:
-    """While in the block, ``plan``'s Module-Tasks compute in a controller process built for
-    it (written into ``build_dir``, a temporary directory by default), where the mission's
-    ``automaton`` (default :func:`~orccad_app.sil.generate.automaton.mission_automaton` of the plan)
-    reacts too; the process is ended and reaped when the block ends, however it ends."""
+             automaton: MissionProgram | None = None,
+             prebuilt: Prebuilt | None = None) -> Iterator[ControllerRun]:
+    """While in the block, a controller process built for ``plan`` runs (written into
+    ``build_dir``, a temporary directory by default), with the mission's ``automaton``
+    (default :func:`~orccad_app.sil.generate.automaton.mission_automaton` of the plan); the
+    block gets it and the plan whose Module-Tasks compute in it (a copy:
+    :func:`~orccad_app.sil.controller.remote.remote_plan`). The process is ended and reaped
+    when the block ends, however it ends."""
     automaton = automaton or mission_automaton(plan)
     with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = build_controller(plan, source, build_dir or Path(scratch), automaton)
-        controller = start_controller(table, executable, heartbeat_s)
+        if prebuilt is None:
+            table, executable = build_controller(plan, source, build_dir or Path(scratch),
+                                                 automaton.program)
+        else:
+            table, executable = controller_table(plan, automaton.program), prebuilt.executable
+        controller = start_controller(table, executable, heartbeat_s, prebuilt)
         try:
-            remote_sites(plan, table, controller)
-            yield controller
+            yield ControllerRun(controller, table,
+                                remote_plan(plan, automaton.automaton, table, controller))
         finally:
             controller.close()
 
@@ -98,34 +86,134 @@ class LockstepBackend(InProcess):
     request to the controller process, and the mission's C automaton is stepped there
     (:class:`~orccad_app.sil.controller.automaton.ControllerAutomaton`).
 
-    Made once the façade has planned the mission: the plan's automaton becomes the full one
-    (:func:`~orccad_app.sil.generate.automaton.mission_automaton`), the controller is written,
-    built (cached) and started, and the plan's sites start proxies. :meth:`close` ends and
-    reaps the controller.
+    Made once the façade has planned the mission: the controller is written, built (cached)
+    and started; the run runs a copy of the plan with the full automaton
+    (:func:`~orccad_app.sil.generate.automaton.mission_automaton`) and sites that start
+    proxies (:meth:`run_plan`). :meth:`close` ends and reaps the controller.
 
     :param plan: the run's plan.
     :param source: the mission file (named in the generated sources).
     :param build_dir: where the generated C goes (default a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [s].
+    :param prebuilt: a controller built from ``orccad codegen --controller``'s tree, run
+        instead of building one.
     """
 
     def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
-                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                 prebuilt: Prebuilt | None = None) -> None:
         super().__init__()
-        self._program = mission_automaton(plan)
+        self._mission = mission_automaton(plan)
         self._stack = ExitStack()
-        self.controller: ControllerProcess = self._stack.enter_context(
-            lockstep(plan, source, build_dir, heartbeat_s, self._program))
+        started = self._stack.enter_context(
+            lockstep(plan, source, build_dir, heartbeat_s, self._mission, prebuilt))
+        self.controller: ControllerProcess = started.controller
         """The controller process."""
+        self._plan = started.plan
         self.automaton: ControllerAutomaton | None = None
         """The mission's automaton in the controller, once the run is made."""
 
+    def run_plan(self, plan: MissionPlan) -> MissionPlan:
+        """A copy of ``plan``: the full automaton, sites whose starts make proxies."""
+        return self._plan
+
     def reactor(self, plan: MissionPlan) -> MissionReactor:
         """The controller's C automaton, stepped over the socket."""
-        assert isinstance(plan.automaton, Automaton)
-        self.automaton = ControllerAutomaton(self.controller, self._program, plan.automaton)
+        self.automaton = ControllerAutomaton(self.controller, self._mission.program,
+                                             self._mission.automaton)
         return self.automaton
 
     def close(self) -> None:
         """End and reap the controller."""
         self._stack.close()
+
+
+@dataclass(frozen=True)
+class KindDifference:
+    """The first output where a kind's C and its Python disagree (:func:`check_kinds`).
+
+    :param module: the Module-Task (TCS name).
+    :param kind: its kind.
+    :param job: the job's number (0 the first after ``init``).
+    :param t_s: the job's time [s].
+    :param port: the output port (``present`` differences name the port too).
+    :param python: what the Python kind wrote (``None``: nothing).
+    :param c: what the C kind wrote (``None``: nothing).
+    """
+
+    module: str
+    kind: str
+    job: int
+    t_s: float
+    port: str
+    python: Any
+    c: Any
+
+    def text(self) -> str:
+        """One line naming it."""
+        return (f"module-task '{self.module}' (kind {self.kind}), job {self.job} "
+                f"(t = {self.t_s:g} s), output {self.port!r}: Python {_shown(self.python)}, "
+                f"C {_shown(self.c)}")
+
+
+def _shown(value: Any) -> str:
+    if value is None:
+        return "wrote nothing"
+    return repr(np.asarray(value, dtype=float).tolist())
+
+
+def random_inputs(instance: Any, rng: np.random.Generator, scale: float = 1.0) -> dict[str, Any]:
+    """Random values for ``instance``'s input ports (each absent one time in ten: "none yet"):
+    a ``float`` port a non-negative number, a vector normal with standard deviation
+    ``scale``."""
+    values: dict[str, Any] = {}
+    for port in instance.ports:
+        if port.direction != "in" or rng.random() < 0.1:
+            continue
+        data = rng.normal(0.0, scale, port.dim or 1)
+        values[port.name] = float(abs(data[0]) * 10) if port.type == "float" else data
+    return values
+
+
+def _differs(python: Any, c: Any, rtol: float) -> bool:
+    want = np.asarray(python, dtype=float)
+    have = np.asarray(c, dtype=float)
+    if rtol == 0.0:
+        return want.shape != have.shape or want.tobytes() != have.tobytes()
+    return want.shape != have.shape or not np.allclose(have, want, rtol=rtol, atol=1e-300,
+                                                       equal_nan=True)
+
+
+def check_kinds(plan: MissionPlan, source: str, jobs: int = 100, seed: int = 0,
+                scale: float = 1.0, rtol: float = 0.0,
+                build_dir: Path | None = None) -> tuple[int, KindDifference | None]:
+    """Feed every Module-Task of ``plan``, in C (a lockstep controller built for it) and in
+    Python (a fresh instance with the same parameters), the same ``jobs`` random inputs
+    (:func:`random_inputs`, drawn from ``seed``) at 1 ms steps; the number of Module-Tasks
+    compared and the first output that differs (``None``: none did) — bit for bit when
+    ``rtol`` is 0, else within ``rtol`` relative."""
+    rng = np.random.default_rng(seed)
+    compared = 0
+    with lockstep(plan, source, build_dir) as started:
+        for site in started.plan.sites:
+            remotes = site.fresh_computes()
+            pythons = SiteModules.fresh_computes(site)  # new Python instances, same arguments
+            for name, remote in remotes.items():
+                python = pythons[name]
+                python.init()
+                remote.init()
+                compared += 1
+                for job in range(jobs):
+                    t_s = 0.001 * job
+                    inputs = random_inputs(python, rng, scale)
+                    want, got = python.compute(t_s, inputs), remote.compute(t_s, inputs)
+                    for port in sorted(set(want) | set(got)):
+                        a, b = want.get(port), got.get(port)
+                        if a is None or b is None:
+                            if a is not b:
+                                return compared, KindDifference(name, python.kind.name, job,
+                                                                t_s, port, a, b)
+                        elif _differs(a, b, rtol):
+                            return compared, KindDifference(name, python.kind.name, job, t_s,
+                                                            port, a, b)
+    return compared, None

@@ -48,6 +48,7 @@ from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
 from orccad_app.mission.result import TaskOutcome
+from orccad_app.reactive.status import Status
 from orccad_app.trace.recorder import TraceRow
 from orccad_app.trace.state_topics import (PHASE_SCHEMA, STATE_SCHEMA, VERDICT_SCHEMA,
                                            VerdictSample, phase_message, state_message,
@@ -227,7 +228,7 @@ class TopicWriter:
         self._sensed: dict[str, int] = {}  # plant topic -> last instant written
         self._present: set[str] = set()
         self._inputs: set[str] = set()
-        self._status = "running"
+        self._status: str = Status.RUNNING
         self._sequence = 0
         self._last_ns = 0
         self._closed = False
@@ -455,8 +456,8 @@ class TopicWriter:
             self.log(time_ns, INFO, "mission", f"output {name}")
         self._present = outputs
         status = m["status"]
-        if status != self._status and status in ("done", "failed", "aborted"):
-            self.log(time_ns, INFO if status == "done" else ERROR, "mission",
+        if status != self._status and status in (Status.DONE, Status.FAILED, Status.ABORTED):
+            self.log(time_ns, INFO if status == Status.DONE else ERROR, "mission",
                      f"mission {status}")
         self._status = status
 

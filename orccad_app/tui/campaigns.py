@@ -23,6 +23,7 @@ import contextlib
 import math
 import os
 import signal
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -34,7 +35,7 @@ from orccad_app.diagnostics import OrccadError
 
 __all__ = ["SearchProcess", "Bin", "histogram", "Candidate", "CampaignSnapshot",
            "read_campaign", "FalsifySnapshot", "read_study", "default_spec", "default_db",
-           "HISTOGRAM_BINS", "CLOSEST"]
+           "check_database", "HISTOGRAM_BINS", "CLOSEST", "LOCK_WAIT_S"]
 
 HISTOGRAM_BINS = 12
 """Bins of each robustness histogram."""
@@ -189,24 +190,76 @@ class CampaignSnapshot:
     crashed: int = 0
 
 
+SQLITE_HEADER = b"SQLite format 3\x00"
+"""The first 16 bytes of every SQLite database file."""
+LOCK_WAIT_S = 2.0
+"""How long a read waits for another program's lock on the database [s]."""
+
+
+def check_database(path: str, what: str) -> bool:
+    """Refuse, with one located message, a file the console cannot read as ``what`` (``"a
+    campaign database"``): missing, not a regular file (a FIFO would block the read), not
+    SQLite (its header), locked by another program past :data:`LOCK_WAIT_S`, or unreadable
+    as a database. Whether the file holds anything (``False``: an empty file). Nothing is
+    written to the file or beside it (:func:`~orccad_app.campaign.store.connect_read_only`)."""
+    from orccad_app.campaign.store import connect_read_only
+    from orccad_app.pipeline import require_regular_file
+
+    require_regular_file(path)
+    try:
+        with open(path, "rb") as handle:
+            header = handle.read(len(SQLITE_HEADER))
+    except OSError as error:
+        raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if not header:
+        return False
+    if header != SQLITE_HEADER:
+        raise OrccadError(f"{path}: not an SQLite database (it does not begin with SQLite's "
+                          f"header), so not {what}")
+    try:
+        with contextlib.closing(connect_read_only(path, LOCK_WAIT_S)) as db:
+            db.execute("SELECT count(*) FROM sqlite_master").fetchone()
+    except sqlite3.OperationalError as error:
+        if "locked" in str(error) or "busy" in str(error):
+            raise OrccadError(f"{path}: locked by another program ({error}): open it again "
+                              "once that program has let it go") from None
+        raise OrccadError(f"{path}: cannot be read as {what} ({error})") from None
+    except (sqlite3.DatabaseError, UnicodeDecodeError) as error:  # SQLite's message quotes
+        raise OrccadError(f"{path}: not {what}, or damaged ({_reason(error)})") from None
+    return True
+
+
+def _reason(error: BaseException) -> str:
+    """An error's first line, short (a damaged file's bytes may be in it)."""
+    text = (str(error).strip().splitlines() or [""])[0]
+    return f"{type(error).__name__}: {text[:160]}"
+
+
 def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
                   ) -> CampaignSnapshot:
     """What campaign database ``db`` holds now; refuses a file that is not one
-    (:class:`OrccadError`)."""
+    (:class:`OrccadError`, see :func:`check_database`; an empty file too)."""
     from orccad_app.campaign.adapter import CRASHED
     from orccad_app.mission.result import MissionStatus
     from orccad_app.campaign.spec import parse_spec
     from orccad_app.campaign.stats import estimates, summarize
     from orccad_app.campaign.store import CampaignStore
 
-    store = CampaignStore(db, read_only=True)
+    if not check_database(db, "a campaign database"):
+        raise OrccadError(f"{db}: an empty file, not a campaign database (no campaign has "
+                          "written to it)")
     try:
-        meta = store.meta()
-        if "spec" not in meta or "file" not in meta:
-            raise OrccadError(f"{db}: not a campaign database (no campaign recorded in it)")
-        records = store.records()
-    finally:
-        store.close()
+        store = CampaignStore(db, read_only=True)
+        try:
+            meta = store.meta()
+            if "spec" not in meta or "file" not in meta:
+                raise OrccadError(f"{db}: not a campaign database (no campaign recorded in "
+                                  "it)")
+            records = store.records()
+        finally:
+            store.close()
+    except (sqlite3.Error, ValueError, KeyError, TypeError) as error:  # the file's rows
+        raise OrccadError(f"{db}: a damaged campaign database ({_reason(error)})") from None
     if limit is None:
         try:
             limit = parse_spec(meta["spec"]).runs
@@ -249,17 +302,16 @@ class FalsifySnapshot:
 def _has_studies(path: str) -> bool:
     """Whether SQLite file ``path`` has optuna's tables yet (``False``: no table at all, a
     study being created); a file with other tables, or not SQLite, is refused."""
-    import sqlite3
-
     from orccad_app.campaign.store import connect_read_only
-    from orccad_app.pipeline import require_regular_file
 
-    require_regular_file(path)
+    if not check_database(path, "an optuna study database"):
+        return False
     try:
-        with contextlib.closing(connect_read_only(path)) as db:
+        with contextlib.closing(connect_read_only(path, LOCK_WAIT_S)) as db:
             tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
-    except sqlite3.DatabaseError as error:
-        raise OrccadError(f"{path}: not an optuna study database ({error})") from None
+    except (sqlite3.DatabaseError, UnicodeDecodeError) as error:
+        raise OrccadError(f"{path}: not an optuna study database, or damaged "
+                          f"({_reason(error)})") from None
     if tables and "studies" not in tables:
         raise OrccadError(f"{path}: not an optuna study database (no table studies)")
     return bool(tables)
@@ -279,8 +331,6 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     (``orccad falsify --study``); each candidate's setting is rebuilt from the values the
     trial ran with (:func:`~orccad_app.campaign.setting.build_setting`), as the command
     replays its worst one."""
-    from orccad_app.campaign.falsify import UNDEFINED
-    from orccad_app.campaign.setting import build_setting
     from orccad_app.campaign.spec import load_spec
 
     try:
@@ -288,9 +338,24 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     except ImportError:
         raise OrccadError("falsification needs optuna: pip install 'orccad[falsify]'") from None
     spec = load_spec(spec_path)
-    if not Path(study).is_file() or not _has_studies(study):
+    if not os.path.lexists(study) or not _has_studies(study):  # not created yet, or empty
         return FalsifySnapshot(study, prop, 0, budget, None, None)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
+    try:
+        return _read_trials(optuna, study, spec, prop, until_s, budget, run_seed)
+    except OrccadError:
+        raise
+    except Exception as error:  # noqa: BLE001 - optuna's or SQLAlchemy's, on a file not theirs
+        raise OrccadError(f"{study}: not an optuna study database that can be read "
+                          f"({_reason(error)})") from None
+
+
+def _read_trials(optuna: Any, study: str, spec: Any, prop: str, until_s: float, budget: int,
+                 run_seed: int) -> FalsifySnapshot:
+    """:func:`read_study` once the file is known to hold optuna's tables."""
+    from orccad_app.campaign.falsify import UNDEFINED
+    from orccad_app.campaign.setting import build_setting
+
     # read-only, no table created: a reader that creates optuna's tables races the command
     # creating them in the same file, which then fails ("table studies already exists")
     storage = optuna.storages.RDBStorage(_read_only_url(study), skip_table_creation=True)

@@ -113,14 +113,14 @@ def _child(execute: Callable[[], Any], observer: Any, updates: Connection,
     try:
         report = execute()
         result = dataclasses.replace(report.result, modules={})  # not picklable; same plan
-        updates.send(("done", RunEnded(dataclasses.replace(report, result=result),
+        updates.send(("report", RunEnded(dataclasses.replace(report, result=result),
                                        tuple(observer.injected), observer.aborted_at,
                                        observer.reactions)))
         return 0
     except OrccadError as error:
-        _tell(updates, ("failed", error.message))
+        _tell(updates, ("error", error.message))
     except BaseException as error:  # noqa: BLE001 — reported to the console, then exit
-        _tell(updates, ("failed", f"{type(error).__name__}: {error}"))
+        _tell(updates, ("error", f"{type(error).__name__}: {error}"))
     return 1
 
 
@@ -163,7 +163,7 @@ def run_forked(execute: Callable[[], Any], observer: Any,
                 raise OrccadError("the run's process ended without its report") from None
             if kind == "update":
                 post(payload)
-            elif kind == "done":
+            elif kind == "report":
                 return payload
             else:
                 raise OrccadError(payload)

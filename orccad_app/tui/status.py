@@ -15,6 +15,7 @@ from collections import deque
 from pathlib import Path
 from typing import Any
 
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.labels import Phase
 from orccad_app.tui.live import LiveUpdate
 
@@ -118,12 +119,12 @@ MAX_WAITING = 4
 """Locations shown in the status line (the Source tab, ``o``, shows them all)."""
 
 
-def where_text(session: Any, state: int | None, status: str = "running",
+def where_text(session: Any, state: int | None, status: str = Status.RUNNING,
                limit: int = MAX_WAITING) -> str:
     """``waiting at arm_recovery.orc:58, 77, homing.orc:26 (running TrackPID at :48)`` (or
     the status once the mission ended); past ``limit`` locations, ``… +N``. The
     running Robot-Tasks come first when the list is cut, so a small terminal shows them."""
-    if status in ("done", "failed", "aborted"):
+    if status in (Status.DONE, Status.FAILED, Status.ABORTED):
         return f"the mission has ended: {status}"
     waiting = _waiting(session, state)
     if not waiting:

@@ -30,6 +30,7 @@ from typing import Callable
 import networkx as nx
 
 from orccad_app.lang import ast
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.application import contains
 from orccad_app.verify.model import ENDED, Model, Step
 
@@ -86,7 +87,7 @@ def _fatal_aborts(model: Model) -> Violation | None:
     def bad(step: Step) -> bool:
         if _raises_fatal(model, step) is None:
             return False
-        return step.status != "aborted" or not model.sites(step.target) <= allowed
+        return step.status != Status.ABORTED or not model.sites(step.target) <= allowed
 
     run = shortest_run(model, bad)
     if run is None:
@@ -190,10 +191,10 @@ def _tasks_end_first(model: Model) -> Violation | None:
     allowed = _fatal_sites(model)
 
     def bad(step: Step) -> bool:
-        if step.status not in ("done", "failed", "aborted", ENDED):
+        if step.status not in (Status.DONE, Status.FAILED, Status.ABORTED, ENDED):
             return False
         left = model.sites(step.target)
-        return bool(left - allowed) if step.status == "aborted" else bool(left)
+        return bool(left - allowed) if step.status == Status.ABORTED else bool(left)
 
     run = shortest_run(model, bad)
     if run is None:

@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang.limits import MAX_INT, MIN_INT
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, Action, DataBranch,
-                                          InputTest, Leaf, Node)
+from orccad_app.reactive.automaton import Action, DataBranch, InputTest, Leaf, Node
+from orccad_app.reactive.status import Status
 from orccad_app.verify import data
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import RtLabel
@@ -188,10 +188,10 @@ class _Builder:
                 continue
             leaf = path.leaf
             status = leaf.status
-            if status == DONE and failed_before:
+            if status == Status.DONE and failed_before:
                 status = ENDED
             target = self.state((leaf.target, after,
-                                 failed_before or status in (FAILED, ABORTED)))
+                                 failed_before or status in (Status.FAILED, Status.ABORTED)))
             emitted = frozenset(s.name for s in leaf.emitted if not s.name.startswith("_"))
             steps.append(Step(number, target, path, emitted, status,
                               self._fair(q, path, leaf, emitted)))

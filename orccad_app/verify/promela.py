@@ -26,8 +26,8 @@ from typing import Iterable
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, Action, Automaton,
-                                          DataBranch, InputTest, Leaf, Node)
+from orccad_app.reactive.automaton import Action, Automaton, DataBranch, InputTest, Leaf, Node
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.atoms import Atoms
 from orccad_app.robottask.labels import RtLabel
 from orccad_app.robottask.signals import SignalRoles
@@ -36,7 +36,7 @@ from orccad_app.verify.formula import F, from_ast, is_past
 
 __all__ = ["to_promela", "claim_name"]
 
-_STATUS = {RUNNING: 1, DONE: 2, FAILED: 3, ABORTED: 4}
+_STATUS = {Status.RUNNING: 1, Status.DONE: 2, Status.FAILED: 3, Status.ABORTED: 4}
 _OPS = {"+": "+", "-": "-", "*": "*", "<": "<", "<=": "<=", ">": ">", ">=": ">=",
         "==": "==", "!=": "!=", "and": "&&", "or": "||"}
 
@@ -113,11 +113,11 @@ class _Writer:
             if label in self.labels[q] and label in self.labels[leaf.target] \
                     and f"{task}.start" not in emitted:
                 lines.append(f"{indent}fs{site} = 0;")
-        if leaf.status == DONE:
+        if leaf.status == Status.DONE:
             lines.append(f"{indent}if :: bad -> status = 5 :: else -> status = 2 fi;")
         else:
             lines.append(f"{indent}status = {_STATUS[leaf.status]};")
-            if leaf.status in (FAILED, ABORTED):
+            if leaf.status in (Status.FAILED, Status.ABORTED):
                 lines.append(f"{indent}bad = 1;")
         lines.append(f"{indent}state = {leaf.target};")
         return lines

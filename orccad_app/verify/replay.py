@@ -23,6 +23,7 @@ from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.labels import InMission, MissionLabel
 from orccad_app.reactive.runtime import Reactor
 from orccad_app.reactive.script import Instant
+from orccad_app.reactive.status import Status
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.labels import RtLabel
 from orccad_app.verify.checker import PropertyOutcome
@@ -196,7 +197,7 @@ def step_lines(step: ReplayStep, path: str, text: str) -> list[str]:
         head = "  waiting at " if len(seen) == 1 else "             "
         lines.append(f"{head}{where}:{loc.line}  {statement}".rstrip())
     if not seen:
-        lines.append("  waiting at no statement" if step.status == "running"
+        lines.append("  waiting at no statement" if step.status == Status.RUNNING
                      else f"  the mission has ended: {step.status}")
     for task in step.tasks:
         where = Path(task.loc.file or name).name

@@ -42,3 +42,19 @@ def test_verbose_lists_parameters_and_ports(capsys):
     assert "param margin: float = 0.1" in out
     assert "port  out event: event" in out
     assert "timing period 5 ms, wcet 0.1 ms" in out
+
+
+def test_verbose_and_json_say_which_kinds_have_c(capsys):
+    """Module kinds and observers: the runtime library's C, a plugin's file, or none (Python
+    only, refused by orccad sil)."""
+    assert main(["plugins", "--json"]) == 0
+    document = json.loads(capsys.readouterr().out)
+    c = {e["name"]: e["c"] for e in document["module_kinds"] + document["observers"]}
+    assert c["control_law"].startswith("the runtime library (pid")
+    assert c["joint_limits"] == "the runtime library"
+    assert c["singularity"] is None  # an observer that runs only in Python
+    assert main(["plugins", "-v"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    at = next(k for k, line in enumerate(out) if line.split()[:1] == ["singularity"])
+    shown = next(line for line in out[at + 1:] if line.strip().startswith("C "))
+    assert "none: Python only" in shown

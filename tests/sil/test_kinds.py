@@ -10,24 +10,10 @@ import pytest
 
 from orccad_app.mission.plan import SiteModules
 from orccad_app.sil.generate.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
-from orccad_app.sil.lockstep import lockstep
+from orccad_app.sil.lockstep import lockstep, random_inputs
 from orccad_app.sil.controller.remote import RemoteModule
 
 from tests.sil.helpers import plan_of
-
-
-def _inputs(instance, rng: np.random.Generator, scale: float) -> dict:
-    values = {}
-    for port in instance.ports:
-        if port.direction != "in" or rng.random() < 0.1:  # sometimes "none yet"
-            continue
-        dim = port.dim or 1
-        data = rng.normal(0.0, scale, dim)
-        if port.type == "float":
-            values[port.name] = float(abs(data[0]) * 10)
-        else:
-            values[port.name] = data
-    return values
 
 
 def _same(expected: dict, got: dict, exact: bool) -> None:
@@ -52,8 +38,8 @@ CASES = [("arm_pid.orc", None, True, 0.6), ("arm_retune.orc", None, True, 0.6),
 def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact, scale):
     plan = plan_of(file, mission)
     rng = np.random.default_rng(7)
-    with lockstep(plan, file) as controller:
-        for site in plan.sites:
+    with lockstep(plan, file) as started:
+        for site in started.plan.sites:
             remotes = site.fresh_computes()
             pythons = SiteModules.fresh_computes(site)  # new Python instances, same args
             for name, remote in remotes.items():
@@ -63,9 +49,9 @@ def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact
                 remote.init()
                 for job in range(60):
                     t_s = 0.001 * job
-                    inputs = _inputs(python, rng, scale)
+                    inputs = random_inputs(python, rng, scale)
                     _same(python.compute(t_s, inputs), remote.compute(t_s, inputs), exact)
-        assert controller.alive
+        assert started.controller.alive
 
 
 def test_the_auv_constants_are_the_plugins():

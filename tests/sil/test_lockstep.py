@@ -16,7 +16,7 @@ import pytest
 from orccad_app.sil.generate.layout import NoCImplementation
 from orccad_app.sil.lockstep import lockstep
 
-from tests.sil.helpers import MISSIONS, executive_report, sil_report
+from tests.sil.helpers import MISSIONS, executive_report, plan_of, sil_report
 
 #: (file, mission) of every shipped mission that runs a robot and has C for all its kinds
 RUNNABLE = [("arm_pid.orc", None), ("arm_recovery.orc", None), ("arm_retune.orc", None),
@@ -189,3 +189,23 @@ def test_what_real_time_does_not_model_is_refused_with_the_reason(flag, words):
     done = _command("sil", str(MISSIONS / "arm_pid.orc"), "--realtime", *flag)
     assert done.returncode == 2 and words in done.stderr and "--lockstep" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_the_controller_leaves_the_plan_it_is_given_as_it_was():
+    """Generating the mission's automaton and starting its controller change nothing of the
+    plan they are given (issue 36): the run in the controller runs a copy, with the full
+    automaton and sites that start proxies."""
+    from orccad_app.reactive.automaton import Automaton
+    from orccad_app.sil.generate.automaton import mission_automaton
+
+    plan = plan_of("arm_pid.orc")
+    automaton, sites = plan.automaton, list(plan.sites)
+    computes = [task.compute for task in plan.tcs.module_tasks]
+    mission = mission_automaton(plan)
+    assert plan.automaton is automaton and isinstance(mission.automaton, Automaton)
+    with lockstep(plan, "arm_pid.orc", automaton=mission) as started:
+        assert started.plan is not plan and started.plan.automaton is mission.automaton
+        assert all(type(site).__name__ == "RemoteSite" for site in started.plan.sites)
+    assert plan.automaton is automaton
+    assert all(a is b for a, b in zip(plan.sites, sites, strict=True))
+    assert [task.compute for task in plan.tcs.module_tasks] == computes

@@ -107,3 +107,32 @@ def test_a_plugin_kind_without_c_is_refused_with_its_name_and_the_reason(tmp_pat
         _session(path, PythonOnlyLowPass(), Execution.LOCKSTEP)
     assert "exists only in Python" in refused.value.message
     assert "c_implementation" in refused.value.message
+
+
+def test_check_kinds_reports_the_first_difference_of_a_wrong_c(tmp_path):
+    """``orccad sil --check-kinds``: the plugin's C agrees with its Python bit for bit; a C
+    whose filter forgets the first sample (y starts at 0) is reported at its first job, with
+    the Module-Task, the port and both values."""
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.sil.lockstep import check_kinds
+
+    path = _mission(tmp_path)
+    wrong = tmp_path / "low_pass_wrong.c"
+    wrong.write_text(LOW_PASS_C.read_text().replace("y[i] = u[i];", "y[i] = 0.0;"))
+
+    class WrongLowPass(LowPass):
+        c_implementation = CImplementation(wrong, "low_pass",
+                                           lambda instance: [instance.params["cutoff"]])
+
+    for kind, agrees in ((LowPass(), True), (WrongLowPass(), False)):
+        source = load(str(path), PluginHost.load([("sil_test_low_pass", _Plugin(kind))]))
+        plan = plan_mission(source, select_mission(source, None))
+        compared, difference = check_kinds(plan, str(path), jobs=20, seed=1)
+        if agrees:
+            assert difference is None, difference.text()
+            assert compared == len(plan.tcs.module_tasks)
+            continue
+        assert difference is not None and difference.module == "TrackPID.filt"
+        assert (difference.kind, difference.port) == ("low_pass", "y")
+        assert difference.job == 0 and difference.c == pytest.approx([0.0] * 3)
+        assert "module-task 'TrackPID.filt' (kind low_pass), job 0" in difference.text()

@@ -19,7 +19,8 @@ from typing import Any
 from orccad_app.codegen.generate import STATUS_CODES, CProgram
 from orccad_app.codegen.static_types import Kind
 from orccad_app.diagnostics import OrccadError
-from orccad_app.reactive.automaton import RUNNING, Automaton
+from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.runtime import AutomatonPosition
 from orccad_app.sil.controller.process import ControllerProcess, Op
 from orccad_app.sil.generate.automaton import HEAD_WORDS, SignalSlot, signal_slots, signal_words
@@ -70,7 +71,7 @@ class ControllerAutomaton(AutomatonPosition):
         self._request_words = 1 + signal_words(interface.inputs)
         self._quiet = bytes(8 * (self._request_words - 1))  # no input present
         self.state = automaton.initial
-        self.status = RUNNING
+        self.status = Status.RUNNING
         self.reason: str | None = None
         self.instant = 0
 
@@ -83,12 +84,14 @@ class ControllerAutomaton(AutomatonPosition):
         """One instant of the C automaton with ``inputs`` present (a mapping gives valued
         inputs their values), at ``clock_ns`` [ns]."""
         clock = 0 if clock_ns is None else clock_ns
-        body = bytearray(self._quiet) if inputs else self._quiet
+        body: bytes = self._quiet
         if inputs:
+            words = bytearray(self._quiet)
             valued = inputs if isinstance(inputs, Mapping) else {}
             for name in inputs:
-                self._encode(body, name, valued.get(name))
-        reply = self._controller.request_words(Op.REACT, _WORD.pack(clock) + bytes(body))
+                self._encode(words, name, valued.get(name))
+            body = bytes(words)
+        reply = self._controller.request_words(Op.REACT, _WORD.pack(clock) + body)
         return self._reacted(reply)
 
     def input_words(self, name: str, value: Any, at_ns: int) -> bytes:

@@ -21,6 +21,7 @@ import signal
 import socket
 import struct
 import subprocess
+from collections.abc import Sequence
 from enum import IntEnum
 from pathlib import Path
 
@@ -65,17 +66,22 @@ class ControllerProcess:
     :param modules: the number of Module-Tasks of its table.
     :param digest: the table's digest, which the controller must answer.
     :param heartbeat_s: the longest wait for one reply [wall s].
+    :param arguments: its arguments after ``--fd N``.
+    :param wrapper: a command that runs it (``qemu-aarch64`` for a cross-built controller).
     """
 
     def __init__(self, executable: Path, modules: int, digest: str,
                  heartbeat_s: float = DEFAULT_HEARTBEAT_S,
-                 arguments: tuple[str, ...] = ()) -> None:
+                 arguments: tuple[str, ...] = (), wrapper: tuple[str, ...] = ()) -> None:
         self.heartbeat_s = heartbeat_s
         self.failure: str | None = None
+        self.supervisor_writes = 0
+        """Parameter words the supervisor wrote into the controller (``PARAM``: run-time
+        arguments and type-1 updates the controller does not apply itself)."""
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.process = subprocess.Popen(
-                [str(executable), "--fd", str(theirs.fileno()), *arguments],
+                [*wrapper, str(executable), "--fd", str(theirs.fileno()), *arguments],
                 pass_fds=[theirs.fileno()],
                 stdin=subprocess.DEVNULL, start_new_session=True)
         except OSError as error:
@@ -103,7 +109,7 @@ class ControllerProcess:
         """True while the process runs."""
         return self.process.poll() is None
 
-    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: list[float] = (),
+    def request(self, op: Op, module: int = 0, t_s: float = 0.0, values: Sequence[float] = (),
                 offset: int = 0) -> tuple[float, ...]:
         """Send one request and wait for its reply (the heartbeat); the reply's doubles."""
         payload = struct.pack(f"={len(values)}d", *values) if values else b""

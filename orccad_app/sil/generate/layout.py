@@ -28,8 +28,8 @@ import numpy as np
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CKind", "CLayout", "CPort", "NoCImplementation", "c_layout", "same_word", "MAX_DIM",
-           "MAX_PARAMS", "THRUSTER_ARM_M", "AUV_THRUST_LIMITS_N"]
+__all__ = ["AUV_THRUST_LIMITS_N", "CKind", "CLayout", "CPort", "MAX_DIM", "MAX_PARAMS",
+           "NoCImplementation", "THRUSTER_ARM_M", "c_layout", "kind_c", "same_word"]
 
 MAX_DIM = 16
 """Components of a vector port in the C runtime (``ORC_MAX_DIM``)."""
@@ -227,6 +227,7 @@ def _model_block(kind: str, model: Any) -> list[float]:
     for index in range(1, pin.njoints):
         joint = pin.joints[index]
         name = joint.shortname()
+        axis: tuple[float, ...]
         if name in _AXES:
             axis = _AXES[name]
         elif name == "JointModelRevoluteUnaligned":
@@ -333,6 +334,27 @@ _MODULES: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
     **{name: _guidance for name in ("depth_guidance", "los_guidance", "lawnmower_guidance",
                                     "station_guidance", "waypoint_guidance", "hold_guidance")},
 }
+
+
+_LIBRARY_LIMITS = {
+    "trajectory": "cosine, min_jerk and constant trajectories of joint tracking",
+    "control_law": "pid (diagonal gains) and computed_torque of joint tracking",
+}
+"""What the runtime library's C of a kind covers, where it does not cover every instance."""
+
+
+def kind_c(kind: Any) -> str | None:
+    """Where the C of module or observer ``kind`` is, in words (``orccad plugins -v``):
+    the runtime library's (with what it covers), the plugin's file, or ``None``: the kind
+    runs only in Python (``orccad sil`` and ``codegen --module-tasks`` refuse it)."""
+    name = kind.name
+    if name in _OBSERVERS or name in _MODULES:
+        limits = _LIBRARY_LIMITS.get(name)
+        return "the runtime library" + (f" ({limits})" if limits else "")
+    plugin = getattr(kind, "c_implementation", None)
+    if plugin is None:
+        return None
+    return f"{plugin.source} (prefix {plugin.prefix})"
 
 
 def c_layout(instance: Any) -> CLayout:

@@ -44,27 +44,26 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.codegen.generate import CProgram
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.deadlock import DeadlockError
 from orccad_app.executive.kernel import EventClass
 from orccad_app.executive.simulation import Simulation, TimingSource
 from orccad_app.mission.backend import RunHost
 from orccad_app.mission.lifecycle import site_phases
-from orccad_app.mission.plan import MissionPlan, SiteModules
+from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.result import RunResult
 from orccad_app.mission.run import ReactionError
-from orccad_app.reactive.automaton import Automaton
-from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.build.executable import Prebuilt, build_controller, controller_table
 from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
                                               ControllerProcess, Op)
-from orccad_app.sil.controller.remote import RemoteModule, RemoteSite
+from orccad_app.sil.controller.remote import ControllerRun, RemoteModule, remote_plan
 from orccad_app.sil.generate.adjust import c_adjustments, c_owned_words
-from orccad_app.sil.generate.automaton import managed_sites, mission_automaton, reaction_words
+from orccad_app.sil.generate.binds import c_binds
+from orccad_app.sil.generate.automaton import (MissionProgram, managed_sites, mission_automaton,
+                                              reaction_words)
 from orccad_app.sil.generate.library import C_DIR
-from orccad_app.sil.generate.table import ModuleTable
 from orccad_app.sil.realtime.job_trace import JobTrace
 from orccad_app.sil.realtime.shared import (JOB_RING, REACTION_RING, JobRecords,
                                            ReactionsLost, SharedMemory)
@@ -137,6 +136,8 @@ class RealtimeBackend:
     :param source: the mission file (named in the generated sources).
     :param build_dir: where the generated C goes (default a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [s].
+    :param prebuilt: a controller built from ``orccad codegen --controller``'s tree, run
+        instead of building one.
     """
 
     pacing: float | None = 1.0
@@ -145,11 +146,13 @@ class RealtimeBackend:
     """No tick here: the automaton task reacts at its own ticks in the controller."""
 
     def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
-                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
-        self._program = mission_automaton(plan)
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                 prebuilt: Prebuilt | None = None) -> None:
+        self._mission = mission_automaton(plan)
         self._stack = ExitStack()
-        self.table, self.controller, self._shared = self._stack.enter_context(
-            realtime(plan, source, build_dir, heartbeat_s, self._program))
+        started, self._shared = self._stack.enter_context(
+            realtime(plan, source, build_dir, heartbeat_s, self._mission, prebuilt))
+        self.table, self.controller = started.table, started.controller
         """The controller's generated table (a Module-Task's index: ``table.index(name)``)
         and the controller process."""
         self.automaton: ControllerAutomaton | None = None
@@ -158,9 +161,11 @@ class RealtimeBackend:
         """The shared memory's file (removed as soon as the controller has mapped it)."""
         self.timings: list[ModuleTiming] | None = None
         """What was measured per Module-Task, once the run has ended."""
-        self._plan = plan
+        self._plan = started.plan
+        self._module_tasks = {task.name: task for task in plan.tcs.module_tasks}
         managed_numbers = managed_sites(plan)
-        self._managed_sites = [site for site in plan.sites if site.number in managed_numbers]
+        self._managed_sites = [site for site in self._plan.sites
+                               if site.number in managed_numbers]
         self._managed = frozenset(name for site in self._managed_sites for name in site.modules)
         self.exchange_ns = min(task.period_ns for task in plan.tcs.module_tasks)
         """How often the plant and the controller exchange [ns] (the shortest period)."""
@@ -175,10 +180,15 @@ class RealtimeBackend:
         self._writes: list[Any] = []
         self._jobs: JobTrace | None = None
 
+    def run_plan(self, plan: MissionPlan) -> MissionPlan:
+        """A copy of ``plan``: the full automaton, sites whose starts make proxies (those
+        without run-time arguments started by the controller itself)."""
+        return self._plan
+
     def reactor(self, plan: MissionPlan) -> MissionReactor:
         """The controller's C automaton, whose reactions are replayed here."""
-        assert isinstance(plan.automaton, Automaton)
-        self.automaton = ControllerAutomaton(self.controller, self._program, plan.automaton)
+        self.automaton = ControllerAutomaton(self.controller, self._mission.program,
+                                             self._mission.automaton)
         return self.automaton
 
     def attach(self, run: RunHost, simulation: Simulation) -> None:
@@ -262,10 +272,10 @@ class RealtimeBackend:
                 row = mirror.outputs[slot]
                 if not listeners or not row[0]:
                     continue
-                value = (row[1:1 + dim].copy() if kind == "vector" else
-                         bool(row[1]) if kind == "bool" else float(row[1]))
+                written: Any = (row[1:1 + dim].copy() if kind == "vector" else
+                                bool(row[1]) if kind == "bool" else float(row[1]))
                 for hook in listeners:
-                    hook(now, name, port, value)
+                    hook(now, name, port, written)
         if now >= self._next_ping:
             self._next_ping = now + _HEARTBEAT_NS
             cycle = self.controller.request(Op.PING)
@@ -302,7 +312,7 @@ class RealtimeBackend:
         for site in starting:
             if before.get(site.number, 0) > 0 and after.get(site.number, 0) > 0:
                 for name in site.modules:
-                    compute = self._plan.tcs.module(name).compute
+                    compute = self._module_tasks[name].compute
                     if isinstance(compute, RemoteModule):
                         compute.retire()
 
@@ -407,32 +417,38 @@ def _predicted_response_s(plan: MissionPlan) -> dict[str, float]:
 
 @contextmanager
 def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
-             heartbeat_s: float = DEFAULT_HEARTBEAT_S, automaton: CProgram | None = None
-             ) -> Iterator[tuple[ModuleTable, ControllerProcess, SharedMemory]]:
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S, automaton: MissionProgram | None = None,
+             prebuilt: Prebuilt | None = None
+             ) -> Iterator[tuple[ControllerRun, SharedMemory]]:
     """While in the block, the real-time controller of ``plan`` runs (its threads idle until
-    activated), the mission's ``automaton`` linked in; ended, reaped and its shared memory
-    removed when the block ends."""
+    activated), the mission's ``automaton`` linked in; the block gets it, the plan a run of
+    it runs (a copy: :func:`~orccad_app.sil.controller.remote.remote_plan`) and the shared
+    memory. Ended, reaped and its shared memory removed when the block ends."""
     automaton = automaton or mission_automaton(plan)
-    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = build_controller(plan, source, build_dir or Path(scratch), automaton,
-                                           "orccad_rt.c", (C_DIR / "orccad_io_shm.c",),
-                                           ("-lm", "-pthread"))
+    if prebuilt is not None:
+        table, executable = controller_table(plan, automaton.program), prebuilt.executable
+    else:
+        with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+            table, executable = build_controller(plan, source, build_dir or Path(scratch),
+                                                 automaton.program, "orccad_rt.c",
+                                                 (C_DIR / "orccad_io_shm.c",),
+                                                 ("-lm", "-pthread"))
     shared = SharedMemory(len(table.robot_ports), len(table.entries),
-                          reaction_words(automaton))
+                          reaction_words(automaton.program))
     try:
         controller = ControllerProcess(executable, len(table.entries), table.digest,
-                                       heartbeat_s, ("--io", shared.path))
+                                       heartbeat_s, ("--io", shared.path),
+                                       prebuilt.wrapper if prebuilt is not None else ())
         shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
-            sites, managed = [], managed_sites(plan)
+            managed = managed_sites(plan)
             owned = c_owned_words(c_adjustments(plan, table, managed), table)
-            for site in plan.sites:
-                fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
-                sites.append(RemoteSite(**fields, controller=controller, table=table,
-                                        managed=site.number in managed,
-                                        c_owned=owned if site.number in managed else {}))
-            plan.sites = sites
-            yield table, controller, shared
+            bound: dict[str, set[int]] = {}
+            for bind in c_binds(plan)[0]:
+                bound.setdefault(bind.module, set()).add(bind.offset)
+            yield ControllerRun(controller, table, remote_plan(
+                plan, automaton.automaton, table, controller, managed, owned,
+                {name: frozenset(words) for name, words in bound.items()})), shared
         finally:
             controller.close()
     finally:

@@ -229,7 +229,8 @@ class SharedMemory:
 
     def close(self) -> None:
         """Unmap and remove the file."""
-        self.ints = self.floats = np.empty(0)
+        self.ints = np.empty(0, dtype=np.int64)
+        self.floats = np.empty(0)
         try:
             self._map.close()
         except BufferError:  # a view still alive: the file goes anyway

@@ -17,6 +17,7 @@ from textual.screen import Screen
 from textual.widgets import Footer, Header, OptionList, Static
 from textual.widgets.option_list import Option
 
+from orccad_app.reactive.status import Status
 from orccad_app.tui.session import ScriptedInputs
 from orccad_app.tui.status import elsewhere
 from orccad_app.tui.widgets.source_view import SourceView
@@ -114,7 +115,7 @@ class ReplayScreen(Screen):
         lines = [f"[b]instant {step.number}{when}[/b]",
                  f"inputs:  {_inputs(step)}",
                  f"outputs: {', '.join(step.outputs) or '-'}"]
-        if step.status != "running":
+        if step.status != Status.RUNNING:
             lines.append(f"the mission has ended: {step.status}")
         for task in step.tasks:
             where = elsewhere([task.loc], self.path) or [f"line {task.loc.line}"]

@@ -12,6 +12,7 @@ from orccad_app.robottask.application import contains
 from orccad_app.verify.builtins import Violation, _endless_spans
 from orccad_app.verify.model import Step
 from orccad_app.reactive.bdd import Node
+from orccad_app.reactive.status import Status
 from orccad_app.verify.symbolic.model import SymbolicModel
 from orccad_app.verify.symbolic.runs import Point, pick_state, shortest_run
 from orccad_app.verify.symbolic.witness import Witness
@@ -44,7 +45,7 @@ def _fatal_aborts(model: SymbolicModel, witness: Witness) -> Violation | None:
     m = model.m
     allowed = frozenset(s.number for s in model.composition.sites if s.on_fatal)
     raised = m.any(node for _, node in _fatal(model))
-    bad = raised & (~model.status("aborted") | _sites_outside(model, allowed))
+    bad = raised & (~model.status(Status.ABORTED) | _sites_outside(model, allowed))
     run = shortest_run(model, bad)
     if run is None:
         return None
@@ -156,8 +157,8 @@ def _bottom_component(model: SymbolicModel, stuck: Node) -> Node:
 def _tasks_end_first(model: SymbolicModel, witness: Witness) -> Violation | None:
     allowed = frozenset(s.number for s in model.composition.sites if s.on_fatal)
     everyone = _sites_outside(model, frozenset())
-    ends = (model.status("done") | model.status("failed") | model.status("ended"))
-    bad = (ends & everyone) | (model.status("aborted") & _sites_outside(model, allowed))
+    ends = (model.status(Status.DONE) | model.status(Status.FAILED) | model.status("ended"))
+    bad = (ends & everyone) | (model.status(Status.ABORTED) & _sites_outside(model, allowed))
     run = shortest_run(model, bad)
     if run is None:
         return None

@@ -26,6 +26,7 @@ from orccad_app.verify import data
 from orccad_app.reactive.bdd import Node
 from orccad_app.reactive.circuit import (BOOT, FAILED_BEFORE, TERM, Circuit, input_var,
                                                 next_name)
+from orccad_app.reactive.status import Status
 
 __all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES", "MAX_BDD_NODES"]
 
@@ -213,8 +214,8 @@ class SymbolicModel:
         failed = failed & ~aborted
         ends = self.circuit.code0 & ~aborted & ~failed & self.running
         fb = m.var(FAILED_BEFORE)
-        return {"aborted": aborted & self.running, "failed": failed & self.running,
-                "done": ends & ~fb, "ended": ends & fb}.get(name, m.false)
+        return {Status.ABORTED: aborted & self.running, Status.FAILED: failed & self.running,
+                Status.DONE: ends & ~fb, "ended": ends & fb}.get(name, m.false)
 
     # ------------------------------------------------------------------ fairness
     def _fairness_sets(self) -> None:

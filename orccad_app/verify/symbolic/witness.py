@@ -13,8 +13,8 @@ status and the next state: the explicit step the symbolic one stands for. A witn
 from __future__ import annotations
 
 from orccad_app.reactive import ir
-from orccad_app.reactive.automaton import (ABORTED, DONE, FAILED, RUNNING, TERMINAL, Action,
-                                          Leaf)
+from orccad_app.reactive.automaton import TERMINAL, Action, Leaf
+from orccad_app.reactive.status import Status
 from orccad_app.reactive.engine import BOOT, react
 from orccad_app.reactive.lazy import LazyAutomaton
 from orccad_app.reactive.prepare import TERMINATED
@@ -106,17 +106,18 @@ class Witness:
                 events.append(("act", Action(event[0], event[1], event[2], None)))  # type: ignore[arg-type]
         emitted = tuple(s for s in program.outputs if s in outcome.emitted)
         if program.aborted is not None and program.aborted in outcome.emitted:
-            status = ABORTED
+            status = Status.ABORTED
         elif program.failed is not None and program.failed in outcome.emitted:
-            status = FAILED
+            status = Status.FAILED
         else:
-            status = DONE if outcome.code == TERMINATED else RUNNING
+            status = Status.DONE if outcome.code == TERMINATED else Status.RUNNING
         target_key = TERMINAL if outcome.code == TERMINATED else outcome.state
-        if status == DONE and failed_before:
+        if status == Status.DONE and failed_before:
             shown = ENDED
         else:
             shown = status
-        target = self._state(target_key, failed_before or status in (FAILED, ABORTED))
+        target = self._state(target_key,
+                             failed_before or status in (Status.FAILED, Status.ABORTED))
         leaf = Leaf(self.automaton._state(target_key), emitted, status)
         guard = tuple((decl.name, on) for decl, on in oracle.asked.items())
         path = Path(tuple(events), leaf, guard)
