@@ -14,6 +14,8 @@
 #ifndef ORCCAD_MT_H
 #define ORCCAD_MT_H
 
+#include <stdint.h>
+
 #define ORC_MAX_DIM 16     /* components of a vector port (M of 4 joints: 16) */
 #define ORC_MAX_PORTS 8    /* input (and output) slots of a Module-Task */
 #define ORC_MAX_PARAMS 192 /* doubles of parameters */
@@ -54,7 +56,8 @@ typedef struct {
     int out_dim[ORC_MAX_PORTS];
     int n_params;
     double params[ORC_MAX_PARAMS];
-    long period_ns, wcet_ns;   /* declared timing (sporadic: period = minimum inter-arrival) */
+    int64_t period_ns, wcet_ns; /* declared timing [ns] (sporadic: period = minimum
+                                 * inter-arrival); 64 bits on every target */
     int processor, priority;   /* placement (priority 1 the highest) */
     int sporadic;              /* 1: released by the writes on its inputs (interrupts) */
 } orc_mt_def;

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.control.errors import ControlError
 from orccad_app.diagnostics import OrccadError
 
 __all__ = ["AUV_THRUST_LIMITS_N", "CKind", "CLayout", "CPort", "MAX_DIM", "MAX_PARAMS",
@@ -382,9 +383,12 @@ def c_layout(instance: Any) -> CLayout:
 
 
 def _plugin_params(name: str, plugin: Any, instance: Any) -> tuple[float, ...]:
-    """The parameter vector a plugin kind's C reads: finite numbers, within the runtime's."""
+    """The parameter words a plugin kind's C reads (from its declared fields, or the vector it
+    gives): finite numbers, within the runtime's."""
     try:
-        params = tuple(_floats(plugin.params(instance)))
+        params = tuple(_floats(plugin.words(instance)))
+    except ControlError as error:
+        raise NoCImplementation(f"module kind {name!r}: {error.message}") from None
     except (TypeError, ValueError) as error:
         raise NoCImplementation(f"module kind {name!r}: its C implementation's parameters "
                                 f"are not numbers ({error})") from None

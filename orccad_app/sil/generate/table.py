@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from orccad_app.control.c_implementation import kind_header
 from orccad_app.sil.generate.layout import CKind, CLayout, NoCImplementation, c_layout
 from orccad_app.sil.generate.library import C_DIR, RUNTIME_FILES, library_sources
 
@@ -261,7 +262,8 @@ def _entries_text(table: ModuleTable) -> str:
             f"{len(layout.inputs)}, {len(layout.outputs)},\n"
             f"      {_dims(layout.inputs)}, {_dims(layout.outputs)},\n"
             f"      {len(layout.params)}, {{ {params} }},\n"
-            f"      {entry.period_ns}L, {entry.wcet_ns}L, {entry.processor}, {entry.priority}, "
+            f"      INT64_C({entry.period_ns}), INT64_C({entry.wcet_ns}), {entry.processor}, "
+            f"{entry.priority}, "
             f"{int(entry.sporadic)} }},")
     return "\n".join(lines)
 
@@ -289,6 +291,8 @@ def module_task_files(plan: Any, source: str) -> dict[str, str]:
     files = {"orccad_modules.c": table_source(table, source)}
     for plugin in plugin_kinds(table):
         files[plugin_file_name(plugin)] = plugin_file_text(plugin)
+        if plugin.declared:
+            files[plugin.header_name] = kind_header(plugin)
     for name in RUNTIME_FILES:
         files[name] = (C_DIR / name).read_text(encoding="utf-8")
     return files
@@ -306,4 +310,6 @@ def write_generated(table: ModuleTable, out_dir: Path, source: str,
         path = out_dir / plugin_file_name(plugin)
         path.write_text(plugin_file_text(plugin))
         plugin_paths.append(path)
+        if plugin.declared:  # the kind's structs, from its one declaration
+            (out_dir / plugin.header_name).write_text(kind_header(plugin))
     return [table_path, *plugin_paths, *library_sources(main)]
