@@ -94,7 +94,7 @@ def test_declared_timing_is_64_bits_on_every_target(tmp_path):
     from orccad_app.sil.generate.layout import CKind, CLayout
     from orccad_app.sil.generate.table import ModuleEntry, ModuleTable, table_source
 
-    table = ModuleTable("M", (ModuleEntry("T.m", CLayout(CKind.OBS_AT_REST, (), (), (0.0,)),
+    table = ModuleTable("M", (ModuleEntry("T.m", CLayout(CKind.LAW_PID, (), (), (0.0,)),
                                           3_000_000_000, 4_000_000_000, 0, 1),), ("cpu0",))
     assert "INT64_C(3000000000), INT64_C(4000000000)" in table_source(table, "m.orc")
     check = tmp_path / "check.c"

@@ -202,3 +202,33 @@ def test_a_declaration_is_checked_when_it_is_made():
     with pytest.raises(OrccadError, match="int64"):
         CImplementation(LOW_PASS_DECLARED_C, "x", lambda i: {"n": 2.5},
                         param_fields=(CField("n", CFieldType.INT64),)).words(None)
+
+
+def test_the_built_in_plugins_carry_their_own_c_and_the_core_names_none_of_their_kinds():
+    """The observers' and the AUV's kinds run from their plugins' own C files, through
+    CImplementation as a third party's do (issue 36); no string in the core's Python names one
+    of them."""
+    import ast
+
+    from orccad_app.sil.generate.layout import kind_c
+
+    root = Path(__file__).resolve().parents[2]
+    host = PluginHost.load()
+    names = set()
+    for registry in (host.registries.module_kinds, host.registries.observers):
+        for entry in registry.entries():
+            if entry.plugin not in ("orccad_observers", "orccad_auv"):
+                continue
+            names.add(entry.name)
+            c = entry.item.c_implementation
+            if c is not None:
+                assert (root / "plugins" / entry.plugin) in c.source.parents, entry.name
+                assert "runtime library" not in kind_c(entry.item)
+    assert {"joint_limits", "at_rest", "auv_autopilot", "gps_fix"} <= names
+    literals = set()
+    for path in (root / "orccad_app").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
+                literals.add(node.value)
+    literals.discard("tracking_error")  # the report's field of a run's error samples, not the kind
+    assert not names & literals, sorted(names & literals)
