@@ -17,6 +17,11 @@ fairness sets) plus the 4 built-in ones. Target: N = 20 with 5 properties in at 
 
 Baseline measured in the same command: the compile time of the same mission (parse, check,
 lower, compile, minimize): the ratio check / compile says what the proofs cost on top.
+
+Exit status 0 when every target is met, 1 when one is MISSED (2 is bad input, as for
+orccad).
+
+Needs: no extra: ORCCAD's own dependencies.
 """
 
 from __future__ import annotations

@@ -16,6 +16,8 @@ A campaign database made beforehand can stand for the random side (``--campaign-
 
     python bench/bench_falsify.py [--budget 60] [--seeds 0 1] [--chunks 3] [--workers 2]
                                   [--campaign-db auv200.db]
+
+Needs: no extra: ORCCAD's own dependencies (optuna is one).
 """
 
 from __future__ import annotations

@@ -17,9 +17,10 @@ process per job on a ``PreemptiveResource``. Both must find the same worst respo
 (A 600 us, B 300 us, C 100 us), which the script checks. It prints wall times and the ratio
 SimPy / ORCCAD (> 1 means the ORCCAD kernel is faster).
 
-SimPy is not a dependency of ORCCAD: ``pip install simpy`` in the venv to run this script.
-
     python bench/bench_kernel.py [--jobs N]
+
+Needs: the ``bench`` extra for its baseline (``pip install -e '.[bench]'``: SimPy); without it,
+the baseline is skipped with a message.
 """
 
 from __future__ import annotations
@@ -103,7 +104,7 @@ def main() -> None:
     try:
         simpy_s, simpy_worst = timed(run_simpy, args.jobs)
     except ImportError:
-        print("simpy: not installed (pip install simpy) - no ratio")
+        print("simpy: not installed (pip install -e '.[bench]') - no ratio")
         return
     assert simpy_worst == EXPECTED, simpy_worst
     print(f"simpy 4 (PreemptiveResource):   {simpy_s:8.3f} s  "

@@ -13,7 +13,10 @@ the wall time from sending ``textDocument/didChange`` to receiving the
 
 Baseline measured in the same command: the bare pipeline call the server makes
 (``pipeline.load`` of the same file, in this process, plugins loaded once): the ratio
-server / pipeline says what the protocol, the threads and the debounce add.
+server / pipeline says what the protocol, the threads and the debounce add. Exit status 0
+when the goal is met, 1 when it is MISSED (2 is bad input, as for orccad).
+
+Needs: the ``lsp`` extra (``pip install -e '.[lsp]'``: pygls, lsprotocol).
 """
 
 from __future__ import annotations
@@ -95,9 +98,10 @@ def main() -> int:
     for label, seconds in rows:
         print(f"  {label:<52} {seconds * 1000:7.1f} ms   x{seconds / baseline:5.2f}")
     editor = rows[1][1] * 1000
+    met = editor < GOAL_MS
     print(f"goal: diagnostics within {GOAL_MS:.0f} ms of a change: "
-          f"{'met' if editor < GOAL_MS else 'missed'} ({editor:.1f} ms)")
-    return 0
+          f"{'met' if met else 'MISSED'} ({editor:.1f} ms)")
+    return 0 if met else 1
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ lateness with and without SCHED_FIFO.
    Wall-clock figures depend on the machine's load: compare the two rows of one command.
 
     python bench/bench_sil.py [--repeat 3] [--mission missions/arm_pid.orc]
+
+Needs: no extra; a C compiler (``gcc`` or ``cc``) for the controller it builds.
 """
 
 from __future__ import annotations

@@ -10,6 +10,9 @@ For each formula and window width ``w`` (samples): the time of each evaluator (t
 3, rtamt once, its parse excluded: it is cached) and their ratio; the values are checked equal. rtamt's
 bounded ``until`` / ``since`` cost ``O(n·w²)``, its bounded ``always`` / ``eventually``
 ``O(n·w)``; the linear evaluator ``O(n)`` whatever ``w`` — the ratio grows with ``w``.
+
+Needs: the ``test`` extra (``pip install -e '.[test]'``: rtamt, the reference it is timed
+against).
 """
 
 from __future__ import annotations

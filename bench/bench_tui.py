@@ -16,6 +16,11 @@ machine's load aside (on a loaded machine the wall ratio approaches it: the two 
 share the CPU time the machine gives this command).
 
     python bench/bench_tui.py [--mission missions/arm_pid.orc] [--repeat 3]
+
+Exit status 0 when every target is met, 1 when one is MISSED (2 is bad input, as for
+orccad).
+
+Needs: no extra: ORCCAD's own dependencies.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ import contextlib
 import io
 import os
 import resource
+import sys
 import time
 from pathlib import Path
 
@@ -76,7 +82,7 @@ def time_tui(mission: str) -> tuple[float, float]:
     return asyncio.run(_tui(mission))
 
 
-def main() -> None:
+def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--mission", default=str(MISSION.relative_to(ROOT)))
     parser.add_argument("--repeat", type=int, default=3)
@@ -95,7 +101,8 @@ def main() -> None:
           f"processes): ratio {tui_cpu / cli_cpu:.2f}")
     print(f"load average during the command: {os.getloadavg()[0]:.1f} "
           f"on {os.cpu_count()} CPUs")
+    return 0 if ratio <= TARGET else 1
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

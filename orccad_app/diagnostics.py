@@ -18,6 +18,8 @@ from typing import Any, Mapping
 
 __all__ = [
     "value_text",
+    "value_excerpt",
+    "cut",
     "arguments_text",
     "SourceLocation",
     "OrccadError",
@@ -145,6 +147,38 @@ def value_text(value: Any) -> str:
             return "[" + ", ".join(value_text(v) for v in items) + "]"
         return value_text(items)
     return str(value)
+
+
+#: Most characters of a user's text echoed in a message (:func:`cut`).
+MESSAGE_EXCERPT_CHARS = 160
+#: Most components of a vector shown in a message (:func:`value_excerpt`).
+MESSAGE_EXCERPT_COMPONENTS = 8
+
+
+def cut(text: str, limit: int = MESSAGE_EXCERPT_CHARS) -> str:
+    """``text`` itself, or its start and its end around ``…`` with its length when it is
+    longer than ``limit`` characters: a message echoes what the user wrote, never half a
+    megabyte of it."""
+    if len(text) <= limit:
+        return text
+    keep = max(1, (limit - 30) // 2)
+    return f"{text[:keep]} … {text[-keep:]} ({len(text)} characters)"
+
+
+def value_excerpt(value: Any) -> str:
+    """:func:`value_text` for a message: a vector of more than
+    :data:`MESSAGE_EXCERPT_COMPONENTS` components shows its first and last ones and its size
+    (``[1, 2, 3, 4, …, 9, 10] (10 components)``), a long string is :func:`cut`."""
+    if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        items = value.tolist() if hasattr(value, "tolist") else list(value)
+        if isinstance(items, list) and len(items) > MESSAGE_EXCERPT_COMPONENTS:
+            half = MESSAGE_EXCERPT_COMPONENTS // 2
+            shown = [value_excerpt(v) for v in (*items[:half], *items[-half:])]
+            return (f"[{', '.join(shown[:half])}, …, {', '.join(shown[half:])}] "
+                    f"({len(items)} components)")
+        if isinstance(items, list):
+            return "[" + ", ".join(value_excerpt(v) for v in items) + "]"
+    return cut(value_text(value))
 
 
 def arguments_text(arguments: Mapping[str, Any]) -> str:

@@ -37,7 +37,7 @@ from orccad_app.control.models import DynamicsModel, IdentityModel, PinocchioMod
 from orccad_app.control.module import ModuleInstance, ModuleKind
 from orccad_app.control.params import REQUIRED, ParamSpec, resolve_params
 from orccad_app.control.plant_extension import FLAG, FaultRange, PlantExtension
-from orccad_app.control.ports import PORT_TYPES, PortDirection, PortSpec, Timing
+from orccad_app.control.ports import PORT_TYPES, TASK_ERROR, PortDirection, PortSpec, Timing
 from orccad_app.control.robot import (
     IdleBehaviour,
     RobotPort,
@@ -96,6 +96,7 @@ __all__ = [
     "PortSpec",
     "PortDirection",
     "PORT_TYPES",
+    "TASK_ERROR",
     "Timing",
     # parameters
     "ParamSpec",

@@ -12,6 +12,13 @@ import pytest
 
 #: ``file::function`` of the slow tests (every parameter of a parametrized test).
 SLOW = frozenset({
+    "tests/sil/test_supervisor_writes.py::test_the_supervisor_writes_no_parameter_word_in_real_time",
+    "tests/campaign/test_budgets.py::test_a_pool_never_has_more_workers_than_runs",
+    "tests/campaign/test_budgets.py::test_a_study_database_is_not_a_campaign_database_nor_the_reverse",
+    "tests/docs/test_editors_doc.py::test_the_emacs_configuration_shows_diagnostics",
+    "tests/sil/test_controller_tree.py::test_an_aarch64_build_under_qemu_ends_as_orccad_run",
+    "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_in_real_time_runs_the_same_robot_tasks",
+    "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_ends_as_orccad_run",
     "tests/lsp/test_command.py::test_an_editor_that_goes_away_leaves_no_server_and_no_proof_behind",
     "tests/lsp/test_proof.py::test_a_false_property_gets_an_error_with_its_counterexample_script",
     "tests/lsp/test_proof.py::test_every_property_of_arm_recovery_is_proved",

@@ -22,7 +22,6 @@ NAME_PARSING = re.compile(r"""["']\.["'] (?:not )?in |\.rsplit\(["']\.["']|"""
 
 ALLOWED = {
     "orccad_app/robottask/signals.py": "SignalRoles itself",
-    "orccad_app/campaign/spec.py": "checks the user's ROBOT.FAULT=VALUE@TIME text, not a signal",
 }
 """Files that may match :data:`NAME_PARSING`, and why."""
 
@@ -129,6 +128,7 @@ HOMONYMS = {
     "orccad_app/robottask/labels.py": (1, "Phase.ACTIVE's word for people"),
     "orccad_app/commands/check.py": (1, "the JSON count of failed properties"),
     "orccad_app/campaign/runner.py": (1, "PrefixCounts.done, an attribute in __slots__"),
+    "orccad_app/lsp/lifecycle.py": (1, "the language server's lifecycle phase"),
 }
 """Files that write a status word for another concept: how many times, and why."""
 
@@ -173,3 +173,31 @@ def test_the_formula_status_keywords_are_the_ended_statuses():
         text = f"property M.p: eventually {status};\n"
         formula = parse(text, "<t>").properties[0].formula
         assert formula.operand.status == status and Status(formula.operand.status) is status
+
+
+TASK_ERROR_HOMONYMS = {
+    "orccad_app/control/closed_loop.py": 2,  # a closed-loop record's column
+    "orccad_app/control/laws/fast.py": 1,  # LawOutput's attribute e
+    "orccad_app/lang/limits.py": 1,  # the exponent of a number's text
+    "orccad_app/tui/screens/report.py": 1,  # a key binding
+    "orccad_app/tui/screens/run.py": 1,  # a key binding
+    "orccad_app/verify/stl.py": 2,  # the prefix of an event variable
+}
+"""Files that write ``"e"`` for something else than the task-error port, and how often."""
+
+
+def test_the_task_error_port_is_named_once():
+    """The control law's ``e`` output, read by observers, the run's tracking error and
+    ``robot.e`` properties, is :data:`orccad_app.control.ports.TASK_ERROR` (the plugins'
+    ``plugin_api.TASK_ERROR``) everywhere else (issue 36)."""
+    found = []
+    for path in _python_files():
+        relative = path.relative_to(ROOT).as_posix()
+        if relative == "orccad_app/control/ports.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        lines = sorted(node.lineno for node in ast.walk(tree)
+                       if isinstance(node, ast.Constant) and node.value == "e")
+        if len(lines) != TASK_ERROR_HOMONYMS.get(relative, 0):
+            found.append(f"{relative}: \"e\" at lines {', '.join(map(str, lines))}")
+    assert not found, "the task-error port written as \"e\":\n" + "\n".join(found)

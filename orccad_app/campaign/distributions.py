@@ -26,10 +26,24 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Kind", "Distribution", "DistributionError", "parse_distribution", "round_sig"]
+from orccad_app.diagnostics import cut
+
+__all__ = ["Kind", "Distribution", "DistributionError", "parse_distribution", "round_sig",
+           "truncated_mass", "MIN_TRUNCATED_MASS"]
 
 _CALL = re.compile(r"^\s*([A-Za-z]+)\s*\((.*)\)\s*$", re.S)
 _MAX_REDRAWS = 1000
+MIN_TRUNCATED_MASS = 0.05
+"""Least probability of ``[lo, hi]`` under ``N(mu, sigma)`` for ``N(mu, sigma, lo, hi)``: its
+draws are redrawn until one falls in ``[lo, hi]``, at most ``_MAX_REDRAWS`` times, which then
+all fail with a chance of at most ``0.95**1000`` (about 5e-23)."""
+
+
+def truncated_mass(mu: float, sigma: float, low: float, high: float) -> float:
+    """The probability of ``[low, high]`` under the normal ``N(mu, sigma)``."""
+    def cdf(x: float) -> float:
+        return 0.5 * math.erfc(-(x - mu) / (sigma * math.sqrt(2.0)))
+    return cdf(high) - cdf(low)
 
 
 class DistributionError(ValueError):
@@ -84,7 +98,10 @@ class Distribution:
             value = float(rng.normal(mu, sigma))
             if len(self.args) == 2 or low <= value <= high:
                 return round_sig(value)
-        return round_sig(min(high, max(low, mu)))  # unreachable for sane bounds (checked)
+        # unreachable for a parsed spec: [lo, hi] holds at least MIN_TRUNCATED_MASS of the
+        # normal's mass (a chance below 1e-22 of failing); never silently the mean
+        raise DistributionError(f"{cut(repr(self.text))}: {_MAX_REDRAWS} redraws all fell "
+                                f"outside [{low:g}, {high:g}]")
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -126,9 +143,9 @@ def _number(text: str) -> float | int:
     try:
         value = float(text)
     except ValueError:
-        raise DistributionError(f"{text!r} is not a number") from None
+        raise DistributionError(f"{cut(repr(text))} is not a number") from None
     if not math.isfinite(value):
-        raise DistributionError(f"{text!r} is not a finite number")
+        raise DistributionError(f"{cut(repr(text))} is not a finite number")
     return value
 
 
@@ -142,22 +159,22 @@ _NAMES = {"u": Kind.UNIFORM, "uniform": Kind.UNIFORM, "ui": Kind.UNIFORM_INT,
 def parse_distribution(value: Any) -> Distribution:
     """A number or a distribution's text; raise :class:`DistributionError`."""
     if isinstance(value, bool):
-        raise DistributionError(f"expected a number or a distribution, got {value!r}")
+        raise DistributionError(f"expected a number or a distribution, got {cut(repr(value))}")
     if isinstance(value, (int, float)):
         if not math.isfinite(value):
-            raise DistributionError(f"{value!r} is not a finite number")
+            raise DistributionError(f"{cut(repr(value))} is not a finite number")
         return Distribution(Kind.CONSTANT, (value,), repr(value))
     if not isinstance(value, str):
         raise DistributionError(f"expected a number or a distribution such as 'U(0, 1)', "
-                                f"got {value!r}")
+                                f"got {cut(repr(value))}")
     match = _CALL.match(value)
     if match is None:
         return Distribution(Kind.CONSTANT, (_number(value),), value.strip())
     name, inner = match.groups()
     kind = _NAMES.get(name.lower())
     if kind is None:
-        raise DistributionError(f"unknown distribution {name!r} in {value!r} (expected U, UI, "
-                                f"N, choice or B)")
+        raise DistributionError(f"unknown distribution {cut(repr(name))} in "
+                                f"{cut(repr(value))} (expected U, UI, N, choice or B)")
     args = tuple(_number(part) for part in inner.split(",")) if inner.strip() else ()
     _check(kind, args, value)
     return Distribution(kind, args, value.strip())
@@ -167,18 +184,24 @@ def _check(kind: Kind, args: tuple, text: str) -> None:
     arity = _ARITY.get(kind)
     if arity is not None and len(args) not in arity:
         counts = " or ".join(map(str, arity))
-        raise DistributionError(f"{text!r}: {kind.value}(…) takes {counts} numbers, "
+        raise DistributionError(f"{cut(repr(text))}: {kind.value}(…) takes {counts} numbers, "
                                 f"got {len(args)}")
     if kind is Kind.CHOICE and not args:
-        raise DistributionError(f"{text!r}: choice(…) needs at least one value")
+        raise DistributionError(f"{cut(repr(text))}: choice(…) needs at least one value")
     if kind in (Kind.UNIFORM, Kind.UNIFORM_INT) and not args[0] <= args[1]:
-        raise DistributionError(f"{text!r}: the lower bound exceeds the upper bound")
+        raise DistributionError(f"{cut(repr(text))}: the lower bound exceeds the upper bound")
     if kind is Kind.UNIFORM_INT and not all(float(a).is_integer() for a in args):
-        raise DistributionError(f"{text!r}: UI(a, b) takes integer bounds")
+        raise DistributionError(f"{cut(repr(text))}: UI(a, b) takes integer bounds")
     if kind is Kind.NORMAL:
         if not args[1] > 0:
-            raise DistributionError(f"{text!r}: sigma must be > 0")
+            raise DistributionError(f"{cut(repr(text))}: sigma must be > 0")
         if len(args) == 4 and not args[2] <= args[0] <= args[3]:
-            raise DistributionError(f"{text!r}: the mean must lie in [lo, hi]")
+            raise DistributionError(f"{cut(repr(text))}: the mean must lie in [lo, hi]")
+        if len(args) == 4 and truncated_mass(*args) < MIN_TRUNCATED_MASS:
+            raise DistributionError(
+                f"{cut(repr(text))}: [lo, hi] holds {truncated_mass(*args):.2g} of the "
+                f"normal's probability, less than the {MIN_TRUNCATED_MASS:g} its redraws need "
+                f"(a draw outside [lo, hi] is drawn again, at most {_MAX_REDRAWS} times): "
+                f"widen [lo, hi] or reduce sigma")
     if kind is Kind.BERNOULLI and not 0 <= args[0] <= 1:
-        raise DistributionError(f"{text!r}: p must be in [0, 1]")
+        raise DistributionError(f"{cut(repr(text))}: p must be in [0, 1]")

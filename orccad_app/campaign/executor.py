@@ -215,8 +215,12 @@ class DaskBackend:
             self.client.close()
 
 
-def make_backend(workers: int | None, cluster: Any) -> PoolBackend | DaskBackend:
-    """The Dask backend for ``cluster``, else a pool of ``workers`` (default: the cores)."""
+def make_backend(workers: int | None, cluster: Any,
+                 runs: int | None = None) -> PoolBackend | DaskBackend:
+    """The Dask backend for ``cluster``, else a pool of ``workers`` (default: the cores),
+    never more than the ``runs`` it will make (each worker is a forked interpreter: a
+    ``--workers 256`` campaign of 3 runs starts 3)."""
     if cluster is not None:
         return DaskBackend(cluster)
-    return PoolBackend(workers or os.cpu_count() or 1)
+    count = workers or os.cpu_count() or 1
+    return PoolBackend(max(1, min(count, runs)) if runs is not None else count)

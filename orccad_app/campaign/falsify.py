@@ -27,9 +27,14 @@ from orccad_app.campaign.spec import CampaignSpec
 from orccad_app.campaign.validate import check_spec
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["Falsifier", "FalsifyResult", "SAMPLERS", "UNDEFINED"]
+__all__ = ["Falsifier", "FalsifyResult", "SAMPLERS", "UNDEFINED", "MAX_TRIALS",
+           "check_study_file"]
 
 SAMPLERS = ("tpe", "cmaes", "random")
+MAX_TRIALS = 10_000
+"""Most trials a study may hold (``--budget`` plus a resumed study's trials), checked before
+the first: the samplers' cost grows with the trials told (TPE's about quadratically: 2 000
+trials measured at some 10 s of sampling alone, so 10 000 some 4 minutes and 100 000 hours)."""
 UNDEFINED = 1e9
 """Objective of a run on which the property is undefined (the search's placeholder, never
 reported as a robustness: :attr:`FalsifyResult.best_robustness` is then ``None``)."""
@@ -124,7 +129,13 @@ class Falsifier:
     def run(self, budget: int, workers: int | None = None, cluster: Any = None,
             progress: Callable[[int, int, float | None], None] | None = None) -> FalsifyResult:
         """Run ``budget`` more trials; the worst run over the whole study."""
-        backend = make_backend(workers, cluster)
+        held = len(self.study.trials)
+        if held + budget > MAX_TRIALS:
+            told = f"{held} trials in the study and " if held else ""
+            raise OrccadError(f"--budget {budget}: {told}{budget} more exceed the {MAX_TRIALS} "
+                              f"trials a falsification may hold (the sampler's cost grows "
+                              f"with them)")
+        backend = make_backend(workers, cluster, budget)
         batch = max(1, getattr(backend, "workers", 1))
         records: dict[int, RunRecord] = {}
         history: list[float] = []
@@ -189,6 +200,30 @@ def _suggest(trial: Any, name: str, dist: Any) -> Any:
     if dist.integral:
         return trial.suggest_int(name, int(low), int(high))
     return float(f"{trial.suggest_float(name, low, high):.6g}")
+
+
+def check_study_file(path: str) -> None:
+    """Refuse, before optuna writes to it, an existing SQLite file ``path`` that holds tables
+    but no optuna study (a campaign's database, another program's file): optuna would add
+    its tables beside them."""
+    import sqlite3
+
+    from orccad_app.campaign.store import COLUMNS, connect_read_only, table_names
+
+    try:
+        db = connect_read_only(path)
+        try:
+            tables = table_names(db)
+        finally:
+            db.close()
+    except sqlite3.DatabaseError:
+        return  # not SQLite: optuna's storage says so (Falsifier)
+    if tables and "studies" not in tables:
+        what = ("a campaign database: it is orccad campaign's --db" if set(COLUMNS) <= tables
+                else "another program's file")
+        shown = ", ".join(sorted(tables)[:6]) + (", ..." if len(tables) > 6 else "")
+        raise OrccadError(f"{path}: not an optuna study database (it holds the tables "
+                          f"{shown}: {what})")
 
 
 def _storage_error(error: Exception, optuna: Any) -> bool:

@@ -158,7 +158,8 @@ class Campaign:
                                   "setting this campaign does not draw (an edited row?)")
             prefix.waiting[record.index] = record
             recorded += 1
-        backend = backend or make_backend(self.options.workers, self.options.cluster)
+        pending = self.limit - sum(1 for index in self.store.done() if index < self.limit)
+        backend = backend or make_backend(self.options.workers, self.options.cluster, pending)
         self.backend = backend
         interrupted = False
         try:

@@ -117,8 +117,8 @@ def _text(value: Any) -> str:
 def injection_text(entry: InjectEntry, value: Any, time_s: float) -> str:
     """The ``--inject`` argument of ``entry`` with ``value`` at ``time_s``."""
     at = f"@{_text(time_s)}"
-    if entry.fault:
-        return f"{entry.name}={_text(value)}{at}"
+    if entry.fault is not None:
+        return f"{entry.fault}={_text(value)}{at}"
     if value is not None:
         return f"{entry.name}({_text(value)}){at}"
     return f"{entry.name}{at}"

@@ -36,6 +36,7 @@ offending key and exits 2. Names are checked against the mission later
 
 from __future__ import annotations
 
+import math
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -44,7 +45,8 @@ from typing import Any
 
 from orccad_app.campaign.distributions import (Distribution, DistributionError, Kind,
                                                parse_distribution)
-from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.diagnostics import OrccadError, SourceLocation, cut
+from orccad_app.mission.injection import PlantFault
 
 __all__ = ["CampaignSpec", "ParamEntry", "TimingEntry", "ControllerEntry", "InjectEntry",
            "Check", "load_spec", "CONTROLLER_KEYS",
@@ -58,6 +60,7 @@ CONTROLLER_KEYS = ("exchange_us", "jitter_us")
 MAX_DELAY_US = 1e6
 """The largest exchange period or release jitter a spec may draw [µs] (1 s)."""
 _EVENT = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*(?:=(.*?)|\((.*)\))?\s*@(.+)$", re.S)
+_DRAWS = "U(a, b), UI(a, b), N(mu, sigma), N(mu, sigma, lo, hi), choice(v, ...) or B(p)"
 _METRIC = re.compile(r"^(?:(max|min)\(([A-Za-z_][\w.]*(?:\[\d+\])?)\)|sim_time_s|"
                      r"completion_time_s|deadline_misses|"
                      r"([A-Za-z_]\w*)\.tracking_error\.(max|rms))$")
@@ -105,10 +108,13 @@ class ControllerEntry:
 
 @dataclass(frozen=True)
 class InjectEntry:
-    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s]."""
+    """One ``[[inject]]``: ``name`` raised (or the fault set to ``value``) at ``time`` [s].
+
+    :param fault: the plant fault ``name`` sets, ``None`` for an automaton input.
+    """
 
     name: str
-    fault: bool
+    fault: PlantFault | None
     value: Distribution | None
     time: Distribution
     probability: float
@@ -239,7 +245,7 @@ class _Reader:
             if isinstance(until, bool) or not isinstance(until, (int, float)) \
                     or not 0 < until <= MAX_UNTIL_S:
                 raise self.fail(f"until_s must be a number of seconds in (0, {MAX_UNTIL_S:g}] "
-                                f"(one year), got {until!r}", "until_s")
+                                f"(one year), got {cut(repr(until))}", "until_s")
             values["until_s"] = float(until)
         if "seeds" in data:
             seeds = self.dist(data["seeds"], "seeds")
@@ -266,14 +272,14 @@ class _Reader:
 
     def string(self, value: Any, *key: Any) -> str:
         if not isinstance(value, str) or not value.strip():
-            raise self.fail(f"{key[-1]} must be a non-empty string, got {value!r}", *key)
+            raise self.fail(f"{key[-1]} must be a non-empty string, got {cut(repr(value))}", *key)
         return value.strip()
 
     def integer(self, value: Any, minimum: int, *key: Any, maximum: int = 2**63 - 1) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or not \
                 minimum <= value <= maximum:
             raise self.fail(f"{key[-1]} must be an integer in [{minimum}, {maximum}], got "
-                            f"{value!r}", *key)
+                            f"{cut(repr(value))}", *key)
         return value
 
     def dist(self, value: Any, *key: Any) -> Distribution:
@@ -299,7 +305,7 @@ class _Reader:
             raise self.fail("signals must be a list of ROBOT.PORT strings", "signals")
         for signal in value:
             if not re.fullmatch(r"[A-Za-z_]\w*\.[A-Za-z_]\w*(\[\d+\])?", signal):
-                raise self.fail(f"signal {signal!r}: expected ROBOT.PORT or ROBOT.PORT[i]",
+                raise self.fail(f"signal {cut(repr(signal))}: expected ROBOT.PORT or ROBOT.PORT[i]",
                                 "signals")
         return tuple(value)
 
@@ -327,27 +333,33 @@ class _Reader:
         text = self.string(item["event"], *key, "event")
         match = _EVENT.match(text)
         if match is None:
-            raise self.fail(f"bad event {text!r}: expected SIGNAL@TIME, SIGNAL(VALUE)@TIME or "
-                            f"ROBOT.FAULT=VALUE@TIME (TIME and VALUE numbers or "
-                            f"distributions)", *key, "event")
+            raise self.fail(f"bad event {cut(repr(text))}: expected SIGNAL@TIME, "
+                            f"SIGNAL(VALUE)@TIME or ROBOT.FAULT=VALUE@TIME (TIME and VALUE "
+                            f"numbers or distributions)", *key, "event")
         name, fault_value, signal_value, when = match.groups()
-        fault = fault_value is not None
-        raw = fault_value if fault else signal_value
+        fault = None if fault_value is None else PlantFault.named(name)
+        if fault_value is not None and fault is None:
+            raise self.fail(f"bad event {cut(repr(text))}: a plant fault is "
+                            "ROBOT.FAULT=VALUE@TIME",
+                            *key, "event")
+        raw = signal_value if fault is None else fault_value
         value = None
         if raw is not None:
             raw = raw.strip()
+            if raw.startswith("["):
+                raise self.fail(f"event {cut(repr(text))}: a campaign draws numbers, not "
+                                f"vectors: VALUE is a number or a distribution ({_DRAWS}); "
+                                f"inject a vector input with orccad run --inject "
+                                f"'{name}([x, y, ...])@T'", *key, "event")
             value = self.dist(raw[:-1] if raw.endswith("%") else raw, *key, "event")
-        if fault and "." not in name:
-            raise self.fail(f"bad event {text!r}: a plant fault is ROBOT.FAULT=VALUE@TIME",
-                            *key, "event")
         time = self.dist(when.strip().removesuffix("s") if when.strip().endswith(")s")
                          else when.strip(), *key, "event")
         if time.bounds[0] < 0:
-            raise self.fail(f"event {text!r}: times must be >= 0 s", *key, "event")
+            raise self.fail(f"event {cut(repr(text))}: times must be >= 0 s", *key, "event")
         probability = item.get("probability", 1.0)
         if (isinstance(probability, bool) or not isinstance(probability, (int, float))
                 or not 0 <= probability <= 1):
-            raise self.fail(f"probability must be a number in [0, 1], got {probability!r}",
+            raise self.fail(f"probability must be a number in [0, 1], got {cut(repr(probability))}",
                             *key, "probability")
         return InjectEntry(name, fault, value, time, float(probability), key)
 
@@ -359,18 +371,20 @@ class _Reader:
                                 f"below, above)", *key, name)
         name = self.string(item.get("name"), *key, "name")
         if not re.fullmatch(r"[A-Za-z_]\w*", name):
-            raise self.fail(f"check name {name!r} must be an identifier", *key, "name")
+            raise self.fail(f"check name {cut(repr(name))} must be an identifier", *key, "name")
         metric = self.string(item.get("metric"), *key, "metric")
         if not _METRIC.match(metric):
-            raise self.fail(f"unknown metric {metric!r}: expected max(ROBOT.PORT), "
+            raise self.fail(f"unknown metric {cut(repr(metric))}: expected max(ROBOT.PORT), "
                             f"min(ROBOT.PORT), sim_time_s, completion_time_s, deadline_misses "
                             f"or TASK.tracking_error.max|rms", *key, "metric")
         bounds = {}
         for side in ("below", "above"):
             value = item.get(side)
             if value is not None and (isinstance(value, bool)
-                                      or not isinstance(value, (int, float))):
-                raise self.fail(f"{side} must be a number, got {value!r}", *key, side)
+                                      or not isinstance(value, (int, float))
+                                      or not math.isfinite(value)):
+                raise self.fail(f"{side} must be a finite number, got {cut(repr(value))}",
+                                *key, side)
             bounds[side] = None if value is None else float(value)
         if bounds["below"] is None and bounds["above"] is None:
             raise self.fail("a check needs 'below' and/or 'above'", *key)

@@ -35,7 +35,7 @@ from orccad_app.campaign.adapter import RUN_STATUSES, PropertyResult, RunRecord
 from orccad_app.campaign.setting import RunSetting
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["CampaignStore", "SCHEMA", "COLUMNS", "connect_read_only"]
+__all__ = ["CampaignStore", "SCHEMA", "COLUMNS", "connect_read_only", "table_names"]
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS campaign (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -66,10 +66,40 @@ COLUMNS = {
 _STATUSES = RUN_STATUSES
 
 
-def connect_read_only(path: str | Path) -> sqlite3.Connection:
+def connect_read_only(path: str | Path, timeout_s: float = 5.0) -> sqlite3.Connection:
     """SQLite file ``path`` opened read-only (any characters in its name): nothing is ever
-    written to it, and no write lock is taken that a writer would wait for."""
-    return sqlite3.connect(Path(path).resolve().as_uri() + "?mode=ro", uri=True)
+    written to it or beside it, and no write lock is taken that a writer would wait for; a
+    lock held by another program is waited for ``timeout_s`` [s]. A WAL database that no
+    writer has open (no ``-wal`` or ``-shm`` file beside it) is opened immutable: read-only,
+    SQLite would still create both files beside it to read it."""
+    uri = Path(path).resolve().as_uri() + "?mode=ro"
+    if _wal_without_writer(Path(path)):
+        uri += "&immutable=1"
+    return sqlite3.connect(uri, uri=True, timeout=timeout_s)
+
+
+def _wal_without_writer(path: Path) -> bool:
+    """Whether regular file ``path`` is an SQLite database in WAL mode (its header's read and
+    write versions are 2) with neither ``-wal`` nor ``-shm`` beside it."""
+    import os
+    import stat
+
+    try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return False  # never opened here: a FIFO would block
+        with open(path, "rb") as handle:
+            header = handle.read(20)
+    except OSError:
+        return False
+    return header[:16] == b"SQLite format 3\x00" and header[18:20] == b"\x02\x02" \
+        and not any(os.path.lexists(f"{path}{suffix}") for suffix in ("-wal", "-shm"))
+
+
+def table_names(db: sqlite3.Connection) -> set[str]:
+    """The tables of the database ``db`` (SQLite's own ``sqlite_*`` tables left out)."""
+    return {str(row[0]) for row in
+            db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")
+            if not str(row[0]).startswith("sqlite_")}
 
 
 class CampaignStore:
@@ -91,12 +121,27 @@ class CampaignStore:
                 self.db = connect_read_only(self.path)
             else:
                 self.db = sqlite3.connect(self.path)
+            if not read_only:
+                self._refuse_foreign_tables()
                 self.db.execute("PRAGMA journal_mode=WAL")
                 self.db.execute("PRAGMA synchronous=NORMAL")
                 self.db.executescript(SCHEMA)
             self._check_schema()
         except sqlite3.DatabaseError as error:
             raise OrccadError(f"{self.path}: not a campaign database ({error})") from None
+
+    def _refuse_foreign_tables(self) -> None:
+        """A database holding tables a campaign does not write (an optuna study, another
+        program's file) is refused before anything is written to it (a reader only checks
+        the campaign's tables, :meth:`_check_schema`)."""
+        foreign = sorted(table_names(self.db) - set(COLUMNS))
+        if foreign:
+            what = ("an optuna study: it is orccad falsify's --study" if "studies" in foreign
+                    else "another program's file")
+            shown = ", ".join(foreign[:6]) + (", ..." if len(foreign) > 6 else "")
+            self.db.close()
+            raise OrccadError(f"{self.path}: not a campaign database (it holds the tables "
+                              f"{shown}: {what})")
 
     def _check_schema(self) -> None:
         """A database of another program (same table names, other columns) is refused."""

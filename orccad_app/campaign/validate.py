@@ -8,11 +8,13 @@ check metrics must name what the mission has. An error points at the spec's line
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from orccad_app.campaign.adapter import CompiledMission
 from orccad_app.campaign.metrics import SignalExtrema
-from orccad_app.campaign.setting import RunSetting, injection_text
+from orccad_app.campaign.distributions import round_sig
+from orccad_app.campaign.setting import RunSetting, injection_text, whole_ns_ms
 from orccad_app.campaign.spec import CampaignSpec, metric_signal
 from orccad_app.diagnostics import OrccadError
 
@@ -38,6 +40,27 @@ def _ends(dist: Any) -> list[Any]:
     return [float(low), float(high)]
 
 
+def _period_probes(dist: Any) -> list[float]:
+    """Periods [ms] a continuous distribution draws beside its ends: one drawing step (6
+    significant digits, whole nanoseconds) inside each end, and the next ones. Two
+    periods' greatest common divisor is the timers' instant period: a draw beside a round
+    end (1.00001 ms beside 1 ms) makes it thousands of times finer than every period, which
+    every run would pay (refused by the plan), though both ends pass."""
+    if dist.choices is not None:
+        return []
+    low, high = (float(v) for v in dist.bounds)
+    probes = []
+    for end, sign in ((low, 1.0), (high, -1.0)):
+        if end <= 0:
+            continue
+        step = max(10.0 ** (math.floor(math.log10(end)) - 5), 1e-6)  # ms: 6 digits, >= 1 ns
+        for k in (1, 3, 7):
+            value = whole_ns_ms(round_sig(end + sign * k * step))
+            if low < value < high:
+                probes.append(value)
+    return probes
+
+
 def check_spec(compiled: CompiledMission, spec: CampaignSpec, until_s: float) -> None:
     """Refuse, located in the spec, anything a run of it could not do."""
     if spec.mission is not None and spec.mission != compiled.name:
@@ -53,6 +76,15 @@ def check_spec(compiled: CompiledMission, spec: CampaignSpec, until_s: float) ->
         for value in ends:
             setting = RunSetting(0, 0, until_s, timings=(f"{timing.target}={value!r}",))
             _located(spec, timing.key, lambda s=setting: compiled.plan(s))
+        probes = _period_probes(timing.dist) if timing.target.endswith(".period_ms") else []
+        for value in probes:
+            setting = RunSetting(0, 0, until_s, timings=(f"{timing.target}={value!r}",))
+            try:
+                compiled.plan(setting)
+            except OrccadError as error:
+                raise spec.error(f"{timing.target} = {timing.dist.text} draws periods such as "
+                                 f"{value!r} ms: {error.message}; draw a period with "
+                                 f"choice(...)", timing.key) from None
     for low_high in (0, -1):  # every timing at its low, then high end, together
         together = tuple(f"{t.target}={ends[low_high]!r}" for t, ends in timings)
         if together:
@@ -65,6 +97,13 @@ def check_spec(compiled: CompiledMission, spec: CampaignSpec, until_s: float) ->
 
 def _check_injection(compiled: CompiledMission, spec: CampaignSpec, entry: Any,
                      until_s: float) -> None:
+    declared = {signal.name: signal for signal in compiled.composition.automaton.inputs}
+    signal = declared.get(entry.name)
+    if not entry.fault and signal is not None and signal.type == "vector":
+        raise spec.error(f"event {entry.name}: {entry.name} carries a vector, and a campaign "
+                         f"draws numbers only (a number, U, UI, N, choice or B); inject it "
+                         f"with orccad run --inject '{entry.name}([x, y, ...])@T'",
+                         (*entry.key, "event"))
     low, high = entry.time.bounds
     if high >= until_s:
         raise spec.error(f"event at up to {high:g} s: not before the horizon until_s = "

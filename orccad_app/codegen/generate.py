@@ -25,8 +25,9 @@ from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.helpers import helpers_for
 from orccad_app.codegen.header import header_text
 from orccad_app.codegen.interface import ROLE_CODES, Interface
-from orccad_app.codegen.names import c_identifier
+from orccad_app.codegen.names import c_identifier, own_macros
 from orccad_app.codegen.reaction import Graph, intern
+from orccad_app.codegen.sites import SiteInfo, phase_columns, site_tables
 from orccad_app.codegen.static_types import CType, CodegenError, Kind, TypeTable, infer
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton
@@ -58,10 +59,11 @@ class CProgram:
 
 
 def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = None,
-             sites: tuple[str, ...] = (), hints: dict[ir.SignalDecl, CType] | None = None,
-             origin: str = "") -> CProgram:
+             sites: tuple[SiteInfo, ...] = (),
+             hints: dict[ir.SignalDecl, CType] | None = None, origin: str = "") -> CProgram:
     """The C of ``automaton`` with identifiers prefixed ``prefix``; ``roles``: the role of
-    each generated signal, ``sites``: the Robot-Task of each run site (number order),
+    each generated signal, ``sites``: what each run site starts (number order,
+    :mod:`.sites`),
     ``hints``: types known from elsewhere; ``origin``: what it was generated from (a
     comment). Raises :class:`CodegenError` (located) for what has no C translation."""
     graph = intern(automaton.trees)
@@ -72,7 +74,8 @@ def generate(automaton: Automaton, prefix: str, *, roles: SignalRoles | None = N
     strings = StringTable(_strings(graph, tests, signals, types))
     places = _places(types, graph, tests)
     errors = ErrorTable()
-    interface = Interface.make(program.inputs, program.outputs, types.places, roles)
+    interface = Interface.make(program.inputs, program.outputs, types.places, roles,
+                               own_macros(prefix))
     reason = _reason_places(program, places)
     writer = ExprWriter(types, places, errors, strings)
     functions = []
@@ -329,7 +332,7 @@ def _reset(prefix: str, automaton: Automaton, places: Places, strings: StringTab
 
 
 def _tables(prefix: str, interface: Interface, strings: StringTable, errors: ErrorTable,
-            sites: tuple[str, ...], phases: list[list[int]], state_count: int) -> str:
+            sites: tuple[SiteInfo, ...], phases: list[list[int]], state_count: int) -> str:
     out = []
     names = ", ".join(c_string(s) for s in strings.names) or "0"
     out.append(f"const char *const {prefix}_string_names[{max(1, len(strings.names))}] = "
@@ -352,11 +355,14 @@ def _tables(prefix: str, interface: Interface, strings: StringTable, errors: Err
         body = ",\n    ".join(rows) or '{"", 0, 0, 0, "", "", 0, 0}'
         out.append(f"const orccad_signal_info {prefix}_{side}[{max(1, len(signals))}] = {{\n"
                    f"    {body}\n}};")
-    site_names = ", ".join(c_string(s) for s in sites) or "0"
+    site_names = ", ".join(c_string(s.task) for s in sites) or "0"
     out.append(f"const char *const {prefix}_sites[{max(1, len(sites))}] = {{{site_names}}};")
+    outputs = {s.decl.name: index for index, s in enumerate(interface.outputs)}
+    out += site_tables(prefix, sites, outputs)
     if sites:
         rows = ",\n    ".join("{" + ", ".join(map(str, row)) + "}" for row in phases)
-        out.append(f"static const unsigned char phase_table[{state_count}][{len(sites)}] = "
+        out.append(phase_columns(sites) + "\n"
+                   f"static const unsigned char phase_table[{state_count}][{len(sites)}] = "
                    f"{{\n    {rows}\n}};")
         out.append(_function(f"int {prefix}_phase(const {prefix}_mem *m, int site)", [
             f"if (site < 0 || site >= {len(sites)} || m->state < 0 || m->state >= "

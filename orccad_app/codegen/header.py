@@ -8,6 +8,7 @@ from orccad_app.codegen.cexpr import Places, StringTable, c_comment, c_string, c
 from orccad_app.codegen.errors import ErrorTable
 from orccad_app.codegen.interface import Interface
 from orccad_app.codegen.names import header_guard
+from orccad_app.codegen.sites import SITE_TYPES, SiteInfo, site_comment
 from orccad_app.codegen.static_types import Kind
 from orccad_app.reactive.automaton import Automaton
 
@@ -61,12 +62,13 @@ typedef struct {
     int col;
     const char *message;
 } orccad_error_info;
-#endif
+
+""" + SITE_TYPES + """#endif
 """
 
 
 def header_text(prefix: str, automaton: Automaton, interface: Interface, places: Places,
-            strings: StringTable, errors: ErrorTable, sites: tuple[str, ...],
+            strings: StringTable, errors: ErrorTable, sites: tuple[SiteInfo, ...],
             origin: str) -> str:
     up = prefix.upper()
     guard = header_guard(prefix)
@@ -160,6 +162,8 @@ def header_text(prefix: str, automaton: Automaton, interface: Interface, places:
         f"extern const orccad_signal_info {prefix}_outputs[{max(1, len(interface.outputs))}];",
         "/* The Robot-Task of each run site (site numbers in source order). */",
         f"extern const char *const {prefix}_sites[{max(1, len(sites))}];",
+        *site_comment(prefix, sites),
+        f"extern const orccad_site_info {prefix}_site_info[{max(1, len(sites))}];",
         "",
         "/* Start (or restart) the mission: the initial state, initial values. */",
         f"void {prefix}_reset({prefix}_mem *m);",

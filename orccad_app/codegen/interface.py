@@ -92,7 +92,10 @@ class Interface:
 
     @classmethod
     def make(cls, inputs: tuple[ir.SignalDecl, ...], outputs: tuple[ir.SignalDecl, ...],
-             types: dict, roles: SignalRoles | None) -> "Interface":
+             types: dict, roles: SignalRoles | None,
+             macros: frozenset[str] = frozenset()) -> "Interface":
+        """The fields of ``inputs`` and ``outputs``; ``macros``: the header's own, which no
+        field may be."""
         def side(decls: tuple[ir.SignalDecl, ...]) -> tuple[CSignal, ...]:
             taken: set[str] = set()
             found = []
@@ -101,7 +104,7 @@ class Interface:
                 ctype = types.get(decl) if decl.valued else None
                 if decl.valued and ctype is None:
                     ctype = None  # a valued output never given a value: presence only
-                found.append(CSignal(decl, c_identifier(decl.name, taken), ctype,
+                found.append(CSignal(decl, c_identifier(decl.name, taken, macros), ctype,
                                      role.kind if role else None,
                                      role.task if role else None,
                                      role.name if role else None))

@@ -17,7 +17,9 @@
  * automaton has a fixed string table), a vector input must have the size the automaton gives
  * it, and only ASCII white space separates tokens.
  */
+#ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200112L /* stat(): only regular files are read, as orccad react */
+#endif
 #include "@P@.h"
 
 #include <errno.h>

@@ -13,11 +13,13 @@ from collections.abc import Iterable
 
 from orccad_app.codegen.generate import CProgram, generate
 from orccad_app.codegen.names import check_prefix, default_prefix
+from orccad_app.codegen.sites import site_infos
 from orccad_app.codegen.static_types import CType, CodegenError, Kind
 from orccad_app.lang import ast
 from orccad_app.lang.run_args import param_type
 from orccad_app.reactive import ir
 from orccad_app.reactive.automaton import Automaton
+from orccad_app.robottask.application import RunSite
 from orccad_app.robottask.composition import Composition
 from orccad_app.robottask.signals import RoleKind, SignalRoles
 
@@ -27,19 +29,19 @@ __all__ = ["generate_mission", "generate_composed", "default_prefix", "check_pre
 def generate_mission(composition: Composition, prefix: str, origin: str = "") -> CProgram:
     """The C of ``composition``'s automaton (full, not lazy)."""
     return generate_composed(composition.automaton, composition.roles,
-                             tuple(site.task for site in composition.sites),
-                             composition.program.robottasks, prefix, origin)
+                             tuple(composition.sites), composition.program.robottasks,
+                             prefix, origin)
 
 
-def generate_composed(automaton: Automaton | object, roles: SignalRoles, sites: tuple[str, ...],
-                      robottasks: Iterable[ast.RobotTask], prefix: str,
-                      origin: str = "") -> CProgram:
-    """The C of a composed mission automaton from its parts: ``roles`` of its signals, the
-    Robot-Task of each run site (site order) and the program's Robot-Tasks (their parameters
-    type the run-time argument outputs)."""
+def generate_composed(automaton: Automaton | object, roles: SignalRoles,
+                      sites: tuple[RunSite, ...], robottasks: Iterable[ast.RobotTask],
+                      prefix: str, origin: str = "") -> CProgram:
+    """The C of a composed mission automaton from its parts: ``roles`` of its signals, its
+    run sites (what each starts goes into the header and the site table, :mod:`.sites`) and
+    the program's Robot-Tasks (their parameters type the run-time argument outputs)."""
     if not isinstance(automaton, Automaton):
         raise CodegenError("the generator needs the full automaton (compiled, not lazy)")
-    return generate(automaton, prefix, roles=roles, sites=sites,
+    return generate(automaton, prefix, roles=roles, sites=site_infos(sites),
                     hints=_argument_types(automaton, roles, robottasks), origin=origin)
 
 

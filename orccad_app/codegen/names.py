@@ -5,7 +5,8 @@ The generated files include ``<stdbool.h>``, ``<stddef.h>``, ``<stdint.h>`` (``P
 ``<math.h>`` (``PREFIX.c``, only when its step checks a real result) and ``<errno.h>``,
 ``<stdio.h>``, ``<stdlib.h>``, ``<string.h>``, ``<sys/stat.h>`` (``PREFIX_main.c``). A
 struct field named as one of their macros (``bool NAN;``, ``bool errno;``) does not compile,
-nor does one named as a keyword or a macro the compiler predefines (``linux`` in GNU C), and
+nor does one named as a keyword, a macro the compiler predefines (``linux`` in GNU C) or one
+the header defines itself (``ABRO_DONE``), and
 names beginning with ``_`` and a capital or a second ``_`` are the implementation's (C99
 7.1.3). :func:`c_identifier` gives such a name a prefix (``NAN`` → ``s_NAN``): the header's
 comment on each field says which signal it is.
@@ -22,8 +23,8 @@ import re
 
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["C_KEYWORDS", "LIBRARY_NAMES", "SYSTEM_HEADERS", "reserved", "c_identifier",
-           "check_prefix", "default_prefix", "header_guard"]
+__all__ = ["C_KEYWORDS", "LIBRARY_NAMES", "SYSTEM_HEADERS", "MACRO_SUFFIXES", "reserved",
+           "c_identifier", "check_prefix", "default_prefix", "header_guard", "own_macros"]
 
 #: the keywords of C99, C11 and C23 (C23 makes ``bool``, ``true`` and ``false`` keywords)
 C_KEYWORDS = frozenset(
@@ -95,12 +96,13 @@ def reserved(name: str) -> bool:
             or _LIBRARY_PATTERN.fullmatch(name) is not None)
 
 
-def c_identifier(name: str, taken: set[str]) -> str:
+def c_identifier(name: str, taken: set[str], macros: frozenset[str] = frozenset()) -> str:
     """``name`` as a C identifier that is not :func:`reserved`, not the generated code's own
-    and not in ``taken`` (which it is added to, with its ``_value`` field)."""
+    (``macros``: those of the header, :func:`own_macros`) and not in ``taken`` (which it is
+    added to, with its ``_value`` field)."""
     base = re.sub(r"[^A-Za-z0-9_]", "_", name) or "_"
     if base[0].isdigit() or base[0] == "_" or reserved(base) or base in _OWN \
-            or reserved(base + "_value"):
+            or reserved(base + "_value") or base in macros or base + "_value" in macros:
         base = "s_" + base
     candidate, number = base, 1
     while candidate in taken or f"{candidate}_value" in taken:
@@ -143,6 +145,17 @@ def default_prefix(mission: str) -> str:
     if _problem(prefix) is not None:
         prefix = ("mission_" + prefix)[:_PREFIX_MAX].rstrip("_")
     return prefix
+
+
+#: the suffixes of the macros ``PREFIX.h`` defines (``PREFIX_RUNNING`` …)
+MACRO_SUFFIXES = ("RUNNING", "DONE", "FAILED", "ABORTED", "STATE_COUNT", "SITE_COUNT",
+                  "STRING_COUNT", "ERROR_COUNT", "INPUT_COUNT", "OUTPUT_COUNT")
+
+
+def own_macros(prefix: str) -> frozenset[str]:
+    """Every macro ``PREFIX.h`` defines: no field may be one (``bool ABRO_DONE;``)."""
+    return frozenset({f"{prefix.upper()}_{suffix}" for suffix in MACRO_SUFFIXES}
+                     | {header_guard(prefix), "ORCCAD_GENERATED_COMMON"})
 
 
 def header_guard(prefix: str) -> str:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 from orccad_app.diagnostics import OrccadError
@@ -20,14 +21,19 @@ from orccad_app.diagnostics import OrccadError
 __all__ = ["write_files"]
 
 
-def write_files(folder: str | Path, files: dict[str, str]) -> list[Path]:
-    """Write ``files`` (name -> text) into ``folder``; the paths written."""
+def write_files(folder: str | Path, files: dict[str, str],
+                keep: Callable[[Path], bool] | None = None) -> list[Path]:
+    """Write ``files`` (name -> text) into ``folder``; the paths written. ``keep``: the
+    entries of an existing folder that are the user's (never written: not in ``files``) and
+    stay as they are, where any other file is refused (``orccad codegen --controller``'s
+    ``orccad_io.c`` and build outputs)."""
     target = Path(folder)
     if target.exists() and not target.is_dir():
         raise OrccadError(f"{target}: exists and is not a folder (-o names the output folder)")
     if target.is_dir():
         others = sorted(p.name for p in target.iterdir()
-                        if p.name not in files or p.is_symlink() or not p.is_file())
+                        if (p.name not in files or p.is_symlink() or not p.is_file())
+                        and not (keep is not None and p.name not in files and keep(p)))
         if others:
             shown = ", ".join(others[:5]) + (" …" if len(others) > 5 else "")
             raise OrccadError(f"{target}: the output folder holds other files ({shown}); "

@@ -15,7 +15,8 @@ from pathlib import Path
 
 __all__ = ["positive_int", "non_negative_int", "seconds", "factor", "add_file",
            "add_mission", "add_output", "add_max_states", "add_format", "emit_text",
-           "refuse_overwriting", "DEFAULT_MAX_STATES", "MAX_SECONDS", "MAX_INT_ARGUMENT",
+           "refuse_overwriting", "writable_output", "DEFAULT_MAX_STATES", "MAX_SECONDS",
+           "MAX_INT_ARGUMENT",
            "EXPORT_FORMATS"]
 
 #: The compiler's default state budget (mirrors ``reactive.compiler.DEFAULT_MAX_STATES``,
@@ -156,6 +157,44 @@ def refuse_overwriting(output: str | None, *inputs: str | None,
         if source and _same_file(target, Path(source)):
             raise OrccadError(f"{output}: refusing to overwrite the input file {source} "
                               f"(choose another {flag})")
+
+
+def writable_output(path: str, flag: str, *, folder: bool = False) -> None:
+    """Refuse, before any work, an output the command could not write at its end: a file
+    (``folder=False``) whose folder is missing or read-only, or that is a folder, a FIFO or a
+    device; a folder (``folder=True``, created with its parents) where a file is, or below a
+    file or a read-only folder. (A campaign's ``--report`` and a falsification's ``--trace``
+    are written after every run: refused then, the runs' hours would be lost.)"""
+    import stat
+
+    from orccad_app.diagnostics import OrccadError
+
+    target = Path(path)
+    try:
+        mode = os.stat(target).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        mode = None
+    except OSError as error:
+        raise OrccadError(f"{flag} {path}: cannot write: {error.strerror or error}") from None
+    if mode is not None:
+        if folder and not stat.S_ISDIR(mode):
+            raise OrccadError(f"{flag} {path}: not a folder (a report folder, or a file "
+                              f"ending in .html)")
+        if not folder and stat.S_ISDIR(mode):
+            raise OrccadError(f"{flag} {path}: is a folder, not a file")
+        if not folder and not stat.S_ISREG(mode):
+            raise OrccadError(f"{flag} {path}: not a regular file (a FIFO or a device)")
+        if not os.access(target, os.W_OK):
+            raise OrccadError(f"{flag} {path}: cannot write: permission denied")
+        return
+    parent = target.absolute().parent
+    while folder and not parent.exists() and parent != parent.parent:
+        parent = parent.parent  # a report folder is created with its parents
+    if not parent.is_dir():
+        missing = "not a folder" if parent.exists() else "no such folder"
+        raise OrccadError(f"{flag} {path}: cannot write: {parent}: {missing}")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OrccadError(f"{flag} {path}: cannot write in {parent}: permission denied")
 
 
 def _same_file(a: Path, b: Path) -> bool:

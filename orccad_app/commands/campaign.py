@@ -22,7 +22,8 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
-from orccad_app.commands.arguments import bounded_int, positive_int, seconds
+from orccad_app.commands.arguments import (bounded_int, seconds,
+                                           writable_output)
 
 __all__ = ["register", "run", "add_common", "MAX_WORKERS", "MAX_RUNS"]
 
@@ -32,10 +33,6 @@ MAX_WORKERS = 256
 MAX_RUNS = 1_000_000
 """Mirrors ``campaign.spec.MAX_RUNS`` (a test keeps them equal; importing the campaign package
 here would slow every command's start-up)."""
-
-
-def _positive_int(text: str) -> int:
-    return positive_int(text)  # one check for every command (commands/arguments.py)
 
 
 def _probability(text: str) -> float:
@@ -133,6 +130,8 @@ def run(args: argparse.Namespace) -> int:
     from orccad_app.campaign.spec import load_spec
     from orccad_app.jsonout import dumps
 
+    if args.report:  # written after the runs: refused now, not after hours of them
+        writable_output(args.report, "--report", folder=not args.report.endswith(".html"))
     spec = load_spec(args.spec)
     options = CampaignOptions(args.runs, args.workers, args.cluster,
                               args.db or default_db(args.spec), args.resume, args.epsilon,

@@ -1,11 +1,13 @@
-"""``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main] [--module-tasks]``:
-C99 of the composed mission automaton (see ``docs/deploy.md``).
+"""``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main] [--module-tasks]
+[--controller]``: C99 of the composed mission automaton (see ``docs/deploy.md``).
 
 Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
 that runs the automaton on an input script and prints what ``orccad react --composed
 --jsonl`` prints; with ``--module-tasks``, the Module-Tasks' table ``orccad_modules.c`` and
 the C runtime, :mod:`orccad_app.sil.generate.table`) into the folder ``DIR`` (default: ``PREFIX``),
-all or nothing.
+all or nothing. With ``--controller``, the whole controller as a C tree with its ``Makefile``
+and ``CMakeLists.txt`` (:mod:`orccad_app.sil.generate.tree`; default folder
+``PREFIX_controller``), the user's ``orccad_io.c`` in it left alone.
 """
 
 from __future__ import annotations
@@ -37,8 +39,35 @@ def register(sub) -> None:
                         help="also write the Module-Tasks of every Robot-Task the mission runs "
                              "(orccad_modules.c) and the C runtime that runs them on threads "
                              "(see docs/deploy.md, part 2)")
+    parser.add_argument("--controller", action="store_true",
+                        help="write the whole controller as a C tree built without ORCCAD: "
+                             "the generated tables, the runtime, the plugins' C, a Makefile "
+                             "and a CMakeLists.txt (make: ./controller for orccad sil; make "
+                             "robot: with your orccad_io.c, which is never written); see "
+                             "docs/deploy.md")
     add_max_states(parser)
     parser.set_defaults(func=run)
+
+
+def _controller(args: argparse.Namespace, source, mission) -> int:
+    """``--controller``: the controller tree of the mission (:mod:`orccad_app.sil.generate.tree`)."""
+    from orccad_app.codegen.names import default_prefix
+    from orccad_app.codegen.output import write_files
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.mission.plan import plan_mission
+    from orccad_app.sil.generate.automaton import mission_automaton
+    from orccad_app.sil.generate.tree import controller_tree, user_file
+
+    if args.main or args.module_tasks or args.name is not None:
+        raise OrccadError("--controller writes the whole controller tree: it takes no --main, "
+                          "--module-tasks or --name")
+    plan = plan_mission(source, mission)
+    program = mission_automaton(plan, args.max_states).program
+    files = controller_tree(plan, program, args.file)
+    folder = default_prefix(mission.name) + "_controller" if args.output is None else args.output
+    for path in write_files(folder, files, keep=user_file):
+        print(path)
+    return 0
 
 
 def run(args: argparse.Namespace) -> int:
@@ -55,6 +84,8 @@ def run(args: argparse.Namespace) -> int:
     source = load(args.file)
     source.print_warnings()
     mission = select_mission(source, args.mission)
+    if args.controller:
+        return _controller(args, source, mission)
     prefix = check_prefix(args.name if args.name is not None else default_prefix(mission.name))
     composition = compose_mission(source, mission, max_states=args.max_states,
                                   defer_double_emissions=True)

@@ -17,10 +17,14 @@ from __future__ import annotations
 import argparse
 import os
 
-from orccad_app.commands.arguments import non_negative_int
-from orccad_app.commands.campaign import _positive_int, add_common
+from orccad_app.commands.arguments import bounded_int, non_negative_int, writable_output
+from orccad_app.commands.campaign import add_common
 
-__all__ = ["register", "run"]
+__all__ = ["register", "run", "MAX_TRIALS"]
+
+MAX_TRIALS = 10_000
+"""Mirrors ``campaign.falsify.MAX_TRIALS`` (a test keeps them equal; importing optuna's side
+here would slow every command's start-up)."""
 
 
 def _natural(text: str) -> int:
@@ -34,8 +38,9 @@ def register(sub) -> None:
     add_common(parser)
     parser.add_argument("--property", "-p", required=True, metavar="P",
                         help="a [[check]] of the spec or a property of the mission")
-    parser.add_argument("--budget", type=_positive_int, default=50, metavar="N",
-                        help="runs to spend (default 50)")
+    parser.add_argument("--budget", type=bounded_int(1, MAX_TRIALS), default=50, metavar="N",
+                        help=f"runs to spend (default 50, at most {MAX_TRIALS} with the "
+                             f"trials of a resumed --study)")
     parser.add_argument("--sampler", choices=("tpe", "cmaes", "random"), default="tpe",
                         help="optuna sampler (default tpe)")
     parser.add_argument("--seed", type=_natural, default=0, metavar="N",
@@ -50,8 +55,19 @@ def register(sub) -> None:
     parser.set_defaults(func=run)
 
 
+def _check_trace(trace: str) -> None:
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.trace.writers import TRACE_FORMATS
+
+    writable_output(trace, "--trace")
+    suffix = os.path.splitext(trace)[1].lower()
+    if suffix not in TRACE_FORMATS:
+        raise OrccadError(f"--trace {trace}: unknown trace format '{suffix or '(none)'}' "
+                          f"(use {' or '.join(TRACE_FORMATS)})")
+
+
 def run(args: argparse.Namespace) -> int:
-    from orccad_app.campaign.falsify import Falsifier
+    from orccad_app.campaign.falsify import Falsifier, check_study_file
     from orccad_app.campaign.replay import replay_with_trace
     from orccad_app.campaign.spec import load_spec
     from orccad_app.jsonout import dumps
@@ -59,17 +75,19 @@ def run(args: argparse.Namespace) -> int:
 
     if args.resume and not args.study:
         raise OrccadError("--resume needs --study FILE")
+    trace = args.trace or f"falsify-{args.property}.csv"
+    _check_trace(trace)  # written after the trials: refused now, not after hours of them
     spec = load_spec(args.spec)
     if args.study and os.path.lexists(args.study):
         from orccad_app.pipeline import require_regular_file
 
         require_regular_file(args.study)  # never a FIFO or a device opened as SQLite
+        check_study_file(args.study)  # nor a campaign's database
     storage = f"sqlite:///{args.study}" if args.study else None
     falsifier = Falsifier(args.file, spec, args.property, mission=args.mission,
                           until_s=args.until, sampler=args.sampler, seed=args.seed,
                           run_seed=args.run_seed, storage=storage, resume=args.resume)
     result = falsifier.run(args.budget, args.workers, args.cluster)
-    trace = args.trace or f"falsify-{args.property}.csv"
     replayed = replay_with_trace(falsifier.compiled, result.best.setting, spec, trace)
     command = f"{result.replay} --trace {trace}"
     robustness = replayed.properties.get(args.property)

@@ -128,8 +128,10 @@ def check_run_flags(args: argparse.Namespace) -> None:
         require("--trace-format rosbag2")
     if args.ros2_zenoh is not None:
         from orccad_app.ros2 import require
+        from orccad_app.ros2.endpoint import check_endpoint
 
         require("--ros2-zenoh", zenoh=True)
+        check_endpoint(args.ros2_zenoh)
     if (args.foxglove_port is not None or args.foxglove_wait is not None) and not args.foxglove:
         raise OrccadError("--foxglove-port and --foxglove-wait need --foxglove")
     if args.foxglove:
@@ -149,7 +151,7 @@ def refuse_trace_over_inputs(args: argparse.Namespace, source: Any) -> None:
 
 def _warn_first_instant(injections) -> None:
     for injection in injections:
-        if injection.time_ns == 0 and not injection.fault:
+        if injection.time_ns == 0 and injection.fault is None:
             print(f"orccad: warning: --inject {injection.name}@0 is present in the mission's "
                   "first instant, where only 'immediate' tests see it (await, abort ... when "
                   "and each look from the next instant on)", file=sys.stderr)
@@ -226,14 +228,21 @@ def _bridge(args: argparse.Namespace, session: Any) -> None:
     bridge = MissionBridge(session.run, [args.ros2_zenoh])
 
     def close() -> None:
+        reached = bridge.bridge.reached()
         bridge.close()
         print(f"orccad: ROS 2: {bridge.raised} inputs raised, {bridge.applied} joint "
-              "commands applied", file=sys.stderr, flush=True)
+              "commands applied" + ("" if reached else f"; no Zenoh router or peer was "
+                                                       f"reached at {args.ros2_zenoh}"),
+              file=sys.stderr, flush=True)
 
     session.add_observer(bridge, close)
     print(f"orccad: ROS 2 over Zenoh via {args.ros2_zenoh} (domain "
           f"{bridge.bridge.domain_id}): /joint_states, /joint_commands, /orccad/input/*, "
           "/orccad/output/*", file=sys.stderr, flush=True)
+    if not bridge.bridge.reached():
+        print(f"orccad: warning: --ros2-zenoh {args.ros2_zenoh}: no Zenoh router or peer "
+              "reached (is rmw_zenoh's router running? ros2 run rmw_zenoh_cpp rmw_zenohd); "
+              "the run goes on, and connects if one comes", file=sys.stderr, flush=True)
 
 
 def observe(args: argparse.Namespace, session: Any) -> Any:

@@ -183,6 +183,13 @@ def register(sub) -> None:
     parser.add_argument("--heartbeat-s", type=_heartbeat, default=None, metavar="S",
                         help="the controller must answer each request within S wall seconds "
                              "(default 10), else the run ends failed")
+    parser.add_argument("--controller", metavar="EXE",
+                        help="run this controller instead of building one: the ./controller "
+                             "that make builds in the tree of 'orccad codegen --controller' "
+                             "(maybe cross-built; it must be built for this mission)")
+    parser.add_argument("--controller-wrapper", metavar="CMD",
+                        help="start --controller through CMD (e.g. qemu-aarch64 for an "
+                             "aarch64 build on an x86 machine; binfmt needs none)")
     parser.add_argument("--build-dir", metavar="DIR",
                         help="where the generated C goes: a new or empty folder, or one a "
                              "previous SIL build wrote (default: a temporary directory)")
@@ -214,6 +221,34 @@ def _timing_lines(timings) -> list[str]:
     return lines
 
 
+def _prebuilt(args: argparse.Namespace) -> Any:
+    """``--controller`` (and its ``--controller-wrapper``), checked before the file is
+    loaded; ``None`` to build the controller."""
+    import shlex
+    import shutil
+
+    from orccad_app.diagnostics import OrccadError
+    from orccad_app.sil.build.executable import Prebuilt
+
+    if args.controller is None:
+        if args.controller_wrapper is not None:
+            raise OrccadError("--controller-wrapper needs --controller")
+        return None
+    if args.build_dir is not None:
+        raise OrccadError("--build-dir: nothing is built with --controller (drop one)")
+    wrapper: tuple[str, ...] = ()
+    if args.controller_wrapper is not None:
+        try:
+            wrapper = tuple(shlex.split(args.controller_wrapper))
+        except ValueError as error:
+            raise OrccadError(f"--controller-wrapper: {error}") from None
+        if not wrapper or shutil.which(wrapper[0]) is None:
+            raise OrccadError(f"--controller-wrapper {args.controller_wrapper!r}: no such "
+                              "command on PATH (for an aarch64 controller: apt-get install "
+                              "qemu-user)")
+    return Prebuilt(Path(args.controller), wrapper).checked()
+
+
 def run(args: argparse.Namespace) -> int:
     with terminate_as_interrupt():
         return _run(args)
@@ -238,9 +273,10 @@ def _run(args: argparse.Namespace) -> int:
     source.print_warnings()
     mission = select_mission(source, args.mission)
     refuse_trace_over_inputs(args, source)
+    prebuilt = _prebuilt(args)
     build_dir = check_build_dir(args.build_dir)
     options = dataclasses.replace(options, execution=execution, controller=ControllerOptions(
-        args.file, build_dir, args.heartbeat_s or DEFAULT_HEARTBEAT_S))
+        args.file, build_dir, args.heartbeat_s or DEFAULT_HEARTBEAT_S, prebuilt))
     session = RunSession(source, mission, options)
     report = session.execute(starting=observe(args, session))
     backend = session.backend
@@ -248,7 +284,8 @@ def _run(args: argparse.Namespace) -> int:
     timings = (backend.timings or []) if isinstance(backend, RealtimeBackend) else None
     modules = len(session.plan.tcs.module_tasks)
     controller: dict[str, Any] = {"mode": execution.value, "pid": backend.controller.pid,
-                                  "module_tasks": modules}
+                                  "module_tasks": modules,
+                                  "supervisor_writes": backend.controller.supervisor_writes}
     how = ("real-time threads, the plant over shared memory" if timings is not None
            else "lockstep over a Unix socket")
     lines = [f"Controller: process {backend.controller.pid}, {modules} Module-Tasks in C, {how}"]

@@ -66,8 +66,13 @@ def run(args: argparse.Namespace) -> int:
 
     selected = args.file if args.file and Path(args.file).is_file() else None
     for option, value in (("--spec", args.spec), ("--db", args.db)):
-        if value is not None and not Path(value).is_file():
-            raise OrccadError(f"{option} {value}: no such file")
+        if value is not None:
+            from orccad_app.pipeline import require_regular_file
+
+            try:
+                require_regular_file(value)  # a FIFO would block the screen's first read
+            except OrccadError as error:
+                raise OrccadError(f"{option} {error.message}") from None
     if args.spec and selected is None:
         raise OrccadError("--spec needs the mission FILE")
     if args.run and (args.spec or args.db):

@@ -29,6 +29,7 @@ from orccad_app.control.estimation import BackwardDifference
 from orccad_app.control.laws.base import ControlLaw
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
 from orccad_app.control.params import ParamSpec, close_matches
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.control.task_functions import TaskFunction
 from orccad_app.control.trajectories import Sample, retune
 
@@ -56,7 +57,7 @@ def _concrete(ports: tuple[PortSpec, ...], ref: str, ref_dim: int,
     concrete = []
     reference = {"qd": ref, "qd_dot": f"{ref}_dot", "qd_ddot": f"{ref}_ddot"}
     for port in ports:
-        is_task = port.name in reference or port.name == "e"
+        is_task = port.name in reference or port.name == TASK_ERROR
         name = reference.get(port.name, port.name)
         spec = PortSpec(name, port.direction, port.type, None, port.required, port.doc)
         concrete.append(spec.with_dim(ref_dim if is_task else dof))
@@ -155,7 +156,7 @@ class ControlLawModule(ModuleKind):
         PortSpec("q", "in", "vector", None, True, "joint positions [rad]"),
         PortSpec("qdot", "in", "vector", None, False, "joint velocities [rad/s]"),
         PortSpec("tau", "out", "vector", None, True, "joint torques [N·m]"),
-        PortSpec("e", "out", "vector", None, True, "task error e(q, t)"),
+        PortSpec(TASK_ERROR, "out", "vector", None, True, "task error e(q, t)"),
         PortSpec("saturated", "out", "bool", None, True, "a torque is at its bound"),
     )
     params: tuple[ParamSpec, ...] = ()
@@ -254,5 +255,5 @@ class _ControlLawInstance(ModuleInstance):
         qdot = inputs.get("qdot")
         qdot = self._velocity.update(t_s, q) if qdot is None else np.asarray(qdot, float)
         out = self.law.command(t_s, q, qdot, reference)
-        return {"tau": out.tau, "e": out.e, "saturated": True in out.saturated.tolist()}
+        return {"tau": out.tau, TASK_ERROR: out.e, "saturated": True in out.saturated.tolist()}
 

@@ -43,6 +43,7 @@ from orccad_app.control.laws.gains import gain_matrix
 from orccad_app.control.models import MODEL_NAMES
 from orccad_app.control.module import ModuleContext, ModuleInstance, ModuleKind, PortSpec, Timing
 from orccad_app.control.params import ParamSpec
+from orccad_app.control.ports import TASK_ERROR
 
 __all__ = ["DynamicModelModule", "ComputedTorqueFeedbackModule"]
 
@@ -107,7 +108,7 @@ class ComputedTorqueFeedbackModule(ModuleKind):
              _vector("M", "in", "M̂(q) row by row, from dynamic_model [kg·m²]"),
              _vector("N", "in", "N̂(q, q̇), from dynamic_model [N·m]"),
              _vector("tau", "out", "joint torques [N·m]"),
-             _vector("e", "out", "task error q − q_d [rad]"),
+             _vector(TASK_ERROR, "out", "task error q − q_d [rad]"),
              PortSpec("saturated", "out", "bool", None, True, "a torque is at its bound"))
     params = (
         ParamSpec("kp", "float|vector", 400.0, "position gain [1/s²]", 0.0, True),
@@ -144,4 +145,4 @@ class _FeedbackInstance(ModuleInstance):
         u = qd_ddot - self.kp @ e - self.kv @ (qdot - qd_dot)
         tau_unsat = mass.reshape(self.dof, self.dof) @ u + bias
         tau, saturated = self.constraint.apply(tau_unsat, qdot)
-        return {"tau": tau, "e": e, "saturated": bool(saturated.any())}
+        return {"tau": tau, TASK_ERROR: e, "saturated": bool(saturated.any())}

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.control.errors import InvalidParameter
+from orccad_app.diagnostics import cut
 
 __all__ = [
     "REQUIRED",
@@ -194,7 +195,7 @@ class ParamSpec:
         if self.maximum is not None and np.any(data > self.maximum):
             shown = value.tolist() if isinstance(value, np.ndarray) else value
             raise InvalidParameter(
-                f"{owner}: {self.name} must be <= {self.maximum:g}, got {shown!r}")
+                f"{owner}: {self.name} must be <= {self.maximum:g}, got {cut(repr(shown))}")
         if self.minimum is None:
             return
         bad = data <= self.minimum if self.exclusive else data < self.minimum
@@ -202,7 +203,8 @@ class ParamSpec:
             relation = ">" if self.exclusive else ">="
             shown = value.tolist() if isinstance(value, np.ndarray) else value
             raise InvalidParameter(
-                f"{owner}: {self.name} must be {relation} {self.minimum:g}, got {shown!r}")
+                f"{owner}: {self.name} must be {relation} {self.minimum:g}, "
+                f"got {cut(repr(shown))}")
 
 
 def resolve_params(owner: str, specs: Sequence[ParamSpec], given: Mapping[str, Any],

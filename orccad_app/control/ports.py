@@ -20,10 +20,16 @@ import numpy as np
 
 from orccad_app.control.errors import ControlError, DimensionMismatch
 
-__all__ = ["PORT_TYPES", "PortDirection", "PortSpec", "Timing"]
+__all__ = ["PORT_TYPES", "PortDirection", "PortSpec", "Timing", "TASK_ERROR"]
 
 #: Value types a port can carry. ``vector`` values are ``numpy.ndarray`` of length ``dim``.
 PORT_TYPES: tuple[str, ...] = ("vector", "float", "bool", "event", "string")
+
+TASK_ERROR = "e"
+"""The task-error port: the ``e`` output of a Robot-Task's control law, :math:`e(q, t)` (RR-1801
+eq. 5; a vector of the task's dimension, in the task function's unit), read by the observers
+that watch it, recorded as the run's tracking error and written ``robot.e`` in signal
+properties."""
 
 
 class PortDirection(StrEnum):

@@ -6,7 +6,8 @@ whose components are ``robot.port[0]`` … ``robot.port[n-1]``. ``+ -`` apply to
 two vectors of one dimension, ``*`` to scalars or a scalar and a vector, ``/`` to a vector or
 scalar divided by a scalar; ``norm(v)`` is the Euclidean norm of a vector (or ``abs`` of a
 scalar), ``abs`` and ``sqrt`` take scalars. A comparison takes two scalars. Every robot also has ``robot.e``, the task error of the
-Robot-Task running on it (:data:`TASK_ERROR`).
+Robot-Task running on it (:data:`~orccad_app.control.ports.TASK_ERROR`): like a TCS port
+it holds its last value between writes and is zero before the first.
 
 Errors carry the location of the offending expression; :func:`check_signal_properties` runs
 when a file is loaded, so ``orccad check``, ``compile`` and ``run`` refuse a bad property
@@ -18,10 +19,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 
-__all__ = ["PortSignal", "TASK_ERROR", "signal_ports", "port_signals", "check_signal_properties",
+__all__ = ["PortSignal", "signal_ports", "port_signals", "check_signal_properties",
            "expr_dim", "formula_unit"]
 
 
@@ -35,7 +37,7 @@ class PortSignal:
     :param unit: the port's unit as the robot type documents it (``[m]``), ``""`` if none.
     :param actuator: ``True`` for an actuator port (its value is the held command).
     :param task_error: ``True`` for ``robot.e``: the task error written by the control law
-        of the Robot-Task running on the robot (see :data:`TASK_ERROR`).
+        of the Robot-Task running on the robot (see :data:`~orccad_app.control.ports.TASK_ERROR`).
     """
 
     robot: str
@@ -44,12 +46,6 @@ class PortSignal:
     unit: str = ""
     actuator: bool = False
     task_error: bool = False
-
-
-TASK_ERROR = "e"
-"""``robot.e``: the task error of the Robot-Task running on the robot, the ``e`` output of its
-control law (a vector of the robot's degrees of freedom for joint-space tasks). Like a TCS
-port it holds its last value between writes and is zero before the first."""
 
 
 def _exprs(formula: ast.Formula):

@@ -11,6 +11,7 @@ import math
 
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
+from orccad_app.lang.limits import MAX_DURATION_NS
 from orccad_app.lang.transform_rt import duration_to_ns, rule as _rule
 
 __all__ = ["FormulaRules"]
@@ -129,6 +130,9 @@ class FormulaRules:
         for bound in (low, high):
             if not math.isfinite(bound):
                 raise OrccadError(f"time bound {bound} s is not finite", where)
+            if bound * 1e9 > MAX_DURATION_NS:  # as a duration: [0, 1e300] is refused
+                raise OrccadError(f"time bound {bound:.10g} s is longer than one year "
+                                  f"({MAX_DURATION_NS // 10**9} s), as every duration", where)
         if low < 0:
             raise OrccadError(f"time bound {low:g} s is negative: write [a, b] with "
                               "0 <= a <= b", where)

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import json
+from typing import Any
+
 from lsprotocol import types
+from pygls.exceptions import JsonRpcInvalidParams
 
 from orccad_app.lsp.analysis import refusal
 from orccad_app.lsp.completion import completions
@@ -11,7 +15,7 @@ from orccad_app.lsp.index import token_at
 from orccad_app.lsp.navigation import declaration_at, definition, references
 from orccad_app.lsp.symbols import document_symbols, folding_ranges
 
-__all__ = ["register", "CHECK_COMMAND"]
+__all__ = ["register", "CHECK_COMMAND", "command_uri"]
 
 #: The command that proves the properties of a document (argument: its URI).
 CHECK_COMMAND = "orccad.check"
@@ -142,10 +146,29 @@ def _proof(server) -> None:
         ls.prove(params.text_document.uri)
 
     @server.command(CHECK_COMMAND)
-    def check(ls, arguments) -> str:
-        uri = arguments[0] if arguments else None
-        if isinstance(uri, dict):
-            uri = uri.get("uri")
-        if not isinstance(uri, str) or uri not in ls.workspace.text_documents:
-            return "orccad.check: give the URI of an open document"
+    def check(ls, *arguments) -> str:
+        uri = command_uri(arguments)
+        if uri is None:
+            raise JsonRpcInvalidParams(f"{CHECK_COMMAND}: expected the URI of an open document "
+                                       f"([uri], [{{\"uri\": uri}}] or [[uri]]), got "
+                                       f"{_shown(list(arguments))}")
+        if not ls.opened(uri):
+            raise JsonRpcInvalidParams(f"{CHECK_COMMAND}: {uri} is not an open document")
         return ls.prove(uri)
+
+
+def command_uri(arguments: tuple[Any, ...]) -> str | None:
+    """The document of ``orccad.check``'s arguments, as clients send it: ``[uri]`` (the VS
+    Code extension), ``[{"uri": uri}]`` (a ``TextDocumentIdentifier``) or ``[[uri]]`` (a
+    client that passes its arguments as one list); ``None`` for anything else."""
+    value = arguments[0] if len(arguments) == 1 else None
+    if isinstance(value, list) and len(value) == 1:
+        value = value[0]
+    if isinstance(value, dict):
+        value = value.get("uri")
+    return value if isinstance(value, str) and value else None
+
+
+def _shown(value: Any) -> str:
+    text = json.dumps(value, default=str)
+    return text if len(text) <= 120 else text[:117] + "..."

@@ -19,8 +19,10 @@ import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
+from urllib.parse import unquote
 
 from lsprotocol import types
+from pygls.exceptions import FeatureRequestError, JsonRpcInvalidParams
 from pygls.lsp.server import LanguageServer
 
 from orccad_app import __version__
@@ -59,6 +61,13 @@ class OrccadLanguageServer(LanguageServer):
         self.proofs = ProofRunner(proof_budget_s)
         self.verdicts: dict[str, dict[tuple[str | None, str], Verdict]] = {}
 
+    def report_server_error(self, error: Exception, source) -> None:
+        """A handler's failure: one line in the log, never a pop-up in the editor (a
+        request's failure is its error response already; a notification's, such as a
+        change to a document never opened, is the editor's to fix)."""
+        if source is not FeatureRequestError:  # a request's: pygls has said it already
+            logger.warning("%s: %s", type(error).__name__, error)
+
     # -- documents ---------------------------------------------------------------------
 
     @property
@@ -76,8 +85,18 @@ class OrccadLanguageServer(LanguageServer):
         return self.states[uri]
 
     def doc_text(self, uri: str) -> str:
-        """The editor's current text of ``uri``."""
+        """The editor's current text of ``uri``; a document the editor did not open is
+        refused (invalid params): the disk is never read for it (it may be a FIFO, or
+        ``/dev/zero``)."""
+        if not self.opened(uri):
+            raise JsonRpcInvalidParams(f"{uri}: not an open document (textDocument/didOpen "
+                                       "first)")
         return self.workspace.get_text_document(uri).source
+
+    def opened(self, uri: str) -> bool:
+        """Whether the editor has ``uri`` open (pygls keys its documents unescaped:
+        ``file:///a%20b.orc`` is open as ``file:///a b.orc``)."""
+        return unquote(uri) in self.workspace.text_documents
 
     def doc_version(self, uri: str) -> int | None:
         return self.workspace.get_text_document(uri).version
@@ -100,8 +119,8 @@ class OrccadLanguageServer(LanguageServer):
 
     def buffers(self) -> dict[str, str]:
         """Real path → unsaved text of every open document."""
-        return {os.path.realpath(self.state(uri).path): self.doc_text(uri)
-                for uri in self.workspace.text_documents}
+        return {os.path.realpath(path_of_uri(document.uri)): document.source
+                for document in self.workspace.text_documents.values()}
 
     # -- analysis ----------------------------------------------------------------------
 
@@ -117,14 +136,14 @@ class OrccadLanguageServer(LanguageServer):
         """Analyse again every other open document that reads ``uri`` through an import."""
         path = self.state(uri).path
         for other, state in list(self.states.items()):
-            if other != uri and other in self.workspace.text_documents \
+            if other != uri and self.opened(other) \
                     and state.analysis is not None and depends_on(state.analysis, path):
                 self.schedule(other)
 
     async def _analyse(self, uri: str, delay_s: float) -> None:
         if delay_s > 0:
             await asyncio.sleep(delay_s)
-        if uri not in self.workspace.text_documents:
+        if not self.opened(uri):
             return
         version, text = self.doc_version(uri), self.doc_text(uri)
         state = self.state(uri)
@@ -132,7 +151,7 @@ class OrccadLanguageServer(LanguageServer):
         loop = asyncio.get_running_loop()
         analysis = await loop.run_in_executor(self.executor, self._analysis, state.path, text,
                                               buffers)
-        if uri not in self.workspace.text_documents or self.doc_version(uri) != version:
+        if not self.opened(uri) or self.doc_version(uri) != version:
             return  # superseded: the change that made it stale has its own analysis
         state.analysis, state.analysed_version = analysis, version
         if analysis.program is not None:
@@ -191,7 +210,7 @@ class OrccadLanguageServer(LanguageServer):
         by_uri = diagnostics_by_uri(state.path, analysis.text, analysis.problems,
                                     text_of(self.buffers()), self.encoding)
         by_uri[uri] = by_uri.get(uri, []) + self.extra.get(uri, [])
-        open_uris = set(self.workspace.text_documents)
+        open_uris = {document.uri for document in self.workspace.text_documents.values()}
         for target, diagnostics in by_uri.items():
             if target != uri and (target in open_uris or self._is_open(target)):
                 continue  # an open file publishes its own
@@ -207,7 +226,8 @@ class OrccadLanguageServer(LanguageServer):
 
     def _is_open(self, uri: str) -> bool:
         path = path_of_uri(uri)
-        return any(same_file(self.state(u).path, path) for u in self.workspace.text_documents)
+        return any(same_file(path_of_uri(document.uri), path)
+                   for document in self.workspace.text_documents.values())
 
     def changed(self, uri: str) -> None:
         """The editor changed ``uri``: what was judged on the old text no longer holds
@@ -247,7 +267,7 @@ class OrccadLanguageServer(LanguageServer):
         assert program is not None
 
         def done(answer: dict) -> None:
-            if self.doc_version(uri) != version or uri not in self.workspace.text_documents:
+            if not self.opened(uri) or self.doc_version(uri) != version:
                 return
             self._proved(uri, state.path, program, answer)
 
@@ -306,17 +326,28 @@ def build_server(debounce_s: float = DEBOUNCE_S,
 
 
 def serve(debounce_s: float = DEBOUNCE_S, proof_budget_s: float = 60.0) -> int:
-    """Serve over stdio until the client says ``exit``. The protocol owns the real stdout:
-    anything else printing (a plugin, a library) goes to stderr instead."""
+    """Serve over stdio until the client says ``exit``; the exit status (the LSP's: 0 when
+    ``shutdown`` came before ``exit``, else 1; 0 when the editor closes the stream). The
+    protocol owns the real stdout: anything else printing (a plugin, a library) goes to
+    stderr instead, where the log is one line per event (:mod:`.logs`)."""
     import sys
+
+    from pygls.io_ import StdoutWriter
+
+    from orccad_app.lsp.logs import log_in_lines
+    from orccad_app.lsp.stream import serve_stream
 
     protocol_out = os.fdopen(os.dup(sys.stdout.fileno()), "wb")
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
     sys.stdout = sys.stderr
+    log_in_lines()
     server = build_server(debounce_s, proof_budget_s)
+    server.protocol.set_writer(StdoutWriter(protocol_out))
     try:
-        server.start_io(sys.stdin.buffer, protocol_out)
+        return asyncio.run(serve_stream(server.protocol, sys.stdin.buffer))
     finally:
         server.executor.shutdown(wait=False, cancel_futures=True)
-    return 0
-
+        try:
+            protocol_out.close()
+        except OSError:  # the editor stopped reading: nothing is left to flush to
+            pass

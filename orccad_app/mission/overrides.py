@@ -270,6 +270,26 @@ def check_overrides(overrides: PlanOverrides, tasks: set[str],
         if noise.port not in sensors:
             raise OrccadError(f"--set {noise.text()}: robot '{noise.robot}' has no sensor "
                               f"port '{noise.port}' (sensors: {', '.join(sensors)})")
+        bound, why = noise_bound(robot_type, noise.port)
+        if noise.std > bound:
+            raise OrccadError(f"--set {noise.text()}: a noise standard deviation of at most "
+                              f"{bound:g} is accepted on {noise.robot}.{noise.port} ({why})")
+
+
+#: Largest noise standard deviation of a sensor port that no parameter of its robot type
+#: bounds [the port's unit]: larger noise overflows the samples (1e308 gives infinities).
+MAX_NOISE_STD = 1e6
+
+
+def noise_bound(robot_type: Any, port: str) -> tuple[float, str]:
+    """The largest noise standard deviation ``--set ROBOT.PORT.noise_std`` accepts on
+    ``port``, and why: the maximum of the robot type's noise parameter of that port, else
+    :data:`MAX_NOISE_STD`."""
+    for param in getattr(robot_type, "sensor_params", ()):
+        if param.setting.value == "noise_std" and port in param.ports \
+                and param.maximum is not None:
+            return float(param.maximum), f"the bound of {robot_type.name}'s {param.name}"
+    return MAX_NOISE_STD, "larger noise overflows the samples"
 
 
 def plan_with_overrides(source: Any, mission: ast.Mission, overrides: PlanOverrides,

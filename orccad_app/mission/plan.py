@@ -26,6 +26,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from orccad_app.control.module import ModuleInstance
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError, SourceLocation
 from orccad_app.executive.plant import MujocoPlant, PlantExtension
 from orccad_app.lang import ast
@@ -255,7 +256,8 @@ def _site_modules(site: RunSite, instance: RobotTaskInstance, names: dict[str, s
             events[str(port)] = name
     adjustments = _param_updates(instance, names)
     error = next((names[n] for n, spec in instance.modules.items()
-                  if any(p.name == "e" and p.direction == "out" for p in spec.instance.ports)),
+                  if any(p.name == TASK_ERROR and p.direction == "out"
+                         for p in spec.instance.ports)),
                  None)
     unit = _error_unit(instance)
     return SiteModules(site, instance, tuple(names.values()),

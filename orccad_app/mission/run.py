@@ -51,6 +51,7 @@ from __future__ import annotations
 import time
 from typing import Any, Iterable
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.bus import Bus
 from orccad_app.executive.deadlock import DeadlockError
@@ -63,7 +64,7 @@ from orccad_app.executive.simulation import Simulation
 from orccad_app.executive.task_runtime import ComputeError
 from orccad_app.mission.backend import InProcess, ModuleTaskBackend
 from orccad_app.mission.budget import DEFAULT_UNTIL_NS, check_run_budget
-from orccad_app.mission.injection import Injection, typed_injection
+from orccad_app.mission.injection import Injection, PlantFault, typed_injection
 from orccad_app.mission.lifecycle import RobotTaskLifecycle
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.observer import MISSION_HOOKS
@@ -106,11 +107,11 @@ class _Link(Observer):
         self._run.signal(name, value)
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
-        if port == "e":
+        if port == TASK_ERROR:
             self._run.task_error(module, value)
 
     def wants_write(self, module: str, port: str) -> bool:
-        return port == "e"
+        return port == TASK_ERROR
 
 
 class MissionRun(RobotTaskLifecycle):
@@ -189,8 +190,8 @@ class MissionRun(RobotTaskLifecycle):
     def _schedule_inputs(self, injections: Iterable[Injection]) -> None:
         inputs = {s.name: s for s in self.plan.automaton.inputs}
         for injection in injections:
-            if injection.fault:
-                self._schedule_fault(injection)
+            if injection.fault is not None:
+                self._schedule_fault(injection, injection.fault)
                 continue
             if injection.name not in inputs:
                 known = ", ".join(sorted(inputs)) or "none"
@@ -205,8 +206,8 @@ class MissionRun(RobotTaskLifecycle):
         if self.backend.reacts_on_ticks:
             self.kernel.schedule(0, _CONTROL, self._tick)
 
-    def _schedule_fault(self, injection: Injection) -> None:
-        robot, fault = injection.robot_fault
+    def _schedule_fault(self, injection: Injection, plant_fault: PlantFault) -> None:
+        robot, fault = plant_fault.robot, plant_fault.fault
         plant = self.sim.plants.get(robot)
         if plant is None:
             raise OrccadError(f"--inject {injection.name}: no robot '{robot}' in mission "

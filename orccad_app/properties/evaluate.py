@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.mission.plan import MissionPlan
@@ -118,7 +119,7 @@ def _check_task_error(prop: ast.Property, robot: str, dim: int, plan: MissionPla
         if site.instance.robot_name != robot or not site.error_module:
             continue
         module = plan.tcs.modules[site.error_module]
-        size = next((port.dim for port in module.ports if port.name == "e"), dim)
+        size = next((port.dim for port in module.ports if port.name == TASK_ERROR), dim)
         if size != dim:
             raise OrccadError(f"property '{prop.name}': {robot}.e has {size} components in "
                               f"Robot-Task '{site.task}', not the robot's {dim} joints",

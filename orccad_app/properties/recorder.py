@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.mission.observer import MissionObserver
 from orccad_app.mission.run import MissionRun
 from orccad_app.reactive.status import Status
@@ -91,11 +92,11 @@ class PropertyRecorder(MissionObserver):
         self.sample_events[index].update(letter)
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
-        if port == "e" and module in self._error_robot:
+        if port == TASK_ERROR and module in self._error_robot:
             self._errors[self._error_robot[module]] = np.array(value, dtype=float)
 
     def wants_write(self, module: str, port: str) -> bool:
-        return port == "e" and module in self._error_robot
+        return port == TASK_ERROR and module in self._error_robot
 
     def complete_samples(self) -> int:
         """How many samples every series holds (a run interrupted inside
@@ -106,7 +107,7 @@ class PropertyRecorder(MissionObserver):
         self.sample_events.append(set())
         plants = self._run.plants
         for (robot, port), values in self.port_values.items():
-            if port == "e" and robot in self._task_errors:
+            if port == TASK_ERROR and robot in self._task_errors:
                 values.append(self._errors[robot])
             else:
                 values.append(plants[robot].observe(port))

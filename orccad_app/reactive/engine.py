@@ -9,7 +9,8 @@ Signal statuses are found constructively. One walk computes, for the current kno
 signal statuses, what *must* be emitted (on paths that are sure to run) and what *can* be
 emitted (on every path that may run). Signals tested while unknown are then set present if they
 must be emitted and absent if they cannot be; the walk is repeated until every tested signal is
-known. If a walk makes no progress, the program is not constructive for that state and inputs:
+known. If a walk makes no progress, the program is not constructive for that state and inputs
+(a non-causal program):
 a compile error names the signal and the test that depends on it.
 
 Inputs and data tests are decided by an *oracle*, which is how :mod:`.compiler` explores all

@@ -159,6 +159,8 @@ class LazyAutomaton:
         """Build the path of state ``state``'s tree that ``inputs`` select (if not built yet);
         returns the state's lowered tree."""
         order, tree = self._explore(state, inputs)
+        if len(self.data_tests) != len(self.prep.data_tests):  # a fresh pre(?S) test made
+            self.data_tests = tuple(self.prep.data_tests)
         lowered = lower(self._numbered(tree), self.data_tests)
         if not order:
             self.roots[state] = lowered

@@ -8,9 +8,10 @@ per prepared program (:func:`made`), so that equal events of two reactions are t
 from __future__ import annotations
 
 from orccad_app.reactive import ir
+from orccad_app.reactive.expr import Store, Unset, compile_expr
 from orccad_app.reactive.prepare import Prepared
 
-__all__ = ["is_var", "value_reads", "fresh_pre", "made"]
+__all__ = ["is_var", "value_reads", "fresh_pre", "fresh_test", "made"]
 
 
 def is_var(key) -> bool:
@@ -45,6 +46,43 @@ def fresh_pre(prep: Prepared, expr: ir.Expr, scope: dict) -> ir.Expr:
         return expr
     return made(prep, ("fresh", id(expr), tuple(id(d) for d in fresh)),
                  lambda: _substitute_pre(expr, fresh))
+
+
+def fresh_test(prep: Prepared, test: ir.DataTest, scope: dict) -> int | bool:
+    """Data test ``test`` as decided in ``scope``: its number, or, when it reads ``pre(?S)``
+    of a local signal in its first instant, the test with S's initial value in its place, as
+    :func:`fresh_pre` does for emissions and assignments (``if pre(?Internal) == -1`` of
+    ``signal Internal : int := -1`` is true in the signal's first instant, HipHop's
+    ``preval``): its outcome when it then reads nothing (decided here, as a constant), else
+    the number of that test (made once, appended to ``prep.data_tests``)."""
+    expr = fresh_pre(prep, test.expr, scope)
+    if expr is test.expr:
+        return prep.data_test_index[id(test)]
+
+    def make() -> int | bool:
+        if _constant(expr):
+            try:
+                return bool(compile_expr(expr)(Store()))
+            except (Unset, ArithmeticError, ValueError):
+                pass  # its run-time error, raised when the test is decided
+        prep.data_test_index[id(expr)] = len(prep.data_tests)
+        prep.data_tests.append(ir.DataTest(expr, test.loc))
+        return prep.data_test_index[id(expr)]
+    return made(prep, ("fresh test", id(expr)), make)
+
+
+def _constant(expr: ir.Expr) -> bool:
+    """``expr`` reads nothing: no variable, signal value, ``pre``, clock or fault."""
+    kind = type(expr)
+    if kind is ir.Const:
+        return True
+    if kind is ir.Unary:
+        return _constant(expr.operand)
+    if kind is ir.Binary:
+        return _constant(expr.left) and _constant(expr.right)
+    if kind is ir.VectorExpr:
+        return all(_constant(item) for item in expr.items)
+    return False
 
 
 def _has_pre(expr: ir.Expr, decls: list) -> bool:

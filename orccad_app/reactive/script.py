@@ -20,7 +20,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.diagnostics import OrccadError, SourceLocation, cut
 from orccad_app.lang.limits import MAX_DURATION_NS, MAX_INT, MIN_INT
 from orccad_app.reactive import ir
 
@@ -86,8 +86,9 @@ def parse_value(text: str, signal: ir.SignalDecl, loc: SourceLocation) -> Any:
         limits = {"int": f" (a whole number in [{MIN_INT}, {MAX_INT}])",
                   "float": " (a finite number)", "vector": " (finite numbers)",
                   "duration": " (a finite number)"}.get(kind, "")
-        raise OrccadError(f"'{text}' is not a {kind} value for {signal.name}{limits}",
-                          loc) from None
+        # cut past 1000 characters, as the generated --main program does
+        raise OrccadError(f"'{cut(text, 1000)}' is not a {kind} value for "
+                          f"{signal.name}{limits}", loc) from None
 
 
 def _time(token: str, loc: SourceLocation, previous: int | None) -> int:

@@ -20,7 +20,7 @@ from orccad_app.reactive.prepare import (
     ASSIGN, EMIT, EXIT, LOCAL, LOOP, MARK, NOTHING, PAR, PAUSE, PRESENT, SEQ, SUSPEND, TRAP,
     KNode, Prepared,
 )
-from orccad_app.reactive.reads import fresh_pre, is_var, value_reads
+from orccad_app.reactive.reads import fresh_pre, fresh_test, is_var, value_reads
 
 __all__ = ["Oracle", "Values", "Walk"]
 
@@ -139,7 +139,9 @@ class Walk:
             if waiting:
                 self.block(waiting, test.loc)
                 return None
-            number = self.prep.data_test_index[id(test)]
+            number = fresh_test(self.prep, test, scope)
+            if type(number) is bool:  # pre(?S) of a fresh local, and nothing else, read
+                return number
             outcome = self.oracle.data(number)
             if sure and number not in self.tested:
                 # a test shared by two statements (suspend and watcher of an abort) is
@@ -262,7 +264,7 @@ class Walk:
             if waiting == key:
                 name = stmt.signal.name
                 raise OrccadError(
-                    f"non-constructive program: ?{name} is read here before an emission of "
+                    f"non-causal program: ?{name} is read here before an emission of "
                     f"{name} that follows it in the same instant (line {stmt.loc.line}); "
                     f"emit {name} first, or read pre(?{name}) for its previous value", loc)
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
-from orccad_app.diagnostics import Diagnostic, OrccadError, value_text
+from orccad_app.diagnostics import Diagnostic, OrccadError, value_excerpt
 from orccad_app.lang import ast
 from orccad_app.lang.run_args import param_type
 from orccad_app.robottask.model import RobotTaskInstance, instantiate
@@ -41,14 +41,14 @@ def _real(value: Any) -> bool:
 
 def _vector(param: ast.Param, value: Any, nominal: Any) -> list[float]:
     if not isinstance(value, (list, tuple)) or not all(_real(v) for v in value):
-        raise ValueError(f"a vector of numbers is expected, got {value_text(value)}")
+        raise ValueError(f"a vector of numbers is expected, got {value_excerpt(value)}")
     items = [float(v) for v in value]
     if not all(math.isfinite(v) for v in items):
-        raise ValueError(f"every component must be a finite number, got {value_text(value)}")
+        raise ValueError(f"every component must be a finite number, got {value_excerpt(value)}")
     size = len(nominal) if isinstance(nominal, (list, tuple)) else None
     if size is not None and len(items) != size:
         raise ValueError(f"a vector of {size} components is expected (the size of the "
-                         f"default of '{param.name}'), got {len(items)}: {value_text(value)}")
+                         f"default of '{param.name}'), got {len(items)}: {value_excerpt(value)}")
     return items
 
 
@@ -61,16 +61,16 @@ def check_value(param: ast.Param, value: Any, nominal: Any) -> Any:
     if kind in ("float", "int", "duration"):
         if not _real(value) or (kind != "float" and not isinstance(value, int)):
             raise ValueError(f"{'an integer' if kind != 'float' else 'a number'} is expected, "
-                             f"got {value_text(value)}")
+                             f"got {value_excerpt(value)}")
         if not math.isfinite(value):
-            raise ValueError(f"a finite number is expected, got {value_text(value)}")
+            raise ValueError(f"a finite number is expected, got {value_excerpt(value)}")
         if kind == "duration" and value < 0:
             raise ValueError(f"a duration must be >= 0, got {value}")
         return float(value) if kind == "float" else value
     if kind == "bool" and not isinstance(value, bool):
-        raise ValueError(f"true or false is expected, got {value_text(value)}")
+        raise ValueError(f"true or false is expected, got {value_excerpt(value)}")
     if kind == "string" and not isinstance(value, str):
-        raise ValueError(f"a string is expected, got {value_text(value)}")
+        raise ValueError(f"a string is expected, got {value_excerpt(value)}")
     return value
 
 
@@ -87,7 +87,7 @@ def plain_arguments(params: Mapping[str, Any]) -> dict[str, Any]:
 
 def _refused(task: str, arg: RunArgument, value: Any, why: str,
              notes: tuple[Diagnostic, ...] = ()) -> ArgumentError:
-    return ArgumentError(f"run-time argument of {task}: {arg.param} = {value_text(value)} is "
+    return ArgumentError(f"run-time argument of {task}: {arg.param} = {value_excerpt(value)} is "
                          f"refused when the task starts: {why}", arg.loc, notes)
 
 

@@ -45,6 +45,7 @@ import numpy as np
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.observer import MissionObserver
 from orccad_app.ros2 import messages
+from orccad_app.ros2.endpoint import zenoh_reason
 from orccad_app.ros2.keyexpr import EntityKind, attachment, liveliness_key, topic_key
 
 __all__ = ["ZenohBridge", "MissionBridge", "JointCommand", "DEFAULT_ENDPOINT", "VALUE_TYPES",
@@ -60,6 +61,9 @@ VALUE_TYPES = {None: "std_msgs/msg/Empty", "bool": "std_msgs/msg/Bool",
 
 NODE_NAME = "orccad"
 """The ROS 2 node the bridge announces (namespace ``/``)."""
+
+REACH_LOOK_S = 1.0
+"""How often the bridge looks whether a router or peer is connected, at most [wall s]."""
 
 
 @dataclass(frozen=True)
@@ -126,8 +130,10 @@ class ZenohBridge:
         try:
             self._session = zenoh.open(session_config(connect, listen))
         except Exception as error:  # zenoh.ZError: the reason from Zenoh
-            raise OrccadError(f"--ros2-zenoh {' '.join(connect)}: cannot open a Zenoh "
-                              f"session: {error}") from None
+            raise OrccadError(f"--ros2-zenoh {' '.join([*connect, *listen])}: cannot open a "
+                              f"Zenoh session: {zenoh_reason(error)}") from None
+        self._reached = False
+        self._next_look = 0.0
         self._closed = False
         self._store = messages.typestore()
         self._zid = str(self._session.info.zid())
@@ -148,6 +154,16 @@ class ZenohBridge:
                 f"/orccad/input/{name}", msgtype,
                 lambda message, name=name, msgtype=msgtype:
                     self._inputs.put((name, _value(msgtype, message)))))
+
+    def reached(self) -> bool:
+        """Whether a Zenoh router or peer has been connected to since the session opened
+        (looked at once per wall second at most: the answer costs a call into Zenoh)."""
+        now = time.monotonic()
+        if not self._reached and self._session is not None and now >= self._next_look:
+            self._next_look = now + REACH_LOOK_S
+            info = self._session.info
+            self._reached = bool(list(info.routers_zid()) or list(info.peers_zid()))
+        return self._reached
 
     def key(self, topic: str, msgtype: str) -> str:
         """The key expression of ``topic`` (rmw_zenoh's)."""
@@ -279,6 +295,7 @@ class MissionBridge(MissionObserver):
     def on_reaction(self, t_ns: int, inputs: tuple[str, ...], outputs: tuple[str, ...],
                     status: str) -> None:
         self._publish_outputs()
+        self.bridge.reached()  # a router started after the run is noticed
         for name, value in self.bridge.inputs():
             self._run.inject(name, value)
             self.raised += 1

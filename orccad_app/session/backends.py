@@ -61,7 +61,8 @@ def module_task_backend(options: RunOptions, plan: MissionPlan,
 
         refuse_in_realtime(options)
         return RealtimeBackend(plan, controller.source, controller.build_dir,
-                               controller.heartbeat_s)
+                               controller.heartbeat_s, controller.prebuilt)
     from orccad_app.sil.lockstep import LockstepBackend
 
-    return LockstepBackend(plan, controller.source, controller.build_dir, controller.heartbeat_s)
+    return LockstepBackend(plan, controller.source, controller.build_dir, controller.heartbeat_s,
+                           controller.prebuilt)

@@ -12,6 +12,7 @@ from orccad_app.mission.injection import Injection
 from orccad_app.mission.overrides import PlanOverrides
 from orccad_app.reactive.ir import SignalDecl
 from orccad_app.reactive.script import Instant
+from orccad_app.sil.build.executable import Prebuilt
 from orccad_app.sil.controller.process import DEFAULT_HEARTBEAT_S
 
 __all__ = ["ControllerOptions", "DEFAULT_UNTIL_S", "Execution", "InputScript", "MAX_RUN_S",
@@ -89,11 +90,14 @@ class ControllerOptions:
     :param source: the mission file, named in the generated sources.
     :param build_dir: where the generated C goes (``None``: a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [wall s].
+    :param prebuilt: a controller built elsewhere (``--controller``, maybe through a
+        ``--controller-wrapper``), run instead of building one.
     """
 
     source: str = ""
     build_dir: Path | None = None
     heartbeat_s: float = DEFAULT_HEARTBEAT_S
+    prebuilt: Prebuilt | None = None
 
 
 @dataclass(frozen=True)

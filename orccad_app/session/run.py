@@ -103,11 +103,12 @@ class RunSession:
         options, inputs = self.options, self.plan.automaton.inputs
         for injection in options.injections:
             value = injection.value
-            if injection.fault and isinstance(value, float) and not math.isfinite(value):
+            if injection.fault is not None and isinstance(value, float) and not math.isfinite(value):
                 raise OrccadError(f"--inject {injection.name}: the value must be a finite "
                                   f"number, got {value}")
         typed = typed_injections(options.injections, inputs)
-        records = [InjectionRecord(i.time_ns, i.name, i.value, i.fault, options.injected_by)
+        records = [InjectionRecord(i.time_ns, i.name, i.value, i.fault is not None,
+                                   options.injected_by)
                    for i in typed]
         script = options.script
         if script is not None:

@@ -32,7 +32,7 @@ import numpy as np
 from orccad_app.mission.backend import InProcess
 from orccad_app.mission.plan import MissionPlan, SiteModules
 from orccad_app.mission.reactor import MissionReactor
-from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.build.executable import Prebuilt, build_controller, controller_table
 from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerProcess)
 from orccad_app.sil.controller.remote import ControllerRun, remote_plan
@@ -44,15 +44,21 @@ __all__ = ["KindDifference", "LockstepBackend", "check_kinds", "lockstep", "rand
 
 
 def start_controller(table: ModuleTable, executable: Path,
-                     heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> ControllerProcess:
-    """Start the controller process of ``table``."""
+                     heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                     prebuilt: Prebuilt | None = None) -> ControllerProcess:
+    """Start the controller process of ``table`` (a ``prebuilt`` one: its combined main's
+    ``--lockstep``, through its wrapper)."""
+    if prebuilt is not None:
+        return ControllerProcess(prebuilt.executable, len(table.entries), table.digest,
+                                 heartbeat_s, ("--lockstep",), prebuilt.wrapper)
     return ControllerProcess(executable, len(table.entries), table.digest, heartbeat_s)
 
 
 @contextmanager
 def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
              heartbeat_s: float = DEFAULT_HEARTBEAT_S,
-             automaton: MissionProgram | None = None) -> Iterator[ControllerRun]:
+             automaton: MissionProgram | None = None,
+             prebuilt: Prebuilt | None = None) -> Iterator[ControllerRun]:
     """While in the block, a controller process built for ``plan`` runs (written into
     ``build_dir``, a temporary directory by default), with the mission's ``automaton``
     (default :func:`~orccad_app.sil.generate.automaton.mission_automaton` of the plan); the
@@ -61,9 +67,12 @@ def lockstep(plan: MissionPlan, source: str, build_dir: Path | None = None,
     when the block ends, however it ends."""
     automaton = automaton or mission_automaton(plan)
     with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = build_controller(plan, source, build_dir or Path(scratch),
-                                             automaton.program)
-        controller = start_controller(table, executable, heartbeat_s)
+        if prebuilt is None:
+            table, executable = build_controller(plan, source, build_dir or Path(scratch),
+                                                 automaton.program)
+        else:
+            table, executable = controller_table(plan, automaton.program), prebuilt.executable
+        controller = start_controller(table, executable, heartbeat_s, prebuilt)
         try:
             yield ControllerRun(controller, table,
                                 remote_plan(plan, automaton.automaton, table, controller))
@@ -86,15 +95,18 @@ class LockstepBackend(InProcess):
     :param source: the mission file (named in the generated sources).
     :param build_dir: where the generated C goes (default a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [s].
+    :param prebuilt: a controller built from ``orccad codegen --controller``'s tree, run
+        instead of building one.
     """
 
     def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
-                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                 prebuilt: Prebuilt | None = None) -> None:
         super().__init__()
         self._mission = mission_automaton(plan)
         self._stack = ExitStack()
         started = self._stack.enter_context(
-            lockstep(plan, source, build_dir, heartbeat_s, self._mission))
+            lockstep(plan, source, build_dir, heartbeat_s, self._mission, prebuilt))
         self.controller: ControllerProcess = started.controller
         """The controller process."""
         self._plan = started.plan

@@ -44,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from orccad_app.diagnostics import arguments_text
+from orccad_app.diagnostics import MESSAGE_EXCERPT_COMPONENTS, arguments_text, value_excerpt
 from orccad_app.executive.simulation import TimingSource
 from orccad_app.mission.result import MissionStatus, RunResult
 from orccad_app.trace.recorder import plain_value
@@ -233,7 +233,15 @@ def _module_lines(report: dict[str, Any]) -> list[str]:
 
 
 def _value_text(value: Any) -> str:
-    return "" if value is None else f"({value:g})" if isinstance(value, float) else f"({value})"
+    """``(VALUE)`` for a line of the text report: a long vector is cut (the JSON report keeps
+    it whole)."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return f"({value:g})"
+    if isinstance(value, (list, tuple)) and len(value) > MESSAGE_EXCERPT_COMPONENTS:
+        return f"({value_excerpt(value)})"
+    return f"({value})"
 
 
 def _output_lines(report: dict[str, Any]) -> list[str]:

@@ -53,6 +53,8 @@ class OrccadApp(App):
                  run_now: bool = False, campaign: dict[str, Any] | None = None) -> None:
         super().__init__()
         self.files = mission_files([*paths, "missions"])
+        self.given = selected
+        """The file named on the command line (``None``: the browser's first is shown)."""
         self.selected = selected or (self.files[0] if self.files else None)
         self.mission = mission
         self.speed = speed
@@ -65,8 +67,8 @@ class OrccadApp(App):
         self.push_screen(BrowserScreen(self.files, self.selected))
         if self.run_now and self.selected:
             self.start_run(self.selected, self.mission)
-        elif self.campaign is not None:
-            self.open_campaign(self.selected, **self.campaign)
+        elif self.campaign is not None:  # a database alone names its own mission file
+            self.open_campaign(self.given, **self.campaign)
 
     def open_campaign(self, path: str | None, spec: str | None = None,
                       db: str | None = None, **options: Any) -> None:

@@ -34,7 +34,7 @@ from orccad_app.diagnostics import OrccadError
 
 __all__ = ["SearchProcess", "Bin", "histogram", "Candidate", "CampaignSnapshot",
            "read_campaign", "FalsifySnapshot", "read_study", "default_spec", "default_db",
-           "HISTOGRAM_BINS", "CLOSEST"]
+           "check_database", "HISTOGRAM_BINS", "CLOSEST", "LOCK_WAIT_S"]
 
 HISTOGRAM_BINS = 12
 """Bins of each robustness histogram."""
@@ -189,16 +189,60 @@ class CampaignSnapshot:
     crashed: int = 0
 
 
+SQLITE_HEADER = b"SQLite format 3\x00"
+"""The first 16 bytes of every SQLite database file."""
+LOCK_WAIT_S = 2.0
+"""How long a read waits for another program's lock on the database [s]."""
+
+
+def check_database(path: str, what: str) -> bool:
+    """Refuse, with one located message, a file the console cannot read as ``what`` (``"a
+    campaign database"``): missing, not a regular file (a FIFO would block the read), not
+    SQLite (its header), locked by another program past :data:`LOCK_WAIT_S`, or unreadable
+    as a database. Whether the file holds anything (``False``: an empty file). Nothing is
+    written to the file or beside it (:func:`~orccad_app.campaign.store.connect_read_only`)."""
+    import sqlite3
+
+    from orccad_app.campaign.store import connect_read_only
+    from orccad_app.pipeline import require_regular_file
+
+    require_regular_file(path)
+    try:
+        with open(path, "rb") as handle:
+            header = handle.read(len(SQLITE_HEADER))
+    except OSError as error:
+        raise OrccadError(f"{path}: cannot read: {error.strerror or error}") from None
+    if not header:
+        return False
+    if header != SQLITE_HEADER:
+        raise OrccadError(f"{path}: not an SQLite database (it does not begin with SQLite's "
+                          f"header), so not {what}")
+    try:
+        with contextlib.closing(connect_read_only(path, LOCK_WAIT_S)) as db:
+            db.execute("SELECT count(*) FROM sqlite_master").fetchone()
+    except sqlite3.OperationalError as error:
+        if "locked" in str(error) or "busy" in str(error):
+            raise OrccadError(f"{path}: locked by another program ({error}): open it again "
+                              "once that program has let it go") from None
+        raise OrccadError(f"{path}: cannot be read as {what} ({error})") from None
+    except sqlite3.DatabaseError as error:
+        raise OrccadError(f"{path}: not {what} ({error})") from None
+    return True
+
+
 def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
                   ) -> CampaignSnapshot:
     """What campaign database ``db`` holds now; refuses a file that is not one
-    (:class:`OrccadError`)."""
+    (:class:`OrccadError`, see :func:`check_database`; an empty file too)."""
     from orccad_app.campaign.adapter import CRASHED
     from orccad_app.mission.result import MissionStatus
     from orccad_app.campaign.spec import parse_spec
     from orccad_app.campaign.stats import estimates, summarize
     from orccad_app.campaign.store import CampaignStore
 
+    if not check_database(db, "a campaign database"):
+        raise OrccadError(f"{db}: an empty file, not a campaign database (no campaign has "
+                          "written to it)")
     store = CampaignStore(db, read_only=True)
     try:
         meta = store.meta()
@@ -252,11 +296,11 @@ def _has_studies(path: str) -> bool:
     import sqlite3
 
     from orccad_app.campaign.store import connect_read_only
-    from orccad_app.pipeline import require_regular_file
 
-    require_regular_file(path)
+    if not check_database(path, "an optuna study database"):
+        return False
     try:
-        with contextlib.closing(connect_read_only(path)) as db:
+        with contextlib.closing(connect_read_only(path, LOCK_WAIT_S)) as db:
             tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
     except sqlite3.DatabaseError as error:
         raise OrccadError(f"{path}: not an optuna study database ({error})") from None
@@ -288,7 +332,7 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     except ImportError:
         raise OrccadError("falsification needs optuna: pip install 'orccad[falsify]'") from None
     spec = load_spec(spec_path)
-    if not Path(study).is_file() or not _has_studies(study):
+    if not os.path.lexists(study) or not _has_studies(study):  # not created yet, or empty
         return FalsifySnapshot(study, prop, 0, budget, None, None)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     # read-only, no table created: a reader that creates optuna's tables races the command

@@ -29,6 +29,7 @@ from typing import Any, Callable, Iterator
 
 import numpy as np
 
+from orccad_app.control.ports import TASK_ERROR
 from orccad_app.diagnostics import arguments_text
 from orccad_app.executive.observer import Observer
 from orccad_app.robottask.labels import Phase
@@ -388,14 +389,14 @@ class LiveObserver(Observer):
 
     def wants_write(self, module: str, port: str) -> bool:
         """Only the set-points and the task errors are plotted."""
-        return port in SETPOINT_PORTS or port == "e"
+        return port in SETPOINT_PORTS or port == TASK_ERROR
 
     def on_write(self, t_ns: int, module: str, port: str, value: Any) -> None:
         if port in SETPOINT_PORTS:  # the reference: the set-point of the measured joints
             if t_ns >= self._next_sample.get(port, 0):
                 self._sample(t_ns, port, _components(value))
             return
-        if port == "e" and t_ns >= self._next_sample.get("tracking error", 0):
+        if port == TASK_ERROR and t_ns >= self._next_sample.get("tracking error", 0):
             values = _components(value, limit=1 << 16)
             if values is not None:
                 self._sample(t_ns, "tracking error", [math.sqrt(sum(v * v for v in values))])

@@ -30,7 +30,8 @@ if TYPE_CHECKING:
 
 __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_text",
            "LiveSession", "mission_files", "parse_value", "VALUE_HINTS", "inspect_text",
-           "write_atomically", "ScriptedInputs", "failed_outcomes"]
+           "write_atomically", "ScriptedInputs", "failed_outcomes", "source_text",
+           "one_line"]
 
 VALUE_HINTS = {"int": "an integer, e.g. 3", "float": "a number, e.g. 0.8",
                "bool": "true or false", "vector": "numbers in brackets, e.g. [0.5, 0.5, 0.5]",
@@ -157,17 +158,39 @@ def _summary(source: Any, mission: Any) -> tuple[str, list[str]]:
     return head + to_summary(automaton), inputs
 
 
+def source_text(path: str) -> str:
+    """The text of ``path`` as the console shows and edits it, or a located
+    :class:`OrccadError`: a regular file within the source budget (never a FIFO or
+    ``/dev/zero``), UTF-8 (the first byte that is not, located), and not a binary file (its
+    first NUL byte, located)."""
+    from orccad_app.diagnostics import SourceLocation
+    from orccad_app.pipeline import read_source
+
+    text = read_source(path)
+    nul = text.find("\0")
+    if nul >= 0:
+        start = text.rfind("\n", 0, nul) + 1
+        raise OrccadError("a binary file (it holds a NUL byte), not plan-language text",
+                          SourceLocation(path, text.count("\n", 0, nul) + 1, nul - start + 1))
+    return text
+
+
+def one_line(error: OrccadError) -> str:
+    """``file:line:col: message`` of ``error``, without the source excerpt (a binary file's
+    would be noise on the screen)."""
+    return f"{error.location}: {error.message}" if error.location else error.message
+
+
 def inspect_file(path: str, text: str | None = None) -> FileView:
     """Load, check and compile every mission of ``path`` (or of ``text``, an edited version of
     it); errors become diagnostics."""
-    from orccad_app.pipeline import load, read_source
+    from orccad_app.pipeline import load
 
     try:
         edited = text is not None
-        # a regular file within the source budget (never a FIFO or /dev/zero)
-        text = text if text is not None else read_source(path)
+        text = text if text is not None else source_text(path)
     except OrccadError as error:
-        return FileView(path, "", [FileDiagnostic("error", 0, 0, error.message)])
+        return FileView(path, "", [_diagnostic("error", error, path)])
     view = FileView(path, text)
     try:
         source = load(path, text=text if edited else None)
@@ -380,13 +403,14 @@ class LiveSession:
         when the user aborted it. The live run records no trace: a trace costs more than the
         run."""
 
-        from orccad_app.mission.injection import Injection
+        from orccad_app.mission.injection import Injection, PlantFault
 
         tick = self.run.tick_ns
         user = []
         for record in self.observer.injected:
             last = record.time_ns if record.until_ns is None else record.until_ns
-            user += [Injection(record.name, time_ns, record.value, record.fault)
+            fault = PlantFault.named(record.name) if record.fault else None
+            user += [Injection(record.name, time_ns, record.value, fault)
                      for time_ns in range(record.time_ns, last + 1, tick)]
         options = self.session.options
         replay = RunSession(self.session.source, self.session.mission, dataclasses.replace(

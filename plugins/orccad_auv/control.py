@@ -68,6 +68,11 @@ __all__ = ["DepthGuidance", "LosGuidance", "LawnmowerGuidance", "StationGuidance
 FAR_M = 1e9
 """``goal_error`` while the goal is not the current target [m]."""
 
+POSITION_BOUND_M = 1e6
+"""Largest |x|, |y| and depth of a waypoint, a station or an area [m], as the trajectories'
+positions: a farther one (``Waypoint([1e308, 0, 5])``) is refused, located, before the
+guidance squares it into an overflow."""
+
 
 def wrap(angle: float) -> float:
     """``angle`` in (-π, π] [rad]."""
@@ -85,7 +90,8 @@ _GUIDE_PORTS = (
     PortSpec("goal_error", "out", "vector", 1, True,
              "distance to the goal [m] (a vector: no value before the first job)"),
 )
-_DEPTH = ParamSpec("depth", "float", 10.0, "target depth [m]", 0.0)
+_DEPTH = ParamSpec("depth", "float", 10.0, "target depth [m]", 0.0,
+                   maximum=POSITION_BOUND_M)
 _SPEED = ParamSpec("speed", "float", 1.5, "cruise speed [m/s]", 0.0, True)
 _LOS = (ParamSpec("radius", "float", 3.0, "waypoint acceptance radius [m]", 0.0, True),
         ParamSpec("lookahead", "float", 6.0, "line-of-sight lookahead [m]", 0.0, True))
@@ -117,8 +123,10 @@ class LosGuidance(_Guidance):
 
     name = "los_guidance"
     summary = "AUV task function: line-of-sight to the waypoint (x, y) [m] at depth [m]"
-    params = (ParamSpec("x", "float", 0.0, "waypoint x [m]"),
-              ParamSpec("y", "float", 0.0, "waypoint y [m]"), _DEPTH, _SPEED) + _LOS
+    params = (ParamSpec("x", "float", 0.0, "waypoint x [m]", -POSITION_BOUND_M,
+                        maximum=POSITION_BOUND_M),
+              ParamSpec("y", "float", 0.0, "waypoint y [m]", -POSITION_BOUND_M,
+                        maximum=POSITION_BOUND_M), _DEPTH, _SPEED) + _LOS
 
     def waypoints(self, params: Mapping[str, Any]) -> list[tuple[float, float]]:
         return [(params["x"], params["y"])]
@@ -129,7 +137,8 @@ class LawnmowerGuidance(_Guidance):
 
     name = "lawnmower_guidance"
     summary = "AUV task function: lawnmower survey of area [x0, y0, x1, y1] [m] at depth"
-    params = (ParamSpec("area", "vector", [10.0, 0.0, 50.0, 20.0], "x0, y0, x1, y1 [m]"),
+    params = (ParamSpec("area", "vector", [10.0, 0.0, 50.0, 20.0], "x0, y0, x1, y1 [m]",
+                        -POSITION_BOUND_M, maximum=POSITION_BOUND_M),
               ParamSpec("spacing", "float", 10.0, "lane spacing [m]", 0.0, True),
               _DEPTH, _SPEED) + _LOS
 
@@ -152,14 +161,18 @@ class StationGuidance(_Guidance):
 
     name = "station_guidance"
     summary = "AUV task function: station keeping at (x, y) [m] and depth [m]"
-    params = (ParamSpec("x", "float", 0.0, "station x [m]"),
-              ParamSpec("y", "float", 0.0, "station y [m]"),
-              ParamSpec("depth", "float", 0.0, "station depth [m]", 0.0),
+    params = (ParamSpec("x", "float", 0.0, "station x [m]", -POSITION_BOUND_M,
+                        maximum=POSITION_BOUND_M),
+              ParamSpec("y", "float", 0.0, "station y [m]", -POSITION_BOUND_M,
+                        maximum=POSITION_BOUND_M),
+              ParamSpec("depth", "float", 0.0, "station depth [m]", 0.0,
+                        maximum=POSITION_BOUND_M),
               ParamSpec("gain", "float", 0.2, "position gain [1/s]", 0.0, True),
               ParamSpec("max_speed", "float", 0.5, "speed bound [m/s]", 0.0, True))
 
 
-_TARGET = ParamSpec("target", "vector", [10.0, 0.0, 10.0], "waypoint [x, y, depth] [m]")
+_TARGET = ParamSpec("target", "vector", [10.0, 0.0, 10.0], "waypoint [x, y, depth] [m]",
+                    -POSITION_BOUND_M, maximum=POSITION_BOUND_M)
 
 
 def _waypoint(kind: str, values: dict[str, Any]) -> dict[str, Any]:

@@ -12,6 +12,7 @@ from orccad_app.plugin_api import (
     ControlError,
     ModuleContext,
     ParamSpec,
+    TASK_ERROR,
     PortSpec,
     TaskFunction,
 )
@@ -28,7 +29,7 @@ def _norm(vector: Any) -> float:
 
 class _TrackingErrorMonitor(Monitor):
     def __call__(self, t_s: float, inputs: Mapping[str, Any]) -> tuple[bool, float] | None:
-        error = inputs.get("e")
+        error = inputs.get(TASK_ERROR)
         if error is None:
             q, qd = inputs.get("q"), inputs.get("qd")
             if q is None or qd is None:
@@ -44,10 +45,10 @@ class TrackingError(ObserverKind):
 
     name = "tracking_error"
     summary = "the task error's largest component exceeds max"
-    inputs = (PortSpec("e", "in", "vector", None, False, "task error e(q, t)"),
+    inputs = (PortSpec(TASK_ERROR, "in", "vector", None, False, "task error e(q, t)"),
               PortSpec("q", "in", "vector", None, False, "joint positions [rad]"),
               PortSpec("qd", "in", "vector", None, False, "desired positions [rad]"))
-    input_alternatives = (frozenset({"e"}), frozenset({"q", "qd"}))
+    input_alternatives = (frozenset({TASK_ERROR}), frozenset({"q", "qd"}))
     own_params = (ParamSpec("max", "float", REQUIRED, "error bound [rad or m]", 0.0, True),)
     monitor = _TrackingErrorMonitor
     c_implementation = TRACKING_ERROR_C
@@ -55,9 +56,9 @@ class TrackingError(ObserverKind):
     def input_dims(self, values: Mapping[str, Any], context: ModuleContext) -> dict[str, int]:
         dims = super().input_dims(values, context)
         if context.robot is not None and context.task_function is not None:
-            dims["e"] = context.task_function.build(context.robot).dim
+            dims[TASK_ERROR] = context.task_function.build(context.robot).dim
         else:
-            dims.pop("e", None)
+            dims.pop(TASK_ERROR, None)
         return dims
 
 

@@ -13,7 +13,7 @@ import pytest
 from orccad_app.cli import main
 from orccad_app.diagnostics import OrccadError
 from orccad_app.mission.plan import plan_mission
-from orccad_app.mission.injection import parse_injection
+from orccad_app.mission.injection import PlantFault, parse_injection
 from orccad_app.mission.run import MissionRun
 from orccad_app.pipeline import load, select_mission
 
@@ -108,9 +108,10 @@ def test_unknown_faults_and_robots_are_reported(plan):
 def test_fault_injection_syntax():
     fault = parse_injection("auv.battery=5%@60")
     assert (fault.name, fault.time_ns, fault.value, fault.fault) == (
-        "auv.battery", 60_000_000_000, 5, True)
+        "auv.battery", 60_000_000_000, 5, PlantFault("auv", "battery"))
     assert parse_injection("auv.leak = true @ 2.5s").value is True
-    assert not parse_injection("Stop@2").fault
+    assert parse_injection("Stop@2").fault is None
+    assert parse_injection("Dive.Leak@2").fault is None  # an observer event: a dot, no fault
     with pytest.raises(OrccadError, match="ROBOT.FAULT=VALUE@SECONDS"):
         parse_injection("auv.battery=low@60")
 

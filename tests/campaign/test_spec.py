@@ -8,6 +8,7 @@ import pytest
 from orccad_app.campaign.distributions import Kind, parse_distribution
 from orccad_app.campaign.spec import parse_spec
 from orccad_app.diagnostics import OrccadError
+from orccad_app.mission.injection import PlantFault
 
 from .conftest import AUV, LEAK_SPEC, orccad
 
@@ -41,7 +42,8 @@ def test_the_spec_is_read_with_its_entries():
     assert spec.mission == "AuvSurvey" and spec.until_s == 30.0 and spec.seed == 5
     assert [p.target for p in spec.params] == ["auv.cb_height_m"]
     inject, = spec.injections
-    assert (inject.name, inject.fault, inject.probability) == ("auv.leak", True, 0.3)
+    assert (inject.name, inject.fault, inject.probability) == (
+        "auv.leak", PlantFault("auv", "leak"), 0.3)
     assert inject.time.bounds == (8, 12) and inject.value.args == (1,)
     assert spec.checks[0].below == 30.0
 
@@ -50,6 +52,8 @@ def test_the_spec_is_read_with_its_entries():
     ("runs = 10\nfoo = 1\n", 2, "unknown key 'foo'"),
     ("[params]\n\"auv.x\" = \"U(2, 1)\"\n", 2, "lower bound exceeds"),
     ("[[inject]]\nevent = \"leak\"\n", 2, "bad event"),
+    ("[[inject]]\nevent = \"leak=1@3\"\n", 2, "a plant fault is ROBOT.FAULT"),
+    ("[[inject]]\nevent = \"auv.leak.x=1@3\"\n", 2, "a plant fault is ROBOT.FAULT"),
     ("[[inject]]\nevent = \"auv.leak=1@3\"\n[[inject]]\nevent = \"a@1\"\nprobability = 2\n",
      5, "probability must be"),
     ("[[check]]\nname = \"c\"\nmetric = \"depth\"\nbelow = 1\n", 3, "unknown metric"),

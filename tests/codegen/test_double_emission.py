@@ -57,3 +57,17 @@ def test_codegen_accepts_it_and_check_still_refuses_it(tmp_path, capsys):
     capsys.readouterr()
     assert orccad(["check", str(tmp_path / "p13.orc")]) == 2
     assert "emitted twice in one instant" in capsys.readouterr().err
+
+
+def test_a_second_emission_decided_by_data_fails_in_c_as_in_python(tmp_path):
+    """The case the compiler always deferred (a data test could rule it out): its C did not
+    compile before (the data action that only fails read no memory: an unused parameter)."""
+    (tmp_path / "d.orc").write_text(
+        "mission D {\n    input A;\n    output O : int;\n    var x := 0;\n"
+        "    loop { await A; x := x + 1;\n"
+        "        par { if x > 1 { emit O(1); } } || { if x > 2 { emit O(2); } } }\n}\n")
+    script = tmp_path / "d.in"
+    script.write_text("\nA\nA\nA\nA\n")
+    records = agree(make(tmp_path / "d.orc"), script)
+    assert [r.get("values") for r in records[:3]] == [{}, {}, {"O": 1}]
+    assert records[3]["instant"] == 4 and "emitted twice" in records[3]["error"]["message"]

@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 from orccad_app.cli import main as orccad
-from tests.codegen.cbuild import build
+from tests.codegen.cbuild import STRICT, build
 from tests.codegen.conftest import MISSIONS, generated
 
 
@@ -34,3 +34,15 @@ def test_a_script_that_is_not_a_regular_file_is_refused_as_react_does(kind, tmp_
         assert done.returncode == 2 and done.stdout == ""
         assert done.stderr == _react_error(str(script), capsys)
     assert "regular file" in done.stderr or "folder" in done.stderr or "no such" in done.stderr
+
+
+def test_the_program_builds_when_the_caller_picks_the_posix_level(tmp_path):
+    """``-D_POSIX_C_SOURCE=…`` on the command line is not redefined (a warning, an error
+    with -Werror)."""
+    binary = build(generated("abro", "ABRO").program,
+                   STRICT + ("-O0", "-D_POSIX_C_SOURCE=200809L"))
+    script = tmp_path / "s.in"
+    script.write_text("\nA B\n")
+    done = subprocess.run([str(binary), str(script)], capture_output=True, text=True,
+                          timeout=20)
+    assert done.returncode == 0 and '"outputs": ["O"]' in done.stdout

@@ -14,7 +14,7 @@ import pytest
 
 from orccad_app.cli import main as orccad
 from orccad_app.codegen.names import (LIBRARY_NAMES, SYSTEM_HEADERS, c_identifier,
-                                      default_prefix, reserved)
+                                      default_prefix, own_macros, reserved)
 from tests.codegen.cbuild import STRICT, compiler
 from tests.codegen.conftest import MISSIONS
 from tests.codegen.helpers import agree, make
@@ -115,6 +115,37 @@ def test_identifiers_keep_their_name_unless_reserved():
         "TrackPID_start", "Gripper", "s_NAN", "s_9lives", "Gripper_2"]
     assert not reserved("Estop") and reserved("ESTOP") and reserved("errno")
     assert {"NULL", "EOF", "errno", "stdin", "INFINITY", "NAN"} <= LIBRARY_NAMES
+
+
+def test_robot_task_and_exception_names_that_meet_as_a_macro(tmp_path):
+    """A Robot-Task ``INT64`` whose exception is ``MAX``: the composed input ``INT64.MAX`` is
+    ``INT64_MAX`` as a C identifier, the <stdint.h> macro."""
+    text = (MISSIONS / "arm_pid.orc").read_text()
+    (tmp_path / "m.orc").write_text(text.replace("TrackPID", "INT64")
+                                    .replace("TrackingLost", "MAX"))
+    (tmp_path / "m.in").write_text("\n\n\nINT64.MAX\n\n")
+    made = make(tmp_path / "m.orc")
+    assert "bool s_INT64_MAX; /* INT64.MAX: set when the observer of INT64's 'MAX' fires */" \
+        in made.program.header
+    records = agree(made, tmp_path / "m.in")
+    assert records[0]["outputs"] == ["INT64.start", "INT64.measure", "INT64.activate"]
+    assert (records[3]["outputs"], records[3]["status"], records[3]["reason"]) == (
+        ["MAX.raised"], "failed", "MAX")
+
+
+def test_a_signal_named_as_a_macro_of_the_header_itself(tmp_path):
+    """``ABRO_DONE`` is the header's own macro (the mission's status): a field of that name
+    was ``bool 1;``."""
+    (tmp_path / "abro.orc").write_text(
+        "mission ABRO { input ABRO_DONE, ORCCAD_GENERATED_COMMON; output ABRO_STATE_COUNT;\n"
+        "  loop { await ABRO_DONE or ORCCAD_GENERATED_COMMON; emit ABRO_STATE_COUNT; } }\n")
+    (tmp_path / "abro.in").write_text("\nABRO_DONE\nORCCAD_GENERATED_COMMON\n")
+    made = make(tmp_path / "abro.orc")
+    records = agree(made, tmp_path / "abro.in")
+    assert [r["outputs"] for r in records] == [[], ["ABRO_STATE_COUNT"], ["ABRO_STATE_COUNT"]]
+    defined = set(re.findall(r"#define (\w+)", made.program.header))
+    assert defined == own_macros("abro")
+    assert "bool s_ABRO_DONE; /* ABRO_DONE */" in made.program.header
 
 
 # ---------------------------------------------------------------- prefixes and file names

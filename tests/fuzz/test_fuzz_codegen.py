@@ -45,6 +45,7 @@ _HOSTILE_NAMES = sorted(set("""
     unused M_PI M_E FP_NAN st_mode S_IFREG EXIT_SUCCESS RAND_MAX isfinite isnan printf
     _Bool __STDC__ _X s_NAN s_int NAN_value s_NAN_value Nan nan nAN t1 e b st r i n0 a0 d0
     ORCCAD_ROLE_NONE orccad_signal_info orccad_error_info ck_add cmp_if ck_finite
+    MAIN_DONE M_RUNNING JSON_STATE_COUNT ORCCAD_GENERATED_COMMON ORCCAD_GENERATED_MAIN_H
 """.split()) - set(keywords()))
 
 #: mission names: each gives a prefix that must be usable (or the mission is renamed)

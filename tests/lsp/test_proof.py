@@ -162,3 +162,45 @@ async def test_signal_properties_are_left_to_runs(client):
         assert expected in verdict.message, verdict.message
         assert verdict.severity == types.DiagnosticSeverity.Information
     close_document(client, path)
+
+
+SMALL = """input Go;
+output Done;
+mission M { await Go; emit Done; }
+property M.done_after_go: always (Done -> once Go);
+"""
+
+
+@pytest.mark.parametrize("shape", ["uri", "identifier", "list"])
+async def test_the_check_command_takes_the_arguments_clients_send(client, tmp_path, shape):
+    """``[uri]`` (the shipped VS Code extension's), ``[{"uri": uri}]`` and ``[[uri]]``, for
+    a file in a folder whose name the URI escapes (a space)."""
+    folder = tmp_path / "my missions"
+    folder.mkdir()
+    path = folder / "small.orc"
+    path.write_text(SMALL)
+    assert await open_document(client, path) == []
+    target = uri(path)
+    assert "%20" in target
+    argument = {"uri": target, "identifier": {"uri": target}, "list": [target]}[shape]
+    since = len(client.published)
+    answer = await client.workspace_execute_command_async(types.ExecuteCommandParams(
+        command="orccad.check", arguments=[argument]))
+    assert answer == f"proof of {target} started"
+    verdicts = await _verdicts(client, path, since)
+    assert [d.message for d in verdicts.values()] == ["property M.done_after_go: proved"]
+    close_document(client, path)
+
+
+@pytest.mark.parametrize("arguments", [[], [5], [["a", "b"]], [{"path": "x"}], None])
+async def test_the_check_command_refuses_other_arguments_saying_what_it_takes(client,
+                                                                               arguments):
+    with pytest.raises(Exception, match=r"expected the URI of an open document"):
+        await client.workspace_execute_command_async(types.ExecuteCommandParams(
+            command="orccad.check", arguments=arguments))
+
+
+async def test_the_check_command_refuses_a_document_that_is_not_open(client, tmp_path):
+    with pytest.raises(Exception, match=r"is not an open document"):
+        await client.workspace_execute_command_async(types.ExecuteCommandParams(
+            command="orccad.check", arguments=[uri(tmp_path / "closed.orc")]))

@@ -1,7 +1,7 @@
 """The last Esterel v5 gaps (issue 28): ``pre(S)`` as a signal expression inside ``and`` /
 ``or`` conditions and counted triggers, ``pre(S)`` of a local inside ``suspend`` (suspended
 instants do not count), and a value read before, in sequence, its emission in the same instant
-(non-constructive: refused). Modeled on HipHop's Esterel v5 tests (``abortpre``,
+(non-causal: refused). Modeled on HipHop's Esterel v5 tests (``abortpre``,
 ``await-count-pre``, ``prepure``); the traces follow Esterel v5's semantics."""
 
 from __future__ import annotations
@@ -83,7 +83,7 @@ def test_pre_of_a_local_with_suspend_inside_its_scope_counts_every_instant():
 
 def test_a_value_read_in_sequence_before_its_emission_is_refused():
     body = "loop { emit O(?S); if A { emit S(3); } pause; }"
-    with pytest.raises(OrccadError, match="non-constructive program: [?]S is read here") as \
+    with pytest.raises(OrccadError, match="non-causal program: [?]S is read here") as \
             caught:
         compile_source(mission("input A; output O : int, S : int := 1;", body))
     assert caught.value.location.line == 3
@@ -91,7 +91,7 @@ def test_a_value_read_in_sequence_before_its_emission_is_refused():
 
 def test_a_variable_assigned_from_a_value_then_emitted_is_refused():
     body = "var x := ?S; emit S(x + 1); pause;"
-    with pytest.raises(OrccadError, match="non-constructive"):
+    with pytest.raises(OrccadError, match="non-causal"):
         compile_source(mission("output S : int := 0;", body))
 
 
@@ -115,4 +115,4 @@ def test_the_command_line_refuses_it_with_a_location_and_exit_2(tmp_path, capsys
                     encoding="utf-8")
     assert main(["compile", str(path)]) == 2
     err = capsys.readouterr().err
-    assert f"{path}:3:8: error: non-constructive program" in err
+    assert f"{path}:3:8: error: non-causal program" in err

@@ -55,9 +55,10 @@ def test_the_old_incarnation_keeps_its_value():
 
 def test_an_output_read_before_its_emission_after_the_loop_restarts_is_refused():
     # the read comes, in sequence, before the next iteration's emission of the same output:
-    # Esterel v5 rejects it as non-constructive (issue 28); a local is fresh instead (above)
+    # Esterel v5 rejects it as non-constructive, ORCCAD as non-causal (issue 28); a local
+    # is fresh instead (above)
     body = "loop { emit L(4); pause; emit S(?L + 5); }"
-    with pytest.raises(OrccadError, match="non-constructive program: [?]L is read here"):
+    with pytest.raises(OrccadError, match="non-causal program: [?]L is read here"):
         compile_source(mission("output L : int, S : int;", body))
 
 
@@ -85,3 +86,60 @@ def test_two_emissions_the_compiler_cannot_rule_out_fail_at_run_time():
         run.reactor.react({"A"})  # x = 3: both
     assert "emitted twice" in caught.value.message
     assert caught.value.location.line == 3
+
+
+# ------------------------------------------ issue 34 item 14: pre(?S) of a fresh local
+
+_PRE_TEST = """\
+loop {
+    signal Internal : int := -1 {
+        abort {
+            loop {
+                if pre(?Internal) == -1 { emit O(1); } else { emit O(2); }
+                if A { emit Internal(5); }
+                pause;
+            }
+        } when R;
+    }
+}"""
+
+
+def _lazy_outputs(source: str, script: list[str]) -> list[str]:
+    from orccad_app.lang.parser import parse
+    from orccad_app.reactive.lazy import LazyAutomaton
+    from orccad_app.reactive.lower import lower_mission
+    from orccad_app.reactive.runtime import Reactor
+    from orccad_app.reactive.script import parse_script
+
+    program = parse(source, "test.orc")
+    automaton = LazyAutomaton(lower_mission(program, program.missions[0]))
+    reactor = Reactor(automaton)
+    got = []
+    for instant in parse_script("\n".join(script) + "\n", "s.in", automaton.inputs):
+        reaction = reactor.react(instant.inputs, instant.time_ns)
+        got.append(" ".join(f"{o}({reaction.values[o]})" for o in reaction.outputs) or "-")
+    return got
+
+
+def test_pre_of_a_local_in_a_data_test_is_its_initial_value_in_its_first_instant():
+    # HipHop's preval and docs/language.md: pre(?S) is S's initial value in the first instant
+    # of its incarnation; it was a run-time error ("read before Internal ever had a value")
+    # at the first instant, and the old incarnation's last value after a restart
+    source = mission("input A, R; output O : int;", _PRE_TEST)
+    script = ["A", "", "R", "", "A", "", "R", ""]
+    expected = ["O(1)", "O(2)", "O(1)", "O(1)", "O(1)", "O(2)", "O(1)", "O(1)"]
+    assert outputs("input A, R; output O : int;", _PRE_TEST, script) == expected
+    assert _lazy_outputs(source, script) == expected
+    # in an emission it was already the initial value: both reads agree
+    emitted = _PRE_TEST.replace(
+        "if pre(?Internal) == -1 { emit O(1); } else { emit O(2); }", "emit O(pre(?Internal));")
+    assert outputs("input A, R; output O : int;", emitted, script) == \
+        ["O(-1)", "O(5)", "O(-1)", "O(-1)", "O(-1)", "O(5)", "O(-1)", "O(-1)"]
+
+
+def test_pre_of_a_local_without_initial_value_in_a_first_instant_test_is_a_located_error():
+    body = ("signal Internal : int { loop { if pre(?Internal) == -1 { emit O(1); } "
+            "pause; } }")
+    with pytest.raises(OrccadError, match="first instant of local signal Internal, which has "
+                                          "no initial value"):
+        outputs("output O : int;", body, [""])

@@ -107,6 +107,7 @@ def test_a_run_and_a_ros_2_peer_exchange_states_commands_inputs_and_outputs():
         session.close()
     assert run.returncode == 0, err  # Stop: the arm parks, the mission is done
     assert "1 inputs raised, 1 joint commands applied" in err
+    assert "no Zenoh router or peer" not in err  # this test's peer was reached
     message = store.deserialize_cdr(states[0][0], "sensor_msgs/msg/JointState")
     assert message.name == ["j1", "j2", "j3"] and len(message.position) == 3
     stamps = [read_attachment(a) for _, a in states]
@@ -147,3 +148,55 @@ def test_without_the_extra_the_option_says_what_to_install():
     assert result.returncode == 2, result.stderr
     assert "--ros2-zenoh needs the ros2 extra: pip install -e '.[ros2]'" in result.stderr
     assert "Traceback" not in result.stderr and result.stdout == ""
+
+
+@pytest.mark.parametrize("endpoint, said", [
+    ("tcp/127.0.0.1:99999", "the port must be a whole number in [1, 65535], not '99999'"),
+    ("tcp/127.0.0.1:0", "the port must be a whole number in [1, 65535], not '0'"),
+    ("tcp/127.0.0.1:-1", "the port must be a whole number in [1, 65535], not '-1'"),
+    ("tcp/127.0.0.1:abc", "the port must be a whole number in [1, 65535], not 'abc'"),
+    ("tcp/127.0.0.1", "the address has no port"),
+    ("tcp/:7447", "the address has no host"),
+    ("garbage", "not an endpoint"),
+    ("foo/1.2.3.4:7", "unknown protocol 'foo'"),
+])
+def test_a_bad_endpoint_is_a_located_error_before_the_file_is_read(endpoint, said, capsys):
+    """Issue 34 item 8: on main a port of 99999, 0, -1 or abc ran the mission silently (Zenoh
+    took the endpoint and never connected); 'garbage' printed Zenoh's Rust error with its
+    source paths."""
+    pytest.importorskip("zenoh", reason="the ros2 extra is not installed")
+    from orccad_app.cli import main
+
+    assert main(["run", "no-such-file.orc", "--ros2-zenoh", endpoint]) == 2
+    err = capsys.readouterr().err
+    assert f"orccad: error: --ros2-zenoh {endpoint}: {said}" in err
+    assert "no-such-file" not in err and ".rs:" not in err
+
+
+def test_good_endpoints_pass_and_zenoh_s_reason_loses_its_source_paths():
+    from orccad_app.ros2.endpoint import check_endpoint, zenoh_reason
+
+    for endpoint in ("tcp/127.0.0.1:7447", "tcp/[::1]:7447", "udp/router.local:7447",
+                     "tcp/127.0.0.1:7447?iface=lo", "unixsock-stream//tmp/zenoh.sock"):
+        assert check_endpoint(endpoint) == endpoint
+    raw = ('Json5Err(Message { msg: "Endpoints must be of the form <protocol>/<address>: '
+           'garbage at /root/.cargo/git/checkouts/zenoh/commons/endpoint.rs:615.", location: '
+           'Some(Location { line: 1, column: 2 }) }) at /root/.cargo/zenoh/src/config.rs:86.')
+    assert zenoh_reason(RuntimeError(raw)) == ("Endpoints must be of the form "
+                                               "<protocol>/<address>: garbage")
+    assert zenoh_reason(RuntimeError("invalid port value at /x/y/lib.rs:62.")) == \
+        "invalid port value"
+
+
+def test_a_run_with_no_router_or_peer_says_so_and_goes_on():
+    """Issue 34 item 8: on main it said only '0 inputs raised, 0 joint commands applied'."""
+    pytest.importorskip("zenoh", reason="the ros2 extra is not installed")
+    endpoint = f"tcp/127.0.0.1:{_free_port()}"  # nobody there
+    result = subprocess.run([sys.executable, "-m", "orccad_app", "run", "missions/arm_pid.orc",
+                             "--until", "0.3", "--realtime", "100", "--ros2-zenoh", endpoint],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1, result.stderr  # the mission's own status: timeout
+    assert (f"orccad: warning: --ros2-zenoh {endpoint}: no Zenoh router or peer reached"
+            in result.stderr)
+    assert (f"0 inputs raised, 0 joint commands applied; no Zenoh router or peer was reached "
+            f"at {endpoint}") in result.stderr

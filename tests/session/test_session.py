@@ -9,7 +9,7 @@ import pytest
 
 from orccad_app.cli import main
 from orccad_app.diagnostics import OrccadError
-from orccad_app.mission.injection import Injection, parse_injection
+from orccad_app.mission.injection import Injection, PlantFault, parse_injection
 from orccad_app.pipeline import load, select_mission
 from orccad_app.session import InputScript, RunOptions, RunSession, run_mission
 
@@ -62,7 +62,7 @@ def test_the_report_holds_the_injections_the_result_and_the_verdicts(recovery):
     (Injection("Gripper", 0, "x"), "Gripper carries a float"),
     (Injection("Nope", 0), "not an input of mission 'ArmRecovery'"),
     (Injection("Stop", 9_000_000_000), "after --until"),
-    (Injection("arm.leak", 0, float("nan"), fault=True), "finite number"),
+    (Injection("arm.leak", 0, float("nan"), fault=PlantFault("arm", "leak")), "finite number"),
 ])
 def test_bad_injections_are_refused_before_the_run(recovery, injection, message):
     with pytest.raises(OrccadError, match=message):

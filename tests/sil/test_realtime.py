@@ -299,24 +299,50 @@ def test_the_automaton_is_a_task_of_the_controller():
     assert len(lost) == 1 and lost[0] == 300_000_000  # handed ahead, taken at its tick
 
 
-def test_a_start_with_run_time_arguments_is_bound_by_the_supervisor():
-    """auv_waypoints: GoTo's target is a run-time argument (the Waypoint's value): the plant
-    server binds it and starts GoTo's Module-Tasks (START, PARAM, ACTIVATE), the automaton
-    task having reacted to the injected value."""
+def test_a_start_with_run_time_arguments_is_bound_by_the_controller():
+    """auv_waypoints: GoTo's target is a run-time argument (the Waypoint's value): the
+    automaton task binds it in C (the target's components copied into the guidance's
+    parameter words, checked) and starts GoTo's Module-Tasks itself: no START, PARAM or
+    ACTIVATE from the plant server, no parameter word written by the supervisor, and the
+    guidance computes with [15, 0, 5] (its words read back from the controller)."""
     from orccad_app.sil.controller.process import Op
 
     ops: list[Op] = []
+    words: list[tuple[float, ...]] = []
     inject = (parse_injection("Waypoint([15, 0, 5])@0.5"),)
     session = session_of("auv_waypoints.orc", execution=Execution.REALTIME, injections=inject,
                          until_s=1.2)
-    _spied(session.backend.controller, ops)
+    controller = session.backend.controller
+    _spied(controller, ops)
+    request, guide = controller.request, session.backend.table.index("GoTo.guide")
+
+    def sample(op, *args, **kwargs):
+        if op is Op.PING:
+            words.append(tuple(request(Op.PARAMS, guide)))
+        return request(op, *args, **kwargs)
+
+    controller.request = sample
     result = session.execute().result
     timings = {t.name: t for t in session.backend.timings}
     goto = result.robot_tasks[0]
     assert (goto.name, goto.start_ns, goto.args) == ("GoTo", 500_000_000,
                                                      {"target": [15.0, 0.0, 5.0]})
-    assert {Op.START, Op.PARAM, Op.ACTIVATE} <= set(ops)
+    assert not {Op.START, Op.PARAM, Op.ACTIVATE} & set(ops)
+    assert controller.supervisor_writes == 0
+    assert (words[-1][1], words[-1][3], words[-1][4]) == (5.0, 15.0, 0.0)  # depth, x, y
     assert timings["GoTo.pilot"].released >= 10
+
+
+def test_a_run_time_argument_the_checks_refuse_fails_the_run_located():
+    """A waypoint below the surface (depth < 0): the controller does not start GoTo, and the
+    supervisor, replaying the reaction, ends the run failed at the argument, as orccad run."""
+    inject = (parse_injection("Waypoint([15, 0, -1])@0.2"),)
+    session = session_of("auv_waypoints.orc", execution=Execution.REALTIME, injections=inject,
+                         until_s=0.6)
+    result = session.execute().result
+    assert result.status == "failed"
+    assert "run-time argument of GoTo: target = [15, 0, -1]" in result.reason
+    assert session.backend.controller.supervisor_writes == 0
 
 
 def test_a_constant_type_1_update_is_applied_by_the_automaton_task():

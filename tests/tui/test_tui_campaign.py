@@ -5,8 +5,11 @@ the same way."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sqlite3
+import subprocess
+import sys
 
 import pytest
 
@@ -192,3 +195,99 @@ def test_a_study_is_read_whatever_characters_its_path_holds(tmp_path):
     with pytest.raises(OrccadError, match="not an optuna study database"):
         read_study(str(text), SPEC, "bounded", 0.5, budget=2)
 
+
+
+def _hostile_databases(folder) -> dict[str, tuple[str, str]]:
+    """Files given as the console's ``--db``: name -> (path, what the screen says)."""
+    empty = folder / "empty.db"
+    empty.touch()
+    text = folder / "text.db"
+    text.write_text("not a database\n", encoding="utf-8")
+    other = folder / "other.db"
+    with contextlib.closing(sqlite3.connect(other)) as db:
+        db.execute("CREATE TABLE campaign (x)")
+        db.commit()
+    fifo = folder / "fifo.db"
+    os.mkfifo(fifo)
+    locked = folder / "locked.db"
+    with contextlib.closing(sqlite3.connect(locked)) as db:
+        db.execute("CREATE TABLE t (x)")
+        db.commit()
+    return {"empty": (str(empty), "an empty file, not a campaign database"),
+            "not SQLite": (str(text), "not an SQLite database (it does not begin with "
+                                      "SQLite's header), so not a campaign database"),
+            "another program's": (str(other), "not a campaign database (its table campaign "
+                                              "has the columns x"),
+            "a FIFO": (str(fifo), "a FIFO, not a regular file"),
+            "locked": (str(locked), "locked by another program (database is locked)")}
+
+
+@pytest.fixture
+def locker():
+    """Hold an exclusive lock on a database, as another program writing it does."""
+    held = []
+
+    def lock(path: str) -> None:
+        db = sqlite3.connect(path, isolation_level=None)
+        db.execute("BEGIN EXCLUSIVE")
+        held.append(db)
+
+    yield lock
+    for db in held:
+        db.close()
+
+
+def test_each_unreadable_database_is_one_located_message_and_nothing_is_written(
+        tmp_path, locker, monkeypatch):
+    """Issue 34 item 10: on main the empty and the non-SQLite file said 'no table campaign'
+    and 'file is not a database', the FIFO 'no such file', the locked one 'not a campaign
+    database (database is locked)', and reading a campaign's database left its -wal and -shm
+    beside it."""
+    from orccad_app.tui import campaigns
+
+    monkeypatch.setattr(campaigns, "LOCK_WAIT_S", 0.05)
+    hostile = _hostile_databases(tmp_path)
+    locker(hostile["locked"][0])
+    real = tmp_path / "campaign.db"
+    CampaignStore(str(real)).close()  # a WAL database, its writer gone
+    before = sorted(p.name for p in tmp_path.iterdir())
+    for name, (path, said) in hostile.items():
+        with pytest.raises(OrccadError) as refused:
+            read_campaign(path)
+        assert refused.value.message.startswith(f"{path}: {said}"), name
+    with pytest.raises(OrccadError, match="no campaign recorded in it"):
+        read_campaign(str(real))
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # no -wal, no -shm
+
+
+@pytest.mark.parametrize("name", ["empty", "not SQLite", "another program's", "a FIFO",
+                                  "locked"])
+@pilot_test
+async def test_the_console_opened_on_an_unreadable_database_says_so_once(tmp_path, locker,
+                                                                        monkeypatch, name):
+    from orccad_app.tui import campaigns
+
+    monkeypatch.setattr(campaigns, "LOCK_WAIT_S", 0.05)
+    path, said = _hostile_databases(tmp_path)[name]
+    if name == "locked":
+        locker(path)
+    app = OrccadApp([], campaign={"db": path})
+    async with app.run_test(size=SIZE) as pilot:
+        await _until(pilot, lambda: bool(app._notifications),
+                     describe=lambda: _text(app.screen, "#campaign-status"))
+        await pilot.pause(0.3)  # a second message would come by now
+        messages = [n.message for n in app._notifications]
+        assert len(messages) == 1 and f"{path}: {said}" in messages[0], messages
+        assert "Traceback" not in messages[0]
+        status = _text(app.screen, "#campaign-status")
+        assert "missions/" not in status  # the database's own mission, not the browser's
+
+
+def test_orccad_tui_db_on_a_fifo_is_bad_input_said_as_such(tmp_path):
+    fifo = tmp_path / "fifo.db"
+    os.mkfifo(fifo)
+    result = subprocess.run([sys.executable, "-m", "orccad_app", "tui", "--db", str(fifo)],
+                            capture_output=True, text=True, timeout=60,
+                            stdin=subprocess.DEVNULL)
+    assert result.returncode == 2
+    assert f"--db {fifo}: a FIFO, not a regular file" in result.stderr

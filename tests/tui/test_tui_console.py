@@ -4,6 +4,7 @@ preview in the browser, the editor with live diagnostics, the safe export."""
 
 from __future__ import annotations
 
+import os
 import shutil
 from pathlib import Path
 
@@ -296,3 +297,52 @@ async def test_export_asks_before_overwriting_and_writes_atomically(tmp_path):
         await _until(pilot, lambda: not report.exporting and target.read_text() != "precious")
         assert target.read_text().startswith("time_ns,event,module,port,job,value")
         assert sorted(p.name for p in tmp_path.iterdir()) == ["run.csv"]  # no partial file
+
+
+def _hostile_files(folder: Path) -> dict[str, tuple[Path, str]]:
+    """Files the console is given: name -> (path, the located message it shows)."""
+    binary = folder / "binary.orc"
+    binary.write_bytes(b"mission M {\x89PNG\r\n\x1a\n\x00\x00\xff garbage")
+    latin = folder / "latin.orc"
+    latin.write_bytes("mission M { output Ö; emit Ö; }\n".encode("latin-1"))
+    nul = folder / "nul.orc"
+    nul.write_bytes(b"mission M {\n  output O;\x00 emit O; }\n")
+    fifo = folder / "fifo.orc"
+    os.mkfifo(fifo)
+    importer = folder / "imports_a_fifo.orc"
+    importer.write_text('from "fifo.orc" import X;\nmission M { run mission X; }\n')
+    return {"binary": (binary, "1:12: error: not UTF-8 text: byte 0x89 cannot be decoded"),
+            "latin-1": (latin, "1:20: error: not UTF-8 text: byte 0xd6 cannot be decoded"),
+            "NUL": (nul, "2:12: error: a binary file (it holds a NUL byte)"),
+            "a FIFO": (fifo, f"error: {fifo}: a FIFO, not a regular file"),
+            "an import of a FIFO": (importer, f'1:6: error: cannot import "fifo.orc": {fifo}: '
+                                              "a FIFO, not a regular file")}
+
+
+@pilot_test
+async def test_a_binary_file_or_an_import_of_a_fifo_is_one_located_message(tmp_path):
+    """Issue 34 item 13: on main, ctrl+e on a binary or Latin-1 file ended the console with
+    Textual's crash report of a UnicodeDecodeError, on a FIFO it hung the console, and the
+    browser said 'not UTF-8 text' without the place."""
+    hostile = _hostile_files(tmp_path)
+    app = OrccadApp([str(tmp_path)], selected=str(hostile["binary"][0]))
+    async with app.run_test(size=SIZE) as pilot:
+        browser = app.screen
+        assert isinstance(browser, BrowserScreen)
+        for name, (path, said) in hostile.items():
+            browser.open(str(path))
+            await pilot.pause()
+            summary = browser.query_one("#summary-text").text
+            assert summary.startswith(said), (name, summary)
+            assert "codec" not in summary and "Traceback" not in summary
+            if name == "an import of a FIFO":
+                continue  # a file that reads: the editor opens, its diagnostics say it
+            app.clear_notifications()
+            await pilot.press("ctrl+e")
+            await pilot.pause()
+            assert app.screen is browser, name  # the editor did not open
+            messages = [n.message for n in app._notifications]
+            assert len(messages) == 1 and messages[0].startswith("cannot edit "), messages
+            assert said.removeprefix("error: ").split(": error: ")[-1] in messages[0]
+            assert "\n" not in messages[0] and "codec" not in messages[0]
+    assert app.return_code in (None, 0)  # no crash report

@@ -58,15 +58,24 @@ static uint32_t compute(orc_mt *m, double t_s)
     return (uint32_t)n;
 }
 
+/* The lockstep loop on socket `fd` (its own main, or the combined controller's `--fd N
+ * --lockstep`: orccad_rt_main.c built with ORC_COMBINED_MAIN, `orccad codegen --controller`). */
+int orc_lockstep_main(int fd);
+
+#ifndef ORC_COMBINED_MAIN
 int main(int argc, char **argv)
 {
-    int fd;
-    orc_request req;
     if (argc != 3 || strcmp(argv[1], "--fd") != 0) {
         fprintf(stderr, "usage: %s --fd N (started by orccad sil)\n", argv[0]);
         return 2;
     }
-    fd = atoi(argv[2]);
+    return orc_lockstep_main(atoi(argv[2]));
+}
+#endif
+
+int orc_lockstep_main(int fd)
+{
+    orc_request req;
     for (;;) {
         orc_mt *m = NULL;
         uint32_t n;

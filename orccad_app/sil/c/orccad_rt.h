@@ -62,6 +62,9 @@ void *orc_automaton_task(void *unused);
 void orc_automaton_release(int m, int64_t release_ns);
 /* OP_EPOCH: the run's t = 0 is set, the task starts reacting at its ticks. */
 void orc_automaton_start(void);
+/* The mission's status after the task's last reaction (0 running, 1 done, 2 failed,
+ * 3 aborted; -1: a run-time error of the mission ended the reactions); under the lock. */
+int orc_automaton_status(void);
 /* OP_INPUT: inputs for the first reaction at or after their instant (`n` words: the instant
  * [ns], then the inputs' words of a reaction, orccad_automaton.h); 0, or the refusal. */
 uint32_t orc_automaton_input(const double *words, uint32_t n);

@@ -10,13 +10,14 @@
  * their instant; an input already present in the reaction waits for the next one. After a
  * reaction the task applies what it decided, as the mission layer does: the type-1 updates
  * (constant, computed, ramps stepped at the Module-Task's releases: orccad_app/sil/adjust.py)
- * and the Robot-Tasks' lifecycle (starts, kills, activations) of the sites without run-time
- * arguments. Each reaction — its request's and its reply's words, orccad_automaton.h — is
+ * and the Robot-Tasks' lifecycle (starts, kills, activations) of the sites, their run-time
+ * arguments bound where the generator found how (plain copies, checked). Each reaction — its request's and its reply's words, orccad_automaton.h — is
  * published through orc_io_reaction (SIL: a ring in the shared memory, from which the
  * supervisor rebuilds the report and applies what is left to it). A negative step (a run-time
  * error of the mission) is published and ends the reactions. C99 + POSIX threads; no
  * allocation. */
 #define _POSIX_C_SOURCE 200809L
+#include <float.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -35,7 +36,7 @@ static int64_t consumed[ORC_AUTOMATON_N_EVENTS + 1];           /* events already
 static double queued[MAX_QUEUED][ORC_AUTOMATON_IN_WORDS];      /* word 0: due instant [ns] */
 static int n_queued;
 static double request[ORC_AUTOMATON_IN_WORDS], reply[ORC_AUTOMATON_OUT_WORDS];
-static int started, failed;
+static int started, failed, mission_status;
 static int64_t last_clock = -1;
 
 /* The run sites whose lifecycle the task applies: {managed, start output's presence word in
@@ -58,6 +59,38 @@ static struct {
     int64_t t0_ns;
     double start, end;
 } ramps[ORC_AUTOMATON_N_ADJUSTS + 1];
+
+/* The run-time arguments the task binds at a start (orccad_app/sil/generate/binds.py): {site,
+ * the component's word in the reply, Module-Task, parameter word} (a plain copy), and the
+ * checks {site, word} of each component: finite, in [low, high]. */
+static const int binds[][4] = ORC_AUTOMATON_BINDS;
+static const int bind_checks[][2] = ORC_AUTOMATON_BIND_CHECKS;
+static const double bind_lows[] = ORC_AUTOMATON_BIND_LOWS;
+static const double bind_highs[] = ORC_AUTOMATON_BIND_HIGHS;
+
+/* Site s's run-time arguments in this reaction's reply pass their checks. */
+static int arguments_valid(int s)
+{
+    int i;
+    for (i = 0; i < ORC_AUTOMATON_N_BIND_CHECKS; i++) {
+        double v = reply[bind_checks[i][1]];
+        if (bind_checks[i][0] == s && !(isfinite(v) && v >= bind_lows[i] && v <= bind_highs[i])) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Copy site s's run-time arguments into its fresh Module-Tasks' parameter words. */
+static void bind_arguments(int s)
+{
+    int i;
+    for (i = 0; i < ORC_AUTOMATON_N_BINDS; i++) {
+        if (binds[i][0] == s) {
+            (void)orc_rt_set_params(binds[i][2], binds[i][3], &reply[binds[i][1]], 1);
+        }
+    }
+}
 
 /* Update a's computed value (which 0), or its ramp's start (0) and end (1), from the current
  * parameter words; *ok = 0 when the computation refuses. */
@@ -271,6 +304,10 @@ static void lifecycle(int64_t release_ns)
         if (!sites[s][0]) {
             continue;
         }
+        if (starting && !arguments_valid(s)) { /* refused: the mission fails, as in the */
+            failed = 1;                        /* mission layer (the supervisor says why) */
+            return;
+        }
         for (i = first; i < first + count; i++) {
             int m = site_modules[i];
             if (orc_rt_active(m) && (restart || !wanted(s, phase, m))) {
@@ -280,6 +317,9 @@ static void lifecycle(int64_t release_ns)
         for (i = first; starting && i < first + count; i++) {
             orc_rt_fresh(site_modules[i]);
             orc_rt_reset_ports(site_modules[i]);
+        }
+        if (starting) {
+            bind_arguments(s);
         }
         for (i = first; i < first + count; i++) {
             int m = site_modules[i];
@@ -311,12 +351,21 @@ static void react(int64_t clock)
     }
     last_clock = clock;
     failed = orc_word_int(&reply[0]) < 0;
+    mission_status = failed ? -1 : (int)orc_word_int(&reply[0]);
     if (!failed) {
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
         adjust(clock);
         lifecycle(at > now ? at : now);
+        if (failed) {
+            mission_status = -1;
+        }
     }
     orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
+}
+
+int orc_automaton_status(void)
+{
+    return failed && mission_status >= 0 ? -1 : mission_status;
 }
 
 void *orc_automaton_task(void *unused)

@@ -1,15 +1,28 @@
-/* orccad_rt_main.c: the real-time controller's commands thread (its main): the socket to the
- * supervisor (file descriptor after --fd; the frames of orccad_wire.h), the robot's I/O opened
- * (--io), the processor threads and the automaton task started, every request applied under
- * the runtime's lock (orccad_rt.h), and the threads stopped and joined when the supervisor
- * quits or is gone. C99 + POSIX threads; no allocation. */
+/* orccad_rt_main.c: the real-time controller's main, configured from its command line:
+ *
+ *   controller --fd N --io WHERE   supervised (orccad sil --realtime): the commands thread
+ *                                  reads the supervisor's socket (file descriptor N; the
+ *                                  frames of orccad_wire.h), the robot's I/O opened at WHERE
+ *   controller --io WHERE [--until S]
+ *                                  alone, on the robot: the I/O opened at WHERE, the run's
+ *                                  t = 0 now, the mission run to its end (or S seconds, or
+ *                                  SIGINT/SIGTERM); exit 0 done, 1 failed/aborted/timeout,
+ *                                  130 interrupted, 2 it cannot start
+ *   controller --fd N --lockstep   (built with ORC_COMBINED_MAIN: orccad codegen --controller)
+ *                                  the lockstep loop of orccad_lockstep.c
+ *
+ * The processor threads and the automaton task are started, every request applied under the
+ * runtime's lock (orccad_rt.h), and the threads stopped and joined when the supervisor quits
+ * or is gone (or the mission ends, alone). C99 + POSIX threads; no allocation. */
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
 #include <sched.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "orccad_automaton.h"
 #include "orccad_io.h"
@@ -95,20 +108,112 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
     }
 }
 
+#ifdef ORC_COMBINED_MAIN
+int orc_lockstep_main(int fd);
+#endif
+
+static volatile sig_atomic_t interrupted;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+/* Alone on the robot: t = 0 now, the mission run until it ends, `until_s` passes or a
+ * signal comes; the exit status (see the top of this file). */
+static int run_alone(double until_s)
+{
+    static const char *const said[] = {"running", "done", "failed", "aborted"};
+    struct sigaction action;
+    struct timespec pause;
+    int64_t start;
+    int status = 0;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    (void)sigaction(SIGINT, &action, NULL);
+    (void)sigaction(SIGTERM, &action, NULL);
+    pthread_mutex_lock(&orc_rt_lock);
+    orc_rt_take_epoch();
+    orc_automaton_start();
+    start = orc_rt_now_ns();
+    pthread_cond_broadcast(&orc_rt_changed);
+    pthread_mutex_unlock(&orc_rt_lock);
+    pause.tv_sec = 0;
+    pause.tv_nsec = 10000000L;
+    while (!interrupted && status == 0
+           && (until_s <= 0.0 || (double)(orc_rt_now_ns() - start) < until_s * 1e9)) {
+        nanosleep(&pause, NULL);
+        pthread_mutex_lock(&orc_rt_lock);
+        status = orc_automaton_status();
+        pthread_mutex_unlock(&orc_rt_lock);
+    }
+    if (interrupted) {
+        fprintf(stderr, "orccad controller: interrupted\n");
+        return 130;
+    }
+    if (status < 0) {
+        fprintf(stderr, "orccad controller: mission failed: a run-time error of the mission\n");
+        return 1;
+    }
+    if (status == 0) {
+        fprintf(stderr, "orccad controller: mission timeout after %g s\n", until_s);
+        return 1;
+    }
+    fprintf(stderr, "orccad controller: mission %s after %.3f s\n", said[status & 3],
+            (double)(orc_rt_now_ns() - start) / 1e9);
+    return status == 1 ? 0 : 1;
+}
+
+static int usage(const char *name)
+{
+    fprintf(stderr, "usage: %s --io WHERE [--until S]    (alone, on the robot)\n"
+                    "       %s --fd N --io WHERE        (started by orccad sil --realtime)\n",
+            name, name);
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
     pthread_t threads[ORC_RT_MAX_PROCESSORS], automaton;
-    int fd, p, warned = 0, status = 0;
+    int fd = -1, p, i, warned = 0, status = 0;
+    const char *io = NULL;
+    double until_s = 0.0;
     orc_request req;
     static double answer[MAX_ANSWER];
-    if (argc != 5 || strcmp(argv[1], "--fd") != 0 || strcmp(argv[3], "--io") != 0) {
-        fprintf(stderr, "usage: %s --fd N --io WHERE (started by orccad sil --realtime)\n",
-                argv[0]);
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--fd") == 0 && i + 1 < argc) {
+            fd = atoi(argv[++i]);
+        } else if (strcmp(argv[i], "--io") == 0 && i + 1 < argc) {
+            io = argv[++i];
+        } else if (strcmp(argv[i], "--until") == 0 && i + 1 < argc) {
+            char *end;
+            until_s = strtod(argv[++i], &end);
+            if (*end != '\0' || !(until_s > 0.0 && until_s <= 31536000.0)) {
+                fprintf(stderr, "%s: --until %s: expected seconds in (0, 31536000]\n",
+                        argv[0], argv[i]);
+                return 2;
+            }
+#ifdef ORC_COMBINED_MAIN
+        } else if (strcmp(argv[i], "--lockstep") == 0 && fd >= 0 && io == NULL) {
+            return orc_lockstep_main(fd);
+#endif
+        } else {
+            return usage(argv[0]);
+        }
+    }
+    if (io == NULL || (fd >= 0 && until_s > 0.0)) {
+        return usage(argv[0]);
+    }
+    if (fd < 0 && ORC_AUTOMATON_SUPERVISOR[0] != '\0') {
+        fprintf(stderr, "%s: this mission still needs ORCCAD's supervisor (orccad sil "
+                        "--realtime): %s (docs/deploy.md, Limits)\n", argv[0],
+                ORC_AUTOMATON_SUPERVISOR);
         return 2;
     }
-    fd = atoi(argv[2]);
-    if (orc_io_open(argv[4]) != 0) {
-        fprintf(stderr, "orccad_rt: the robot's I/O cannot start (%s)\n", argv[4]);
+    if (orc_io_open(io) != 0) {
+        fprintf(stderr, "orccad_rt: the robot's I/O cannot start (%s)\n", io);
         return 2;
     }
     if (orc_rt_setup() != 0) {
@@ -132,7 +237,10 @@ int main(int argc, char **argv)
         command_param.sched_priority = 70;
         (void)pthread_setschedparam(pthread_self(), SCHED_FIFO, &command_param);
     }
-    for (;;) {
+    if (fd < 0) {
+        status = run_alone(until_s);
+    }
+    for (; fd >= 0;) {
         uint32_t n, code;
         if (orc_wire_read(fd, &req, sizeof req) != 0 || req.n > MAX_DOUBLES
             || orc_wire_read(fd, data_in, req.n * sizeof(double)) != 0) {

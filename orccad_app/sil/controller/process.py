@@ -99,17 +99,22 @@ class ControllerProcess:
     :param modules: the number of Module-Tasks of its table.
     :param digest: the table's digest, which the controller must answer.
     :param heartbeat_s: the longest wait for one reply [wall s].
+    :param arguments: its arguments after ``--fd N``.
+    :param wrapper: a command that runs it (``qemu-aarch64`` for a cross-built controller).
     """
 
     def __init__(self, executable: Path, modules: int, digest: str,
                  heartbeat_s: float = DEFAULT_HEARTBEAT_S,
-                 arguments: tuple[str, ...] = ()) -> None:
+                 arguments: tuple[str, ...] = (), wrapper: tuple[str, ...] = ()) -> None:
         self.heartbeat_s = heartbeat_s
         self.failure: str | None = None
+        self.supervisor_writes = 0
+        """Parameter words the supervisor wrote into the controller (``PARAM``: run-time
+        arguments and type-1 updates the controller does not apply itself)."""
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_STREAM)
         try:
             self.process = subprocess.Popen(
-                [str(executable), "--fd", str(theirs.fileno()), *arguments],
+                [*wrapper, str(executable), "--fd", str(theirs.fileno()), *arguments],
                 pass_fds=[theirs.fileno()],
                 stdin=subprocess.DEVNULL, start_new_session=True)
         except OSError as error:

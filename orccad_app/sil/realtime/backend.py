@@ -54,12 +54,13 @@ from orccad_app.mission.plan import MissionPlan
 from orccad_app.mission.reactor import MissionReactor
 from orccad_app.mission.result import RunResult
 from orccad_app.mission.run import ReactionError
-from orccad_app.sil.build.executable import build_controller
+from orccad_app.sil.build.executable import Prebuilt, build_controller, controller_table
 from orccad_app.sil.controller.automaton import ControllerAutomaton
 from orccad_app.sil.controller.process import (DEFAULT_HEARTBEAT_S, ControllerFailure,
                                               ControllerProcess, Op)
 from orccad_app.sil.controller.remote import ControllerRun, RemoteModule, remote_plan
 from orccad_app.sil.generate.adjust import c_adjustments, c_owned_words
+from orccad_app.sil.generate.binds import c_binds
 from orccad_app.sil.generate.automaton import (MissionProgram, managed_sites, mission_automaton,
                                               reaction_words)
 from orccad_app.sil.generate.library import C_DIR
@@ -135,6 +136,8 @@ class RealtimeBackend:
     :param source: the mission file (named in the generated sources).
     :param build_dir: where the generated C goes (default a temporary directory).
     :param heartbeat_s: the controller must answer each request within this [s].
+    :param prebuilt: a controller built from ``orccad codegen --controller``'s tree, run
+        instead of building one.
     """
 
     pacing: float | None = 1.0
@@ -143,11 +146,12 @@ class RealtimeBackend:
     """No tick here: the automaton task reacts at its own ticks in the controller."""
 
     def __init__(self, plan: MissionPlan, source: str, build_dir: Path | None = None,
-                 heartbeat_s: float = DEFAULT_HEARTBEAT_S) -> None:
+                 heartbeat_s: float = DEFAULT_HEARTBEAT_S,
+                 prebuilt: Prebuilt | None = None) -> None:
         self._mission = mission_automaton(plan)
         self._stack = ExitStack()
         started, self._shared = self._stack.enter_context(
-            realtime(plan, source, build_dir, heartbeat_s, self._mission))
+            realtime(plan, source, build_dir, heartbeat_s, self._mission, prebuilt))
         self.table, self.controller = started.table, started.controller
         """The controller's generated table (a Module-Task's index: ``table.index(name)``)
         and the controller process."""
@@ -445,28 +449,38 @@ def _predicted_response_s(plan: MissionPlan) -> dict[str, float]:
 
 @contextmanager
 def realtime(plan: MissionPlan, source: str, build_dir: Path | None = None,
-             heartbeat_s: float = DEFAULT_HEARTBEAT_S, automaton: MissionProgram | None = None
+             heartbeat_s: float = DEFAULT_HEARTBEAT_S, automaton: MissionProgram | None = None,
+             prebuilt: Prebuilt | None = None
              ) -> Iterator[tuple[ControllerRun, SharedMemory]]:
     """While in the block, the real-time controller of ``plan`` runs (its threads idle until
     activated), the mission's ``automaton`` linked in; the block gets it, the plan a run of
     it runs (a copy: :func:`~orccad_app.sil.controller.remote.remote_plan`) and the shared
     memory. Ended, reaped and its shared memory removed when the block ends."""
     automaton = automaton or mission_automaton(plan)
-    with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
-        table, executable = build_controller(plan, source, build_dir or Path(scratch),
-                                             automaton.program, "orccad_rt.c",
-                                             (C_DIR / "orccad_io_shm.c",), ("-lm", "-pthread"))
+    if prebuilt is not None:
+        table, executable = controller_table(plan, automaton.program), prebuilt.executable
+    else:
+        with tempfile.TemporaryDirectory(prefix="orccad-sil-") as scratch:
+            table, executable = build_controller(plan, source, build_dir or Path(scratch),
+                                                 automaton.program, "orccad_rt.c",
+                                                 (C_DIR / "orccad_io_shm.c",),
+                                                 ("-lm", "-pthread"))
     shared = SharedMemory(len(table.robot_ports), len(table.entries),
                           reaction_words(automaton.program))
     try:
         controller = ControllerProcess(executable, len(table.entries), table.digest,
-                                       heartbeat_s, ("--io", shared.path))
+                                       heartbeat_s, ("--io", shared.path),
+                                       prebuilt.wrapper if prebuilt is not None else ())
         shared.unlink()  # the controller answered HELLO: it has mapped the file
         try:
             managed = managed_sites(plan)
             owned = c_owned_words(c_adjustments(plan, table, managed), table)
+            bound: dict[str, set[int]] = {}
+            for bind in c_binds(plan)[0]:
+                bound.setdefault(bind.module, set()).add(bind.offset)
             yield ControllerRun(controller, table, remote_plan(
-                plan, automaton.automaton, table, controller, managed, owned)), shared
+                plan, automaton.automaton, table, controller, managed, owned,
+                {name: frozenset(words) for name, words in bound.items()})), shared
         finally:
             controller.close()
     finally:

@@ -14,9 +14,11 @@ from textual.widgets import (Button, Footer, Header, Input, Label, ListItem, Lis
                              OptionList, Select, Static, TabbedContent, TabPane, TextArea)
 from textual.widgets.option_list import Option
 
+from orccad_app.diagnostics import OrccadError
 from orccad_app.tui.messages import CheckDone
 from orccad_app.tui.session import (FileView, ScriptedInputs, check_file, check_text,
-                                    failed_outcomes, inspect_file)
+                                    failed_outcomes, inspect_file, one_line,
+                                    source_text)
 from orccad_app.tui.widgets.source_view import SourceView
 from orccad_app.tui.screens import orccad
 
@@ -174,11 +176,17 @@ class BrowserScreen(Screen):
             return
         from orccad_app.tui.screens.editor import EditorScreen
 
+        try:
+            text = source_text(self.selected)  # a binary file or a FIFO is never opened
+        except OrccadError as error:
+            self.notify(f"cannot edit {one_line(error)}", severity="error", timeout=10)
+            return
+
         def edited(saved: bool | None) -> None:
             if saved and self.selected is not None:
                 self.open(self.selected)
 
-        self.app.push_screen(EditorScreen(self.selected), edited)
+        self.app.push_screen(EditorScreen(self.selected, text), edited)
 
     @on(Select.Changed, "#mission")
     def _mission_changed(self) -> None:

@@ -11,6 +11,7 @@ the screen stops it as Ctrl-C does, leaving the database resumable (``s`` resume
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from textual import on, work
@@ -22,6 +23,7 @@ from textual.screen import Screen
 from textual.widgets import Button, DataTable, Footer, Header, Input, Label, Static
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.pipeline import require_regular_file
 from orccad_app.reactive.status import MissionStatus
 from orccad_app.tui.campaigns import (Bin, CampaignSnapshot, Candidate, FalsifySnapshot,
                                       SearchProcess, default_db, read_campaign, read_study)
@@ -121,7 +123,7 @@ class CampaignScreen(Screen):
         self.query_one("#candidates").border_title = "runs to replay (enter)"
         self._show_mode()
         self._status()
-        if self.db and Path(self.db).is_file():
+        if self.db and os.path.lexists(self.db):
             self.action_open()
         self.set_interval(REFRESH_S, self._tick)
 
@@ -176,8 +178,13 @@ class CampaignScreen(Screen):
                         severity="error")
             return
         spec, db = self._field("spec"), self._field("db")
-        if not spec or not Path(spec).is_file():
-            self.notify(f"spec: no such file {spec!r}", severity="error")
+        if not spec:
+            self.notify("type the campaign spec's path", severity="error")
+            return
+        try:
+            require_regular_file(spec)  # missing, a folder, a FIFO: said as such
+        except OrccadError as error:
+            self.notify(f"spec: {error.message}", severity="error")
             return
         if not db:
             self.notify("type the database's path", severity="error")
@@ -226,10 +233,10 @@ class CampaignScreen(Screen):
     def action_open(self) -> None:
         """Read the database in the field now (nothing runs)."""
         self.db = self._field("db")
-        if not self.db or not Path(self.db).is_file():
-            self.notify(f"db: no such file {self.db!r}", severity="error")
+        if not self.db:
+            self.notify("type the database's path", severity="error")
             return
-        self._read()
+        self._read()  # what is wrong with the file, if anything, is said by the read
 
     def action_back(self) -> None:
         self._close()

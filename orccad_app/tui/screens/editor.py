@@ -17,7 +17,9 @@ from textual.widgets import Footer, Header, OptionList, TextArea
 from textual.widgets._text_area import TextAreaTheme
 from textual.widgets.option_list import Option
 
-from orccad_app.tui.session import FileView, inspect_text, write_atomically
+from orccad_app.diagnostics import OrccadError
+from orccad_app.tui.session import (FileView, inspect_text, one_line, source_text,
+                                    write_atomically)
 from orccad_app.tui.widgets.orc_lexer import OrcLexer
 
 __all__ = ["EditorScreen", "OrcTextArea"]
@@ -90,10 +92,12 @@ class EditorScreen(Screen[bool]):
     EditorScreen #diagnostics { height: 7; border-top: solid $primary; }
     """
 
-    def __init__(self, path: str) -> None:
+    def __init__(self, path: str, text: str) -> None:
+        """Edit ``path``, whose text ``text`` was read by
+        :func:`~orccad_app.tui.session.source_text` (never a binary file or a FIFO)."""
         super().__init__()
         self.path = path
-        self.saved_text = Path(path).read_text(encoding="utf-8")
+        self.saved_text = text
         self.diagnostics: list = []
         self.saved = False
         self._mtime = Path(path).stat().st_mtime_ns
@@ -221,7 +225,11 @@ class EditorScreen(Screen[bool]):
             self.action_reload()
 
     def action_reload(self) -> None:
-        text = Path(self.path).read_text(encoding="utf-8")
+        try:
+            text = source_text(self.path)  # replaced on disk by a binary file: said, kept
+        except OrccadError as error:
+            self.notify(f"cannot reload {one_line(error)}", severity="error", timeout=10)
+            return
         self.saved_text = text
         self.query_one(OrcTextArea).load_text(text)
         self._sub_title()
