@@ -275,6 +275,14 @@ void orc_automaton_release(int m, int64_t release_ns)
         if (!ramps[a].on || adjusts[a][2] != m || since <= 0) {
             continue;
         }
+        if (ORC_MODULES[m].sporadic && since < duration && ORC_MODULES[m].period_ns > 0) {
+            /* the executive steps a sporadic Module-Task's ramp every minimum inter-arrival
+             * from the update: this job sees the last step before its release */
+            since = since / ORC_MODULES[m].period_ns * ORC_MODULES[m].period_ns;
+            if (since <= 0) {
+                continue; /* the start, written with the update */
+            }
+        }
         /* the executive's step: min(1, dt / D), both exact as doubles */
         fraction = since >= duration ? 1.0 : (double)since / (double)duration;
         value = ramps[a].start + (ramps[a].end - ramps[a].start) * fraction;
