@@ -314,14 +314,15 @@ def test_a_start_with_run_time_arguments_is_bound_by_the_controller():
                          until_s=1.2)
     controller = session.backend.controller
     _spied(controller, ops)
-    request, guide = controller.request, session.backend.table.index("GoTo.guide")
+    request, request_words = controller.request, controller.request_words
+    guide = session.backend.table.index("GoTo.guide")
 
-    def sample(op, *args, **kwargs):
+    def sample(op, *args, **kwargs):  # the heartbeat's PING: integer words
         if op is Op.PING:
             words.append(tuple(request(Op.PARAMS, guide)))
-        return request(op, *args, **kwargs)
+        return request_words(op, *args, **kwargs)
 
-    controller.request = sample
+    controller.request_words = sample
     result = session.execute().result
     timings = {t.name: t for t in session.backend.timings}
     goto = result.robot_tasks[0]
