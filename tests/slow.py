@@ -12,6 +12,7 @@ import pytest
 
 #: ``file::function`` of the slow tests (every parameter of a parametrized test).
 SLOW = frozenset({
+    "tests/sil/test_sporadic_ramp.py::test_the_controller_steps_it_on_the_minimum_inter_arrival_grid",
     "tests/codegen/test_circuit.py::test_shipped_mission_circuit_agrees",
     "tests/codegen/test_circuit.py::test_random_programs_agree_in_circuit",
     "tests/sil/test_udp_io.py::test_the_udp_controller_drives_the_mujoco_arm",
