@@ -121,8 +121,55 @@ def _dispatch(args: argparse.Namespace) -> int:
     return int(status or 0)
 
 
+class _Interrupts:
+    """Ctrl-C seen by the command. Python turns Ctrl-C into ``KeyboardInterrupt``, but a C
+    extension being imported (MuJoCo's) turns it into ``ImportError("initialization
+    failed")``, and an optional-extra check into "needs the extra": within :func:`main`, a
+    Ctrl-C is recorded as it comes, so that whatever error it causes ends the command as
+    interrupted (130), never as an internal error. A handler the process inherited (Ctrl-C
+    ignored, or an embedding program's own) is left alone."""
+
+    def __init__(self) -> None:
+        self.seen = False
+        self._installed = False
+
+    def _on_sigint(self, signum: int, frame: object) -> None:
+        self.seen = True
+        raise KeyboardInterrupt
+
+    def __enter__(self) -> _Interrupts:
+        import signal
+        import threading
+
+        if threading.current_thread() is threading.main_thread() and \
+                signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            signal.signal(signal.SIGINT, self._on_sigint)
+            self._installed = True
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._installed:
+            import signal
+
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def _interrupted() -> int:
+    print("orccad: interrupted", file=sys.stderr)
+    return EXIT_INTERRUPTED
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run ``orccad`` with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    interrupts = _Interrupts()
+    try:
+        with interrupts:
+            return _main(argv, interrupts)
+    except KeyboardInterrupt:  # in the instants around the guard
+        return _interrupted()
+
+
+def _main(argv: list[str] | None, interrupts: _Interrupts) -> int:
     args = None
     try:
         from orccad_app.diagnostics import OrccadError
@@ -135,24 +182,35 @@ def main(argv: list[str] | None = None) -> int:
         try:
             return _dispatch(args)
         except OrccadError as error:
+            if interrupts.seen:  # an import cut by Ctrl-C, said as a missing extra
+                return _interrupted()
             _flush_stdout()
             print(error.format(), file=sys.stderr)
             return error.exit_status
     except KeyboardInterrupt:
-        print("orccad: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted()
     except BrokenPipeError:  # e.g. `orccad compile … | head`: the reader has gone
         _silence_stdout()
         return 0
     except OSError as error:  # a full disk, a closed or unwritable output
+        if interrupts.seen:
+            return _interrupted()
         _silence_stdout()
         where = f"{error.filename}: " if error.filename else "cannot write output: "
         print(f"orccad: error: {where}{error.strerror or error}", file=sys.stderr)
         return 2
-    except RecursionError as error:
-        return _internal_error(error, args)
     except Exception as error:  # noqa: BLE001 - the one top-level guard
+        if interrupts.seen:  # MuJoCo's import cut by Ctrl-C: ImportError, not a bug
+            return _interrupted()
         return _internal_error(error, args)
+
+
+def _forget_unhandled_interrupt() -> None:
+    """CPython marks a ``KeyboardInterrupt`` that escapes code run by ``exec`` of a string
+    (dataclasses and namedtuples make their methods so) as unhandled, even when caught
+    later, and then ends the process by SIGINT instead of with its exit status
+    (Python/pythonrun.c, ``run_eval_code_obj``); running an empty string clears the mark."""
+    exec("")
 
 
 def entry_point() -> None:  # pragma: no cover - the console script
@@ -161,6 +219,8 @@ def entry_point() -> None:  # pragma: no cover - the console script
         status = main()
     except KeyboardInterrupt:
         status = EXIT_INTERRUPTED
+    if status == EXIT_INTERRUPTED:
+        _forget_unhandled_interrupt()
     sys.exit(status)
 
 

@@ -12,6 +12,11 @@ import pytest
 
 #: ``file::function`` of the slow tests (every parameter of a parametrized test).
 SLOW = frozenset({
+    "tests/sil/test_sporadic_ramp.py::test_the_controller_steps_it_on_the_minimum_inter_arrival_grid",
+    "tests/codegen/test_circuit.py::test_shipped_mission_circuit_agrees",
+    "tests/codegen/test_circuit.py::test_random_programs_agree_in_circuit",
+    "tests/sil/test_udp_io.py::test_the_udp_controller_drives_the_mujoco_arm",
+    "tests/sil/test_supervisor_writes.py::test_the_supervisor_writes_no_parameter_word_in_real_time",
     "tests/campaign/test_budgets.py::test_a_pool_never_has_more_workers_than_runs",
     "tests/campaign/test_budgets.py::test_a_study_database_is_not_a_campaign_database_nor_the_reverse",
     "tests/docs/test_editors_doc.py::test_the_emacs_configuration_shows_diagnostics",
@@ -19,6 +24,8 @@ SLOW = frozenset({
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_in_real_time_runs_the_same_robot_tasks",
     "tests/sil/test_controller_tree.py::test_the_prebuilt_controller_ends_as_orccad_run",
     "tests/lsp/test_command.py::test_an_editor_that_goes_away_leaves_no_server_and_no_proof_behind",
+    "tests/lsp/test_stream.py::test_shutdown_then_exit_is_0_and_the_end_of_the_stream_ends_it_too",
+    "tests/fuzz/test_fuzz_lsp.py::test_any_sequence_of_hostile_frames_leaves_the_server_answering",
     "tests/lsp/test_proof.py::test_a_false_property_gets_an_error_with_its_counterexample_script",
     "tests/lsp/test_proof.py::test_every_property_of_arm_recovery_is_proved",
     "tests/reactive/test_reference.py::test_compiled_automaton_agrees_with_the_reference_interpreter",

@@ -1,5 +1,7 @@
 """``orccad codegen FILE [--mission M] [-o DIR] [--name PREFIX] [--main] [--module-tasks]
-[--controller]``: C99 of the composed mission automaton (see ``docs/deploy.md``).
+[--controller] [--generator auto|explicit|circuit]``: C99 of the composed mission automaton
+(see ``docs/deploy.md``), or of its circuit (``--generator``,
+:func:`orccad_app.codegen.mission.generate_chosen`).
 
 Writes ``PREFIX.h`` and ``PREFIX.c`` (and, with ``--main``, ``PREFIX_main.c``, a program
 that runs the automaton on an input script and prints what ``orccad react --composed
@@ -39,6 +41,13 @@ def register(sub) -> None:
                         help="also write the Module-Tasks of every Robot-Task the mission runs "
                              "(orccad_modules.c) and the C runtime that runs them on threads "
                              "(see docs/deploy.md, part 2)")
+    parser.add_argument("--generator", choices=("auto", "explicit", "circuit"),
+                        default="auto",
+                        help="explicit: the automaton's reaction trees (the fastest step, "
+                             "but its size is the product of parallel branches); circuit: "
+                             "registers and BDDs (grows with the mission's text); auto "
+                             "(default): the circuit unless the explicit C is no larger. "
+                             "The header says which was written, and why")
     parser.add_argument("--controller", action="store_true",
                         help="write the whole controller as a C tree built without ORCCAD: "
                              "the generated tables, the runtime, the plugins' C, a Makefile "
@@ -72,7 +81,7 @@ def _controller(args: argparse.Namespace, source, mission) -> int:
 
 def run(args: argparse.Namespace) -> int:
     from orccad_app.codegen.driver import main_source
-    from orccad_app.codegen.mission import generate_mission
+    from orccad_app.codegen.mission import generate_chosen
     from orccad_app.codegen.names import check_prefix, default_prefix
     from orccad_app.codegen.output import write_files
     from orccad_app.pipeline import compose_mission, load, select_mission
@@ -87,10 +96,17 @@ def run(args: argparse.Namespace) -> int:
     if args.controller:
         return _controller(args, source, mission)
     prefix = check_prefix(args.name if args.name is not None else default_prefix(mission.name))
-    composition = compose_mission(source, mission, max_states=args.max_states,
-                                  defer_double_emissions=True)
-    program = generate_mission(composition, prefix,
-                               origin=f" from {args.file}, mission {mission.name}")
+    generator = args.generator
+    if args.module_tasks:  # the C runtime reports the automaton's state numbers
+        if generator == "circuit":
+            from orccad_app.diagnostics import OrccadError
+            raise OrccadError("--module-tasks runs the explicit automaton (its runtime reports "
+                              "state numbers): leave out --generator circuit")
+        generator = "explicit"
+    composition = compose_mission(source, mission, max_states=args.max_states, lazy=True)
+    program = generate_chosen(composition, prefix,
+                              origin=f" from {args.file}, mission {mission.name}",
+                              generator=generator, max_states=args.max_states)
     files = dict(program.files)
     if args.main:
         files[f"{prefix}_main.c"] = main_source(program)

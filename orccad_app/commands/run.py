@@ -69,6 +69,9 @@ def run(args: argparse.Namespace) -> int:
     source = load(args.file)
     refuse_trace_over_inputs(args, source)
     source.print_warnings()
-    session = RunSession(source, select_mission(source, args.mission), options)
-    starting = observe(args, session)
-    return render(args, session.execute(starting=starting))
+    with RunSession(source, select_mission(source, args.mission), options) as session:
+        # a Ctrl-C before the run (a bridge opening, a Foxglove server starting) still
+        # closes the trace: a complete file, or none
+        starting = observe(args, session)
+        report = session.execute(starting=starting)
+    return render(args, report)

@@ -1,6 +1,6 @@
 """What a real controller adds to the executive's ideal timing: the exchange of the robot's
-ports on a period of its own, and the release jitter of its threads (docs/executive.md, *A real
-controller's delays*).
+ports on a period of its own, and the release jitter of its threads
+(docs/executive.md, *A real controller's delays*).
 
 The executive's ideal exchange samples a sensor at the very instant a job reads it and applies
 a torque at the very instant a job writes it. A real controller (``orccad sil --realtime``, or

@@ -89,7 +89,8 @@ class RobotTaskLifecycle:
                 update = (self._adjust.get(site.number, site.adjustments).get(role.name)
                           if site is not None else None)
                 try:
-                    change = None if update is None else self._updates.apply(update, role.name)
+                    change = None if update is None else \
+                        self._updates.apply(update, role.name, now)
                 except UpdateError:  # the exception happened; its update ends the run
                     self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task))
                     raise

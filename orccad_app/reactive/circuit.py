@@ -19,7 +19,10 @@ the inputs and the data tests instead of one state and one valuation:
   is decided; where it is not, in a reachable state, the program is refused (located at the
   test), as the explicit compiler refuses it;
 - data tests are free variables, one per test and instant (the checker's data abstraction),
-  and data actions are not evaluated: this circuit is the control of the program.
+  and data actions are not evaluated: this circuit is the control of the program. Where each
+  data action and data test is reached is recorded (:class:`Activation`, in the walk's order,
+  with its sure activation in every walk) for the C generator, which runs them
+  (:mod:`orccad_app.codegen.circuit_schedule`).
 
 The result (:class:`Circuit`) gives the next value of every register, the outputs emitted,
 the completion of the program and what the checker's atoms and fairness sets read.
@@ -36,8 +39,9 @@ from orccad_app.reactive.prepare import (
     KNode, Prepared,
 )
 from orccad_app.reactive.bdd import Manager, Node
+from orccad_app.reactive.reads import fresh_pre, value_reads
 
-__all__ = ["Circuit", "build_circuit", "register", "pre_bit", "input_var", "data_var",
+__all__ = ["Activation", "Circuit", "build_circuit", "register", "pre_bit", "input_var", "data_var",
            "BOOT", "TERM", "FAILED_BEFORE", "next_name", "MAX_FIXPOINT_WALKS"]
 
 BOOT, TERM, FAILED_BEFORE = "boot", "term", "failed_before"
@@ -70,6 +74,30 @@ Rail = tuple[Node, Node]
 
 
 @dataclass
+class Activation:
+    """One visit of a data action or data test in the walk (what the engine records as an
+    event, :meth:`orccad_app.reactive.walk.Walk.record`).
+
+    ``kind``: ``assign``, ``emit`` (a valued emission), ``init`` (a valued local signal's new
+    incarnation) or ``test``; ``visit`` numbers the visit (the same in every walk), ``node``
+    is the statement (for a test: the statement whose test reads it), ``sure`` where it runs;
+    ``target`` the variable, signal or data-test number; ``expr`` the expression (a signal's
+    ``pre`` in its fresh incarnation already replaced, as the engine does); ``key`` the
+    signal's incarnation (locals: ``(decl, depth)``); ``reads`` the incarnations whose value
+    it reads.
+    """
+
+    kind: str
+    visit: int
+    node: KNode
+    sure: Node
+    target: object
+    expr: ir.Expr | None
+    key: object = None
+    reads: tuple = ()
+
+
+@dataclass
 class Circuit:
     """The instant of a program as functions of the registers, inputs and data tests.
 
@@ -93,6 +121,20 @@ class Circuit:
     undecided: list[tuple[Node, SourceLocation, str]] = field(default_factory=list)
     relations: Node = None
     walks: int = 0
+    #: the data actions and tests of the last walk, in its order
+    activations: list[Activation] = field(default_factory=list)
+    #: for each walk, the sure activation of each visit (by ``Activation.visit``)
+    activation_rounds: list[dict[int, Node]] = field(default_factory=list)
+    _visits: dict[tuple, int] = field(default_factory=dict)
+
+    def visit_id(self, parent: int, index: int, depth: bool) -> int:
+        """The number of the visit of statement ``index`` (in depth or not) inside visit
+        ``parent``: the same in every walk."""
+        key = (parent, index, depth)
+        number = self._visits.get(key)
+        if number is None:
+            number = self._visits[key] = len(self._visits) + 1
+        return number
 
     def selected(self, lo: int, hi: int) -> Node:
         """Where a current register of the pauses ``[lo, hi)`` is set."""
@@ -120,6 +162,9 @@ class _Walk:
         self.evaluated: dict[int, Node] = {}
         self.undecided: list[tuple[Node, SourceLocation, str]] = []
         self.tested: set = set()             # signal keys some test reads
+        self.visit = 0                       # the current visit (Circuit.visit_id)
+        self.node: KNode = circuit.prep.root  # the statement of the current visit
+        self.activations: list[Activation] = []
 
     # ------------------------------------------------------------------ tests
     def test(self, test: ir.Test, scope: dict, act: Rail) -> Rail:
@@ -139,6 +184,10 @@ class _Walk:
         if kind is ir.DataTest:
             number = self.prep.data_test_index[id(test)]
             self.evaluated[number] = self.evaluated.get(number, m.false) | act[0]
+            self.activations.append(Activation(
+                "test", self.c.visit_id(self.visit, -1 - number, False), self.node, act[0],
+                number, test.expr,
+                reads=tuple(scope.get(d, d) for d in value_reads(test.expr, []))))
             v = m.var(data_var(number))
             return v, ~v
         if kind is ir.PreRef:
@@ -164,7 +213,20 @@ class _Walk:
         """The completion codes of one visit of ``node`` activated where ``act`` holds."""
         if act[1] == self.m.false:
             return {}
-        return _GO[node.kind](self, node, depth, act, scope)
+        visit, stmt = self.visit, self.node
+        self.visit, self.node = self.c.visit_id(visit, node.index, depth), node
+        try:
+            return _GO[node.kind](self, node, depth, act, scope)
+        finally:
+            self.visit, self.node = visit, stmt
+
+    def _record(self, kind: str, node: KNode, act: Rail, target, expr: ir.Expr | None,
+                key, scope: dict) -> None:
+        reads = () if expr is None else tuple(scope.get(d, d) for d in value_reads(expr, []))
+        if expr is not None:
+            expr = fresh_pre(self.prep, expr, scope)
+        self.activations.append(Activation(kind, self.visit, node, act[0], target, expr, key,
+                                           reads))
 
     def _pause(self, node, depth, act, scope):
         if depth:
@@ -177,12 +239,18 @@ class _Walk:
         m = self.m
         self.must[key] = self.must.get(key, m.false) | act[0]
         self.can[key] = self.can.get(key, m.false) | act[1]
+        if node.src.value is not None:
+            self._record("emit", node, act, node.src.signal, node.src.value, key, scope)
         return {0: act}
 
     def _exit(self, node, depth, act, scope):
         return {node.code: act}
 
-    def _instant(self, node, depth, act, scope):  # nothing, assign
+    def _instant(self, node, depth, act, scope):  # nothing
+        return {0: act}
+
+    def _assign(self, node, depth, act, scope):
+        self._record("assign", node, act, node.src.var, node.src.expr, None, scope)
         return {0: act}
 
     def _local(self, node, depth, act, scope):
@@ -191,6 +259,8 @@ class _Walk:
             inner[decl] = (decl, depth)
             if not depth:
                 self.fresh[decl] = self.fresh.get(decl, self.m.false) | act[0]
+                if decl.valued and (decl.init is not None or node.in_loop):
+                    self._record("init", node, act, decl, None, (decl, False), inner)
         child = node.children[0]
         return self.go(child, depth, act, inner)
 
@@ -334,7 +404,7 @@ _GO: list = [None] * 13
 for _kind, _handler in ((SEQ, _Walk._seq), (PAUSE, _Walk._pause), (EMIT, _Walk._emit),
                         (PRESENT, _Walk._present), (LOOP, _Walk._loop), (PAR, _Walk._par),
                         (TRAP, _Walk._trap), (EXIT, _Walk._exit), (SUSPEND, _Walk._suspend),
-                        (ASSIGN, _Walk._instant), (LOCAL, _Walk._local), (MARK, _Walk._mark),
+                        (ASSIGN, _Walk._assign), (LOCAL, _Walk._local), (MARK, _Walk._mark),
                         (NOTHING, _Walk._instant)):
     _GO[_kind] = _handler
 
@@ -432,6 +502,7 @@ def build_circuit(prep: Prepared, manager: Manager | None = None) -> Circuit:
         codes = walk.go(prep.root, False, (surface, surface), {})
         _merge(codes, walk.go(prep.root, True, (depth_act, depth_act), {}))
         circuit.walks += 1
+        circuit.activation_rounds.append({a.visit: a.sure for a in walk.activations})
         changed = False
         keys = set(walk.can) | set(env) | walk.tested
         new_env = {}
@@ -485,6 +556,7 @@ def _outputs(circuit: Circuit, walk: _Walk, codes: dict[int, Rail], env: dict) -
             present = walk.must.get(decl, m.false)
         circuit.next[name] = present & running & ~code0
     circuit.evaluated = walk.evaluated
+    circuit.activations = walk.activations
     circuit.undecided = [(where, loc, name) for where, loc, name in walk.undecided
                          if where != m.false]
     del boot

@@ -23,6 +23,7 @@ import contextlib
 import math
 import os
 import signal
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -201,8 +202,6 @@ def check_database(path: str, what: str) -> bool:
     SQLite (its header), locked by another program past :data:`LOCK_WAIT_S`, or unreadable
     as a database. Whether the file holds anything (``False``: an empty file). Nothing is
     written to the file or beside it (:func:`~orccad_app.campaign.store.connect_read_only`)."""
-    import sqlite3
-
     from orccad_app.campaign.store import connect_read_only
     from orccad_app.pipeline import require_regular_file
 
@@ -225,9 +224,15 @@ def check_database(path: str, what: str) -> bool:
             raise OrccadError(f"{path}: locked by another program ({error}): open it again "
                               "once that program has let it go") from None
         raise OrccadError(f"{path}: cannot be read as {what} ({error})") from None
-    except sqlite3.DatabaseError as error:
-        raise OrccadError(f"{path}: not {what} ({error})") from None
+    except (sqlite3.DatabaseError, UnicodeDecodeError) as error:  # SQLite's message quotes
+        raise OrccadError(f"{path}: not {what}, or damaged ({_reason(error)})") from None
     return True
+
+
+def _reason(error: BaseException) -> str:
+    """An error's first line, short (a damaged file's bytes may be in it)."""
+    text = (str(error).strip().splitlines() or [""])[0]
+    return f"{type(error).__name__}: {text[:160]}"
 
 
 def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
@@ -243,14 +248,18 @@ def read_campaign(db: str, confidence: float = 0.95, limit: int | None = None
     if not check_database(db, "a campaign database"):
         raise OrccadError(f"{db}: an empty file, not a campaign database (no campaign has "
                           "written to it)")
-    store = CampaignStore(db, read_only=True)
     try:
-        meta = store.meta()
-        if "spec" not in meta or "file" not in meta:
-            raise OrccadError(f"{db}: not a campaign database (no campaign recorded in it)")
-        records = store.records()
-    finally:
-        store.close()
+        store = CampaignStore(db, read_only=True)
+        try:
+            meta = store.meta()
+            if "spec" not in meta or "file" not in meta:
+                raise OrccadError(f"{db}: not a campaign database (no campaign recorded in "
+                                  "it)")
+            records = store.records()
+        finally:
+            store.close()
+    except (sqlite3.Error, ValueError, KeyError, TypeError) as error:  # the file's rows
+        raise OrccadError(f"{db}: a damaged campaign database ({_reason(error)})") from None
     if limit is None:
         try:
             limit = parse_spec(meta["spec"]).runs
@@ -293,8 +302,6 @@ class FalsifySnapshot:
 def _has_studies(path: str) -> bool:
     """Whether SQLite file ``path`` has optuna's tables yet (``False``: no table at all, a
     study being created); a file with other tables, or not SQLite, is refused."""
-    import sqlite3
-
     from orccad_app.campaign.store import connect_read_only
 
     if not check_database(path, "an optuna study database"):
@@ -302,8 +309,9 @@ def _has_studies(path: str) -> bool:
     try:
         with contextlib.closing(connect_read_only(path, LOCK_WAIT_S)) as db:
             tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
-    except sqlite3.DatabaseError as error:
-        raise OrccadError(f"{path}: not an optuna study database ({error})") from None
+    except (sqlite3.DatabaseError, UnicodeDecodeError) as error:
+        raise OrccadError(f"{path}: not an optuna study database, or damaged "
+                          f"({_reason(error)})") from None
     if tables and "studies" not in tables:
         raise OrccadError(f"{path}: not an optuna study database (no table studies)")
     return bool(tables)
@@ -323,8 +331,6 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     (``orccad falsify --study``); each candidate's setting is rebuilt from the values the
     trial ran with (:func:`~orccad_app.campaign.setting.build_setting`), as the command
     replays its worst one."""
-    from orccad_app.campaign.falsify import UNDEFINED
-    from orccad_app.campaign.setting import build_setting
     from orccad_app.campaign.spec import load_spec
 
     try:
@@ -335,6 +341,21 @@ def read_study(study: str, spec_path: str, prop: str, until_s: float, *, budget:
     if not os.path.lexists(study) or not _has_studies(study):  # not created yet, or empty
         return FalsifySnapshot(study, prop, 0, budget, None, None)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
+    try:
+        return _read_trials(optuna, study, spec, prop, until_s, budget, run_seed)
+    except OrccadError:
+        raise
+    except Exception as error:  # noqa: BLE001 - optuna's or SQLAlchemy's, on a file not theirs
+        raise OrccadError(f"{study}: not an optuna study database that can be read "
+                          f"({_reason(error)})") from None
+
+
+def _read_trials(optuna: Any, study: str, spec: Any, prop: str, until_s: float, budget: int,
+                 run_seed: int) -> FalsifySnapshot:
+    """:func:`read_study` once the file is known to hold optuna's tables."""
+    from orccad_app.campaign.falsify import UNDEFINED
+    from orccad_app.campaign.setting import build_setting
+
     # read-only, no table created: a reader that creates optuna's tables races the command
     # creating them in the same file, which then fails ("table studies already exists")
     storage = optuna.storages.RDBStorage(_read_only_url(study), skip_table_creation=True)

@@ -133,10 +133,13 @@ def _messages(path) -> list[tuple[str, int, bytes]]:
 
 
 def test_a_run_in_its_own_process_exports_the_mcap_of_orccad_run_with_every_topic(
-        tmp_path, capsys):
+        tmp_path, capsys, monkeypatch):
     """The console's run (in its own process, keys pressed as its frames arrive) exported
     as MCAP is ``orccad run --trace X.mcap --inject …`` at the reported instants, message for
     message, the Foxglove topics (frames, scene, gains, phases, state, verdicts) included."""
+    # frames every 20 ms of the run's CPU time, not 250: the 2 s run now takes about 0.4 s
+    # of CPU, one frame at the default rate, and no key would be pressed (the fork inherits it)
+    monkeypatch.setattr("orccad_app.tui.live.BUSY_FRAME_S", 0.02)
     pressed = []
 
     def post(update):  # the UI's side: a key when a frame shows the run past 0.5 s, then 1 s

@@ -10,13 +10,14 @@
  * their instant; an input already present in the reaction waits for the next one. After a
  * reaction the task applies what it decided, as the mission layer does: the type-1 updates
  * (constant, computed, ramps stepped at the Module-Task's releases: orccad_app/sil/adjust.py)
- * and the Robot-Tasks' lifecycle (starts, kills, activations) of the sites without run-time
- * arguments. Each reaction — its request's and its reply's words, orccad_automaton.h — is
+ * and the Robot-Tasks' lifecycle (starts, kills, activations) of the sites, their run-time
+ * arguments bound where the generator found how (plain copies, checked). Each reaction — its request's and its reply's words, orccad_automaton.h — is
  * published through orc_io_reaction (SIL: a ring in the shared memory, from which the
  * supervisor rebuilds the report and applies what is left to it). A negative step (a run-time
  * error of the mission) is published and ends the reactions. C99 + POSIX threads; no
  * allocation. */
 #define _POSIX_C_SOURCE 200809L
+#include <float.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -25,6 +26,7 @@
 #include "orccad_automaton.h"
 #include "orccad_io.h"
 #include "orccad_rt.h"
+#include "orccad_wire.h"
 
 #define MAX_QUEUED 256
 
@@ -57,6 +59,38 @@ static struct {
     int64_t t0_ns;
     double start, end;
 } ramps[ORC_AUTOMATON_N_ADJUSTS + 1];
+
+/* The run-time arguments the task binds at a start (orccad_app/sil/generate/binds.py): {site,
+ * the component's word in the reply, Module-Task, parameter word} (a plain copy), and the
+ * checks {site, word} of each component: finite, in [low, high]. */
+static const int binds[][4] = ORC_AUTOMATON_BINDS;
+static const int bind_checks[][2] = ORC_AUTOMATON_BIND_CHECKS;
+static const double bind_lows[] = ORC_AUTOMATON_BIND_LOWS;
+static const double bind_highs[] = ORC_AUTOMATON_BIND_HIGHS;
+
+/* Site s's run-time arguments in this reaction's reply pass their checks. */
+static int arguments_valid(int s)
+{
+    int i;
+    for (i = 0; i < ORC_AUTOMATON_N_BIND_CHECKS; i++) {
+        double v = reply[bind_checks[i][1]];
+        if (bind_checks[i][0] == s && !(isfinite(v) && v >= bind_lows[i] && v <= bind_highs[i])) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Copy site s's run-time arguments into its fresh Module-Tasks' parameter words. */
+static void bind_arguments(int s)
+{
+    int i;
+    for (i = 0; i < ORC_AUTOMATON_N_BINDS; i++) {
+        if (binds[i][0] == s) {
+            (void)orc_rt_set_params(binds[i][2], binds[i][3], &reply[binds[i][1]], 1);
+        }
+    }
+}
 
 /* Update a's computed value (which 0), or its ramp's start (0) and end (1), from the current
  * parameter words; *ok = 0 when the computation refuses. */
@@ -91,13 +125,13 @@ void orc_automaton_start(void)
 uint32_t orc_automaton_input(const double *words, uint32_t n)
 {
     if (n != ORC_AUTOMATON_IN_WORDS) {
-        return 1;
+        return ORC_BAD_WORDS;
     }
     if (n_queued == MAX_QUEUED) {
-        return 6; /* more inputs ahead than a reaction period can hold: refused */
+        return ORC_INPUTS_FULL; /* more inputs ahead than a reaction period can hold */
     }
     memcpy(queued[n_queued++], words, n * sizeof(double));
-    return 0;
+    return ORC_OK;
 }
 
 static int event_pending(void)
@@ -241,6 +275,14 @@ void orc_automaton_release(int m, int64_t release_ns)
         if (!ramps[a].on || adjusts[a][2] != m || since <= 0) {
             continue;
         }
+        if (ORC_MODULES[m].sporadic && since < duration && ORC_MODULES[m].period_ns > 0) {
+            /* the executive steps a sporadic Module-Task's ramp every minimum inter-arrival
+             * from the update: this job sees the last step before its release */
+            since = since / ORC_MODULES[m].period_ns * ORC_MODULES[m].period_ns;
+            if (since <= 0) {
+                continue; /* the start, written with the update */
+            }
+        }
         /* the executive's step: min(1, dt / D), both exact as doubles */
         fraction = since >= duration ? 1.0 : (double)since / (double)duration;
         value = ramps[a].start + (ramps[a].end - ramps[a].start) * fraction;
@@ -270,6 +312,10 @@ static void lifecycle(int64_t release_ns)
         if (!sites[s][0]) {
             continue;
         }
+        if (starting && !arguments_valid(s)) { /* refused: the mission fails, as in the */
+            failed = 1;                        /* mission layer (the supervisor says why) */
+            return;
+        }
         for (i = first; i < first + count; i++) {
             int m = site_modules[i];
             if (orc_rt_active(m) && (restart || !wanted(s, phase, m))) {
@@ -279,6 +325,9 @@ static void lifecycle(int64_t release_ns)
         for (i = first; starting && i < first + count; i++) {
             orc_rt_fresh(site_modules[i]);
             orc_rt_reset_ports(site_modules[i]);
+        }
+        if (starting) {
+            bind_arguments(s);
         }
         for (i = first; i < first + count; i++) {
             int m = site_modules[i];
@@ -315,6 +364,9 @@ static void react(int64_t clock)
         int64_t at = orc_rt_epoch_ns() + clock, now = orc_rt_now_ns();
         adjust(clock);
         lifecycle(at > now ? at : now);
+        if (failed) {
+            mission_status = -1;
+        }
     }
     orc_io_reaction(request, ORC_AUTOMATON_IN_WORDS, reply, n);
 }

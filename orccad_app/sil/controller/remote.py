@@ -38,10 +38,13 @@ class RemoteModule:
         when the controller has started it itself (its real-time automaton task).
     :param c_owned: the parameter words the controller's automaton task alone writes (its
         type-1 updates, :mod:`orccad_app.sil.generate.adjust`): never sent.
+    :param c_bound: the parameter words the automaton task binds to the run-time arguments
+        when it starts the Module-Task itself (:mod:`orccad_app.sil.generate.binds`).
     """
 
     def __init__(self, controller: ControllerProcess, index: int, nominal: CLayout,
-                 shadow: Any, start: bool = True, c_owned: frozenset[int] = frozenset()) -> None:
+                 shadow: Any, start: bool = True, c_owned: frozenset[int] = frozenset(),
+                 c_bound: frozenset[int] = frozenset()) -> None:
         self._controller = controller
         self._index = index
         self._shadow = shadow
@@ -58,9 +61,11 @@ class RemoteModule:
         self._retired = False
         self._c_owned = c_owned
         if not start:
-            if layout.params != nominal.params:
+            if any(not same_word(old, new) and at not in c_bound
+                   for at, (old, new) in enumerate(zip(nominal.params, layout.params))):
                 raise ControllerFailure(f"module-task {index}: started by the controller with "
-                                        f"its nominal parameters, but this start binds others")
+                                        f"its nominal parameters and the run-time arguments "
+                                        f"it binds, but this start binds others")
             return
         controller.request(Op.START, index)
         if layout.params != nominal.params:  # run-time arguments bound at this start
@@ -79,6 +84,7 @@ class RemoteModule:
     def _send_params(self, params: tuple[float, ...]) -> None:
         if not self._retired:
             self._controller.request(Op.PARAM, self._index, values=list(params), offset=0)
+            self._controller.supervisor_writes += len(params)
 
     def _send_changes(self, old: tuple[float, ...], new: tuple[float, ...]) -> None:
         """The words that changed, each run of them one ``PARAM`` request, but those the
@@ -93,6 +99,7 @@ class RemoteModule:
                 end += 1
             self._controller.request(Op.PARAM, self._index, values=list(new[at:end]),
                                      offset=at)
+            self._controller.supervisor_writes += end - at
             at = end
 
     def init(self) -> None:
@@ -163,6 +170,9 @@ class RemoteSite(SiteModules):
     c_owned: Mapping[str, frozenset[int]] = dataclasses.field(default_factory=dict)
     """Per Module-Task, the parameter words the automaton task alone writes (its type-1
     updates): the proxies never send them."""
+    c_bound: Mapping[str, frozenset[int]] = dataclasses.field(default_factory=dict)
+    """Per Module-Task, the parameter words the automaton task binds to the run-time
+    arguments at a start."""
 
     def fresh_computes(self, instance: Any = None) -> dict[str, Any]:
         shadows = super().fresh_computes(instance)
@@ -172,7 +182,8 @@ class RemoteSite(SiteModules):
             index = table.index(name)
             proxies[name] = RemoteModule(self.controller, index, table.entries[index].layout,
                                          shadow, start=not self.managed,
-                                         c_owned=self.c_owned.get(name, frozenset()))
+                                         c_owned=self.c_owned.get(name, frozenset()),
+                                         c_bound=self.c_bound.get(name, frozenset()))
         return proxies
 
 
@@ -193,15 +204,18 @@ class ControllerRun:
 
 def remote_plan(plan: MissionPlan, automaton: Automaton, table: ModuleTable,
                 controller: ControllerProcess, managed: frozenset[int] = frozenset(),
-                c_owned: Mapping[str, frozenset[int]] | None = None) -> MissionPlan:
+                c_owned: Mapping[str, frozenset[int]] | None = None,
+                c_bound: Mapping[str, frozenset[int]] | None = None) -> MissionPlan:
     """A copy of ``plan`` (``plan`` itself unchanged) whose automaton is the full
     ``automaton`` the controller runs and whose run sites start their Module-Tasks in
     ``controller``; the sites numbered in ``managed`` are started by the controller itself,
-    the parameter words ``c_owned`` of their Module-Tasks written by it alone."""
+    the parameter words ``c_owned`` of their Module-Tasks written by it alone, ``c_bound``
+    bound by it to the run-time arguments."""
     sites: list[SiteModules] = []
     for site in plan.sites:
         fields = {f.name: getattr(site, f.name) for f in dataclasses.fields(SiteModules)}
         own = site.number in managed
         sites.append(RemoteSite(**fields, controller=controller, table=table, managed=own,
-                                c_owned=(c_owned or {}) if own else {}))
+                                c_owned=(c_owned or {}) if own else {},
+                                c_bound=(c_bound or {}) if own else {}))
     return dataclasses.replace(plan, automaton=automaton, sites=sites)

@@ -15,14 +15,16 @@ update to the running Module-Task's parameter words in that reaction, as
   range and finiteness before it is written (a refused value is not written: the supervisor,
   replaying the reaction in Python, ends the run ``failed`` with the located reason); a ramp
   is stepped at each release of its (periodic) Module-Task from the update to its end, the
-  value interpolated at the release instant as the executive computes it.
+  value interpolated at the release instant as the executive computes it (a sporadic
+  Module-Task's: at the last step of the executive's grid, every minimum inter-arrival from
+  the update, before the release).
 
 An update is the controller's only if every update of each parameter it writes or reads is
 the controller's too (otherwise the supervisor's writes and the controller's would race):
 its words are then the controller's alone (:attr:`CAdjust.offsets`), and the supervisor's
 proxies never send them (:class:`~orccad_app.sil.controller.remote.RemoteModule`'s ``c_owned``). The
 rest — a vector computed value, a parameter read or written by an update the controller
-cannot apply, a ramp on a sporadic Module-Task, a site with run-time arguments — stays with
+cannot apply, a site whose run-time arguments the controller does not bind — stays with
 the supervisor (``PARAM`` requests).
 """
 
@@ -40,8 +42,6 @@ from orccad_app.mission.plan import MissionPlan, ParamUpdate, SiteModules
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.sil.generate.table import ModuleTable
 from orccad_app.sil.generate.layout import c_layout, same_word
-from orccad_app.tcs.module_task import ModuleTask
-from orccad_app.tcs.phasing import Activation
 
 __all__ = ["AdjustForm", "CAdjust", "adjust_lines", "c_adjustments", "c_expression",
            "c_owned_words"]
@@ -176,19 +176,12 @@ def _candidate(plan: MissionPlan, site: SiteModules, exception: str, update: Par
 
     values = tuple(c_expression(expr, update.env, read) for expr in form.expressions)
     duration = 0
-    if form.ramp is not None:
-        if _module_task(plan, update.module).activation is not Activation.PERIODIC:
-            raise _NotInC  # stepped every minimum inter-arrival: the executive's grid
-        duration = form.ramp.duration_ns
+    if form.ramp is not None:  # a sporadic one: stepped every minimum inter-arrival (the C
+        duration = form.ramp.duration_ns  # floors each release onto that grid)
     return _Candidate(CAdjust(site.number, exception, module, signal,
                               AdjustForm.RAMP if duration else AdjustForm.COMPUTED, words,
                               values, duration, _range_check(spec)),
                       (update.module, update.param), tuple(reads))
-
-
-def _module_task(plan: MissionPlan, name: str) -> ModuleTask:
-    """The Module-Task ``name`` of the plan's TCS."""
-    return next(task for task in plan.tcs.module_tasks if task.name == name)
 
 
 def _fresh(site: SiteModules, module: str) -> Any:

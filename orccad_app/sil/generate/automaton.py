@@ -26,6 +26,7 @@ from orccad_app.mission.plan import MissionPlan
 from orccad_app.reactive.automaton import Automaton
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, compile_program
 from orccad_app.sil.generate.adjust import CAdjust, adjust_lines, c_adjustments
+from orccad_app.sil.generate.binds import bind_lines, bindable, c_binds
 from orccad_app.sil.generate.table import ModuleTable
 
 __all__ = ["HEAD_WORDS", "PREFIX", "MissionProgram", "SignalSlot", "automaton_files", "binding_header",
@@ -136,6 +137,9 @@ def binding_header(program: CProgram, plan: MissionPlan, table: ModuleTable) -> 
         f"#define ORC_AUTOMATON_SITE_MODULES {{{site_modules}}}",
         *adjust_lines(adjusts, {slot.name: slot.word
                                 for slot in signal_slots(interface.outputs, HEAD_WORDS)}),
+        *bind_lines(*c_binds(plan), {slot.name: slot.word + 1
+                                     for slot in signal_slots(interface.outputs, HEAD_WORDS)},
+                    table),
         "/* What the controller still leaves to ORCCAD's supervisor (empty: nothing; a "
         "controller alone on the",
         " * robot refuses to start otherwise, saying this). */",
@@ -160,8 +164,10 @@ def supervisor_needs(plan: MissionPlan, adjusts: tuple[CAdjust, ...]) -> tuple[s
 
 def managed_sites(plan: MissionPlan) -> frozenset[int]:
     """The run sites whose lifecycle the real-time automaton task applies itself: those
-    without run-time arguments (a start binds those in the supervisor)."""
-    return frozenset(site.number for site in plan.sites if not site.arguments)
+    without run-time arguments, and those whose arguments it binds itself
+    (:func:`~orccad_app.sil.generate.binds.bindable`); the others' starts bind their
+    arguments in the supervisor."""
+    return frozenset(site.number for site in plan.sites if not site.arguments) | bindable(plan)
 
 
 def _site_table(program: CProgram, plan: MissionPlan, table: ModuleTable) -> tuple[str, str]:

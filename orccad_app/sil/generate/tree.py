@@ -14,7 +14,9 @@ and ``-lm -pthread``:
   I/O (``orccad sil --realtime --controller``), and the lockstep loop (``--lockstep``);
 - ``make robot`` builds ``robot``: the same controller with the user's ``orccad_io.c`` (the
   robot's drivers), which the generator never writes (the generation gap): regenerating the
-  tree replaces the generated files and leaves ``orccad_io.c`` and the build's outputs alone.
+  tree replaces the generated files and leaves ``orccad_io.c`` and the build's outputs alone;
+- ``make controller_udp``: the I/O over UDP to a plant process (``orccad_io_udp.c``, the
+  template of an ``orccad_io.c``).
 """
 
 from __future__ import annotations
@@ -27,17 +29,19 @@ from orccad_app.codegen.generate import CProgram
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.sil.generate.automaton import automaton_files
 from orccad_app.sil.generate.library import C_DIR, RUNTIME_FILES
-from orccad_app.sil.generate.table import (ModuleTable, module_table, plugin_file_name,
-                                           plugin_file_text, plugin_kinds, table_source)
+from orccad_app.sil.generate.table import (ModuleTable, module_table, plugin_files,
+                                           table_source)
 
-__all__ = ["controller_table", "controller_tree", "user_file", "USER_IO", "SIL_IO"]
+__all__ = ["controller_table", "controller_tree", "user_file", "USER_IO", "SIL_IO", "UDP_IO"]
 
 USER_IO = "orccad_io.c"
 """The user's robot I/O (``orccad_io.h`` over their drivers): never written by ORCCAD."""
 SIL_IO = "orccad_io_shm.c"
 """The plant server's shared-memory I/O (``orccad sil --realtime``)."""
+UDP_IO = "orccad_io_udp.c"
+"""The I/O over UDP to a plant process: the template of the user's ``orccad_io.c``."""
 _LOCKSTEP = "orccad_lockstep.c"
-_BUILT = ("controller", "robot", "build")
+_BUILT = ("controller", "controller_udp", "robot", "build")
 """What building the tree makes in it (the executables, CMake's build folder)."""
 
 
@@ -62,12 +66,12 @@ def controller_tree(plan: MissionPlan, program: CProgram, source: str) -> dict[s
     file, named in the files."""
     table = controller_table(plan, program)
     files = {"orccad_modules.c": table_source(table, source)}
-    for plugin in plugin_kinds(table):
-        files[plugin_file_name(plugin)] = plugin_file_text(plugin)
+    files.update(plugin_files(table))
     files.update(automaton_files(program, plan, table))
-    for name in (*RUNTIME_FILES, _LOCKSTEP):
+    for name in (*RUNTIME_FILES, _LOCKSTEP, UDP_IO):
         files[name] = (C_DIR / name).read_text(encoding="utf-8")
-    sources = sorted(name for name in files if name.endswith(".c") and name != SIL_IO)
+    sources = sorted(name for name in files if name.endswith(".c") and name not in (SIL_IO,
+                                                                                   UDP_IO))
     origin = f"from {source}, mission {plan.name}"
     files["Makefile"] = _makefile(sources, origin)
     files["CMakeLists.txt"] = _cmake(sources, origin)
@@ -84,6 +88,8 @@ def _makefile(sources: list[str], origin: str) -> str:
 #   make                              controller: the plant server's I/O (orccad sil
 #                                     --realtime | --lockstep --controller ./controller)
 #   make robot                        robot: your orccad_io.c (the robot's drivers)
+#   make controller_udp               the I/O over UDP to a plant process (orccad_io_udp.c:
+#                                     the template to copy as your orccad_io.c)
 #   make CC=aarch64-linux-gnu-gcc     cross-built for the robot's processor
 #   make CFLAGS='-O2 -g'              your flags (the C99 ones below are always there)
 #
@@ -101,8 +107,11 @@ controller: $(SOURCES) {SIL_IO} $(HEADERS)
 robot: $(SOURCES) {USER_IO} $(HEADERS)
 \t$(CC) $(ORCCAD_CFLAGS) $(CFLAGS) $(CPPFLAGS) -o $@ $(SOURCES) {USER_IO} $(LDFLAGS) $(LDLIBS)
 
+controller_udp: $(SOURCES) {UDP_IO} $(HEADERS)
+\t$(CC) $(ORCCAD_CFLAGS) $(CFLAGS) $(CPPFLAGS) -o $@ $(SOURCES) {UDP_IO} $(LDFLAGS) $(LDLIBS)
+
 clean:
-\trm -f controller robot
+\trm -f controller controller_udp robot
 
 .PHONY: clean
 """
