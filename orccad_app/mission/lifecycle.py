@@ -48,7 +48,7 @@ def site_phases(labels: Iterable[object]) -> dict[int, Phase]:
 
 
 class RobotTaskLifecycle:
-    """Starts, kills, restarts and retunes the run sites' Module-Tasks as the automaton's state
+    """Starts, kills, restarts and updates (type 1) the run sites' Module-Tasks as the automaton's state
     changes, and records the Robot-Task runs and the exceptions (see the module docstring).
 
     A mixin of :class:`~orccad_app.mission.run.MissionRun`, which sets these attributes.

@@ -21,9 +21,11 @@ times. The heartbeat is a ``PING`` every 100 ms of the run.
 
 Every connection runs its protocol on the controller's threads (``orccad_port.c``: the 8 of
 RR-1801 as the executive runs them on one processor: the threads share memory, there is no
-bus). A type-1 ramp is stepped by this process at the Module-Task's release grid on the wall
-clock (a parameter write between two jobs: a job may still see the previous step when the
-plant server is late). Robot ports are exchanged every ``exchange_ns``
+bus). The type-1 updates, their ramps and the run-time arguments of a start are applied by
+the automaton task in the controller (:mod:`~orccad_app.sil.generate.adjust`,
+:mod:`~orccad_app.sil.generate.binds`); what it cannot apply this process sends as parameter
+writes between two jobs (``controller.supervisor_writes`` counts their words: none for the
+shipped missions). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
 at most that long — a delay the simulated run does not have, so the tracking errors differ a
 little (docs/deploy.md).
