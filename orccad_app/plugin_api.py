@@ -13,7 +13,7 @@ Everything else in ``orccad_app`` is internal and may change without notice; a t
 that the built-in plugins (``plugins/``) import nothing else from the core.
 """
 
-from orccad_app.control.c_implementation import CImplementation
+from orccad_app.control.c_implementation import CField, CFieldType, CImplementation, kind_header
 from orccad_app.control.catalogue import (
     LAW_KINDS,
     MODULE_KINDS,
@@ -88,6 +88,9 @@ __all__ = [
     # Module-Tasks
     "ModuleKind",
     "CImplementation",
+    "CField",
+    "CFieldType",
+    "kind_header",
     "ModuleInstance",
     "ModuleContext",
     "PortSpec",

@@ -80,8 +80,8 @@ def test_bad_injections_are_refused(capsys, spec, message):
 
 @pytest.mark.parametrize("spec, message", [
     ("Gripper@1.6", "Gripper carries a float: write Gripper(value)@T"),
-    ("Gripper(nan)@1", "the value must be a finite number"),
-    ("Gripper(true)@1", "carries a float"),
+    ("Gripper(nan)@1", "'nan' is not a float value for Gripper (a finite number)"),
+    ("Gripper(true)@1", "'true' is not a float value for Gripper"),
     ("Stop(1)@1", "Stop is a pure input"),
 ])
 def test_injected_values_must_fit_their_input(capsys, spec, message):
@@ -103,7 +103,7 @@ def test_inject_before_the_file_does_not_swallow_it(capsys, form):
 @pytest.mark.parametrize("timing, message", [
     ("TrackPID.ctrl.period_ms=0.0001", "a period must be at least 1 us"),
     ("TrackPID.ctrl.period_ms=1e300", "at most one year"),
-    ("TrackPID.ctrl.wcet_ms=nan", "must be finite"),
+    ("TrackPID.ctrl.wcet_ms=nan", "'nan' is not a scalar value (a finite number"),
 ])
 def test_timing_overrides_keep_the_languages_limits(capsys, timing, message):
     status, _, err = orccad(capsys, "run", PID, "--timing", timing, "--until", "0.01")

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.diagnostics import cut
+from orccad_app.lang.literals import LiteralError, read_literal
 
 __all__ = ["Kind", "Distribution", "DistributionError", "parse_distribution", "round_sig",
            "truncated_mass", "MIN_TRUNCATED_MASS"]
@@ -135,17 +136,11 @@ class Distribution:
 
 
 def _number(text: str) -> float | int:
-    text = text.strip()
+    """A number of the literal grammar (:mod:`orccad_app.lang.literals`)."""
     try:
-        return int(text)
-    except ValueError:
-        pass
-    try:
-        value = float(text)
-    except ValueError:
-        raise DistributionError(f"{cut(repr(text))} is not a number") from None
-    if not math.isfinite(value):
-        raise DistributionError(f"{cut(repr(text))} is not a finite number")
+        value: float | int = read_literal(text, "number")
+    except LiteralError as error:
+        raise DistributionError(error.message) from None
     return value
 
 

@@ -88,21 +88,24 @@ def _loc(a: Activation) -> SourceLocation | None:
     return loc if loc is not None else getattr(a.node.src, "loc", None)
 
 
-def schedule(circuit: Circuit) -> list[Event]:
-    """The events of ``circuit`` in a static order, or :class:`NotStatic` (raised from a
-    frame holding no BDD node: a traceback kept alive must not keep CUDD nodes past their
+def schedule(circuit: Circuit, care: Node) -> list[Event]:
+    """The events of ``circuit`` in a static order where the registers lie in ``care`` (the
+    reachable states: :mod:`.circuit_reach`), or :class:`NotStatic` (raised from a frame
+    holding no BDD node: a traceback kept alive must not keep CUDD nodes past their
     manager)."""
     try:
-        return _schedule(circuit)
+        return _schedule(circuit, care)
     except NotStatic as error:
         problem = NotStatic(error.reason, error.loc)
+    del care
     raise problem
 
 
-def _schedule(circuit: Circuit) -> list[Event]:
+def _schedule(circuit: Circuit, care: Node) -> list[Event]:
     m = circuit.manager
-    if circuit.undecided:
-        where, loc, name = circuit.undecided[0]
+    for where, loc, name in circuit.undecided:
+        if where & care == m.false:
+            continue
         raise NotStatic(f"the status of {name} may be undecided (non-constructive in some "
                         "state)", loc)
     events = [a for a in circuit.activations if a.sure != m.false]
@@ -113,7 +116,7 @@ def _schedule(circuit: Circuit) -> list[Event]:
     for j, later in enumerate(events):
         for i in range(j):
             earlier = events[i]
-            both = earlier.sure & later.sure
+            both = earlier.sure & later.sure & care
             if both == m.false:
                 continue
             if writes[j] & reads[i] and any(k[0] == "sig" for k in writes[j] & reads[i]):
@@ -133,7 +136,7 @@ def _schedule(circuit: Circuit) -> list[Event]:
             if inverted & both != m.false:
                 raise NotStatic("an event becomes sure after a later one touching the same "
                                 "data (its path waits for a signal's status)", _loc(earlier))
-    _check_tests_before(circuit, events)
+    _check_tests_before(circuit, events, care)
     return [Event(a) for a in events]
 
 
@@ -174,17 +177,17 @@ def _value_levels(circuit: Circuit, events: list[Activation], writes: list[set],
                     _loc(events[0]) if events else None)
 
 
-def _check_tests_before(circuit: Circuit, events: list[Activation]) -> None:
+def _check_tests_before(circuit: Circuit, events: list[Activation], care: Node) -> None:
     """Every event's activation reads only data tests already decided where it holds."""
     m = circuit.manager
     decided: dict[int, Node] = {}
     for a in events:
-        _independent(m, a.sure, decided, a)
+        _independent(m, a.sure & care, decided, a)
         if a.kind == "test":
             decided[a.target] = decided.get(a.target, m.false) | a.sure  # type: ignore[index]
     finals = [*circuit.next.values(), *circuit.emitted.values(), circuit.code0]
     for f in finals:
-        _independent(m, f, decided, None)
+        _independent(m, f & care, decided, None)
 
 
 def _independent(m, f: Node, decided: dict[int, Node], a: Activation | None) -> None:

@@ -33,9 +33,13 @@ __all__ = ["generate_mission", "generate_composed", "generate_chosen", "GENERATO
 #: the generators ``orccad codegen --generator`` names (``auto``: the smaller C, see
 #: :func:`generate_chosen`)
 GENERATORS = ("auto", "explicit", "circuit")
+#: ``auto`` keeps the explicit automaton unless its C has more than this many times the
+#: circuit's lines: its step walks one path of a decision tree, the circuit's evaluates every
+#: wire
+EXPLICIT_FACTOR = 2
 #: the explicit automaton is tried while it has at most this many transitions per line of
-#: the circuit's C (its C has about one line per distinct transition node)
-TRANSITIONS_PER_LINE = 2
+#: the circuit's C (its C has at most about one line per transition)
+TRANSITIONS_PER_LINE = 2 * EXPLICIT_FACTOR
 
 
 def generate_mission(composition: Composition, prefix: str, origin: str = "") -> CProgram:
@@ -63,8 +67,9 @@ def generate_chosen(composition: Composition, prefix: str, origin: str = "", *,
                     generator: str = "auto", max_states: int = DEFAULT_MAX_STATES) -> CProgram:
     """The C of ``composition`` (lazy or full) by ``generator``: ``explicit`` (the automaton,
     :mod:`.generate`), ``circuit`` (:mod:`.circuit`) or ``auto``: the circuit's C, unless the
-    explicit automaton's is no larger (its step is a decision tree, the fastest) or the
-    circuit's data events have no static order. The header says which and why."""
+    explicit automaton's is at most :data:`EXPLICIT_FACTOR` times larger (its step is a
+    decision tree, the fastest) or the circuit's data events have no static order. The
+    header says which and why."""
     kernel = composition.automaton.program
     sites = tuple(composition.sites)
     tasks = composition.program.robottasks
@@ -121,8 +126,10 @@ def _choose(found: Circuit, generator: str, circuit, explicit, kernel: ir.Progra
                               f"(or {max_states} states); the circuit's C has {lines} lines")
     small = explicit(("",), automaton)
     explicit_lines = small.source.count("\n")
-    if explicit_lines <= lines:
-        return explicit((f"{explicit_lines} lines of C, the circuit's {lines}",), automaton)
+    if explicit_lines <= EXPLICIT_FACTOR * lines:
+        return explicit((f"{explicit_lines} lines of C, the circuit's {lines} (the explicit "
+                         f"step is faster: kept up to {EXPLICIT_FACTOR}x the circuit's size)",),
+                        automaton)
     return circuit(found, f"{lines} lines of C, the explicit automaton's {explicit_lines}")
 
 

@@ -13,7 +13,7 @@ Reference ports are named after the task function's reference (``qd`` for joint 
     ``qd_ddot`` from successive ``qd_dot``); out ``tau`` [N·m] (after the actuator
     constraint), ``e`` (the task error) and ``saturated`` (a joint at a torque bound).
     Parameters are the law's (``module ctrl : control_law(kp = 300.0)`` overrides the
-    Robot-Task's ``law``); ``set_param("kp", 200.0)`` retunes it between jobs.
+    Robot-Task's ``law``); ``set_param("kp", 200.0)`` updates it between jobs.
 """
 
 from __future__ import annotations

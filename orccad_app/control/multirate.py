@@ -24,7 +24,7 @@ processor and protocol:
     read: between two model updates :math:`\hat M` and :math:`\hat N` are those of the state
     the model Module-Task last read, which is what the model-update period costs. Until the
     first model arrives it writes nothing (a port never written reads "none yet"). Parameters
-    ``kp`` [1/s²] and ``kv`` [1/s] (``adjust ctrl.kp = …`` retunes them).
+    ``kp`` [1/s²] and ``kv`` [1/s] (``adjust ctrl.kp = …`` updates them).
 
 With both at 1 ms and zero execution times this is :class:`~orccad_app.control.laws.scheme.
 ComputedTorque` delayed by one model period; ``bench/timing_table.py --multirate`` measures

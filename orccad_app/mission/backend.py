@@ -53,7 +53,7 @@ class RunHost(Protocol):
 
     def apply_reaction(self, at_ns: int, inputs: tuple[str, ...], step: Any) -> None:
         """Apply a reaction the backend's automaton made at ``at_ns`` to ``inputs`` (its
-        ``step``): the observers told, the Robot-Tasks started, killed and retuned."""
+        ``step``): the observers told, the Robot-Tasks started, killed and updated."""
 
     def warn(self, source: str, message: str) -> None:
         """Tell the observers (``on_warning``) that something went wrong but the run goes on."""

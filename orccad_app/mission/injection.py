@@ -2,22 +2,22 @@
 
 ``SIG@T`` and ``SIG(value)@T`` raise the automaton input ``SIG`` at ``T`` seconds; the value
 is written as in the language (``3``, ``2.5``, ``true``, ``[10, 0, 15]`` for a vector) and
-typed against the input's declaration by :func:`typed_injection` (an ``int`` fits a ``float``;
-numbers finite, integers within 64 bits): a pure input takes no value, a valued one needs one,
-and a value of another type is refused, never converted;
+typed against the input's declaration by :func:`typed_injection` (the literal grammar and
+wording of :mod:`orccad_app.lang.literals`: an ``int`` fits a ``float``; numbers finite,
+integers within 64 bits): a pure input takes no value, a valued one needs one, and a value of
+another type is refused, never converted;
 ``ROBOT.FAULT=VALUE@T`` (``auv.leak=1@120``, ``auv.battery=5%@60``: a trailing ``%`` is
 dropped, the fault's unit applies) applies the fault ``FAULT`` of robot ``ROBOT``'s plant.
 """
 
 from __future__ import annotations
 
-import math
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Iterable
 
-from orccad_app.diagnostics import OrccadError, cut, value_excerpt
-from orccad_app.lang.limits import MAX_INT, MIN_INT
+from orccad_app.diagnostics import OrccadError, cut
+from orccad_app.lang.literals import LiteralError, parse_literal, read_literal, typed_value
 
 __all__ = ["Injection", "PlantFault", "parse_injection", "typed_injection", "typed_injections"]
 
@@ -55,12 +55,16 @@ class Injection:
     :param time_ns: when [ns].
     :param value: its value for a valued input, the fault's value, else ``None``.
     :param fault: the plant fault it sets, ``None`` for an automaton input.
+    :param text: an input's value as written (``--inject S(TEXT)@T``), read against the
+        input's declared type by :func:`typed_injection` (as an input script's value is);
+        ``value`` is what its form says until then.
     """
 
     name: str
     time_ns: int
     value: Any = None
     fault: PlantFault | None = None
+    text: str | None = field(default=None, compare=False)
 
 
 def parse_injection(text: str) -> Injection:
@@ -78,14 +82,18 @@ def parse_injection(text: str) -> Injection:
     name, raw, when = match.groups()
     try:
         seconds = float(when)
-        value = None if raw is None else _value(raw.strip())
     except ValueError:
-        raise OrccadError(f"bad injection {cut(repr(text))}: cannot read the time or the "
-                          f"value (expected SIGNAL(VALUE)@SECONDS, VALUE a number, true, "
-                          f"false or a vector of numbers [x, y, ...])") from None
+        raise OrccadError(f"bad injection {cut(repr(text))}: cannot read the time (expected "
+                          f"SIGNAL@SECONDS or SIGNAL(VALUE)@SECONDS)") from None
     if not seconds >= 0:
         raise OrccadError(f"bad injection {cut(repr(text))}: the time must be >= 0 s")
-    return Injection(name, int(round(seconds * 1e9)), value)
+    if raw is None:
+        return Injection(name, int(round(seconds * 1e9)))
+    try:
+        value = parse_literal(raw)
+    except LiteralError:  # typed_injection reads it against the input's type and says why
+        value = None
+    return Injection(name, int(round(seconds * 1e9)), value, text=raw.strip())
 
 
 def _fault_injection(text: str, fault: PlantFault, raw: str, when: str) -> Injection:
@@ -102,56 +110,11 @@ def _fault_injection(text: str, fault: PlantFault, raw: str, when: str) -> Injec
 
 
 def _value(raw: str) -> Any:
-    if raw in ("true", "false"):
-        return raw == "true"
-    if raw.startswith("[") or raw.endswith("]"):
-        if not (raw.startswith("[") and raw.endswith("]")):
-            raise ValueError(raw)
-        items = [item.strip() for item in raw[1:-1].split(",")]
-        if items == [""]:
-            return ()
-        return tuple(float(item) for item in items)  # ValueError for an empty item
+    """A value as the literal grammar reads it by its form; ``ValueError`` if not one."""
     try:
-        return int(raw)
-    except ValueError:
-        return float(raw)
-
-
-def _real(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _typed_value(name: str, kind: str, value: Any) -> Any:
-    """``value`` as input ``name`` of type ``kind`` carries it; raises naming what fits."""
-    if kind == "vector":
-        if not isinstance(value, (tuple, list)) or not all(_real(v) for v in value):
-            raise OrccadError(f"--inject {name}: {name} carries a vector: write "
-                              f"{name}([x, y, ...])@T, got {cut(repr(value))}")
-        if not all(math.isfinite(v) for v in value):
-            raise OrccadError(f"--inject {name}: every component must be a finite number, "
-                              f"got {value_excerpt(value)}")
-        return tuple(float(v) for v in value)
-    if kind == "bool":
-        if not isinstance(value, bool):
-            raise OrccadError(f"--inject {name}: {name} carries a bool (true or false), "
-                              f"got {cut(repr(value))}")
-        return value
-    if kind == "int":
-        if not isinstance(value, int) or isinstance(value, bool):
-            raise OrccadError(f"--inject {name}: {name} carries an int, got {cut(repr(value))}")
-        if not MIN_INT <= value <= MAX_INT:
-            raise OrccadError(f"--inject {name}: the value is outside the 64-bit integers")
-        return value
-    if kind in ("float", "duration"):
-        if not _real(value):
-            raise OrccadError(f"--inject {name}: {name} carries a {kind}, "
-                              f"got {cut(repr(value))}")
-        if not math.isfinite(value):
-            raise OrccadError(f"--inject {name}: the value must be a finite number, "
-                              f"got {value}")
-        return float(value) if kind == "float" else value
-    raise OrccadError(f"--inject {name}: inputs of type {kind} cannot be injected from the "
-                      "command line")
+        return parse_literal(raw)
+    except LiteralError as error:
+        raise ValueError(error.message) from None
 
 
 def typed_injection(injection: Injection, signal: Any) -> Injection:
@@ -160,17 +123,22 @@ def typed_injection(injection: Injection, signal: Any) -> Injection:
     :class:`OrccadError` when it does not fit."""
     if injection.fault is not None:
         return injection
-    name, value = injection.name, injection.value
+    name, value, text = injection.name, injection.value, injection.text
     if signal.type is None:
-        if value is not None:
+        if value is not None or text is not None:
             raise OrccadError(f"--inject {name}: {name} is a pure input: it takes no value "
                               f"(write {name}@T)")
         return injection
-    if value is None:
+    if value is None and text is None:
         example = "[x, y, ...]" if signal.type == "vector" else "value"
         raise OrccadError(f"--inject {name}: {name} carries a {signal.type}: write "
                           f"{name}({example})@T")
-    return replace(injection, value=_typed_value(name, signal.type, value))
+    try:
+        typed = (typed_value(value, signal.type, name) if text is None
+                 else read_literal(text, signal.type, name))
+        return replace(injection, value=typed, text=None)
+    except LiteralError as error:
+        raise OrccadError(f"--inject {name}: {error.message}") from None
 
 
 def typed_injections(injections: Iterable[Injection], inputs: Iterable[Any]) -> list[Injection]:

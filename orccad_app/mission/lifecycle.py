@@ -48,7 +48,7 @@ def site_phases(labels: Iterable[object]) -> dict[int, Phase]:
 
 
 class RobotTaskLifecycle:
-    """Starts, kills, restarts and retunes the run sites' Module-Tasks as the automaton's state
+    """Starts, kills, restarts and updates (type 1) the run sites' Module-Tasks as the automaton's state
     changes, and records the Robot-Task runs and the exceptions (see the module docstring).
 
     A mixin of :class:`~orccad_app.mission.run.MissionRun`, which sets these attributes.
@@ -89,7 +89,8 @@ class RobotTaskLifecycle:
                 update = (self._adjust.get(site.number, site.adjustments).get(role.name)
                           if site is not None else None)
                 try:
-                    change = None if update is None else self._updates.apply(update, role.name)
+                    change = None if update is None else \
+                        self._updates.apply(update, role.name, now)
                 except UpdateError:  # the exception happened; its update ends the run
                     self._record(ExceptionRecord(now, role.name, ExceptionType.ADJUST, role.task))
                     raise

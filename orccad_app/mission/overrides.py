@@ -23,7 +23,6 @@ mission does not have.
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, replace
 from enum import Enum
@@ -32,6 +31,7 @@ from typing import Any, Mapping
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.lang.limits import MAX_DURATION_NS, MIN_PERIOD_NS
+from orccad_app.lang.literals import LiteralError, read_literal
 from orccad_app.mission.plan import MissionPlan, plan_composition
 
 __all__ = ["ParamOverride", "NoiseOverride", "TimingOverride", "TimingField", "PlanOverrides",
@@ -129,18 +129,11 @@ def _number(value: Any) -> str:
 
 
 def _scalar(text: str, where: str) -> float | int | bool:
-    if text in ("true", "false"):
-        return text == "true"
+    """A number or true/false (the literal grammar of :mod:`orccad_app.lang.literals`)."""
     try:
-        return int(text)
-    except ValueError:
-        pass
-    try:
-        value = float(text)
-    except ValueError:
-        raise OrccadError(f"{where}: {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise OrccadError(f"{where}: the value must be finite, got {text!r}")
+        value: float | int | bool = read_literal(text, "scalar")
+    except LiteralError as error:
+        raise OrccadError(f"{where}: {error.message}") from None
     return value
 
 

@@ -23,7 +23,7 @@ Reactions are events of class ``CONTROL``: a reaction at ``t`` sees the outputs 
 finished at ``t`` and its activations release at ``t``.
 
 **What a reaction does.** From the labels of the new state, the Robot-Tasks' Module-Tasks are
-activated, killed, restarted (fresh module instances and ports) and retuned (type-1 updates),
+activated, killed, restarted (fresh module instances and ports) and updated (type-1 parameter updates),
 and the raised exceptions recorded: :mod:`~orccad_app.mission.lifecycle`. The run stops when
 the mission terminates (after an ``on fatal`` block), at ``until_ns`` (status ``timeout``; its
 default and the run's cost budget: :mod:`~orccad_app.mission.budget`), on a run-time failure
@@ -372,7 +372,7 @@ class MissionRun(RobotTaskLifecycle):
     def apply_reaction(self, now: int, inputs: tuple[str, ...], step: Any) -> None:
         """What the reaction at ``now`` to ``inputs`` decided (``step``, the reactor having
         made it): the hooks, the outputs, the exceptions, the Robot-Tasks started, killed and
-        retuned; the run stops when the mission has ended."""
+        updated; the run stops when the mission has ended."""
         reactor = self.reactor
         for hook in self._on_reaction:
             hook(now, inputs, step.outputs, reactor.status)

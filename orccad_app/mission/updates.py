@@ -82,9 +82,13 @@ class TypeOneUpdates:
         for key in [k for k in self._ramps if k[0] in modules]:
             self._cancel(key)
 
-    def apply(self, update: ParamUpdate, exception: str) -> UpdateRecord:
-        """Apply ``update`` (of type-1 exception ``exception``) now."""
+    def apply(self, update: ParamUpdate, exception: str,
+              at_ns: int | None = None) -> UpdateRecord:
+        """Apply ``update`` (of type-1 exception ``exception``) now; the parameter write is
+        stamped ``at_ns``, the instant of the reaction that raised the exception (default now:
+        a reaction replayed later, in real time, stamps its write at its own instant)."""
         now = self._kernel.now
+        stamp = now if at_ns is None else at_ns
         key = (update.module, update.param)
         self._cancel(key)
         old = self._compute(update.module).get_param(update.param)
@@ -92,11 +96,11 @@ class TypeOneUpdates:
         if form is None or form.ramp is None:
             value = update.value if form is None or form.constant else \
                 self._value(update, form.expressions[0], exception)
-            self._set(update, value, exception)
+            self._set(update, value, exception, stamp)
             return UpdateRecord(update.module, update.param, old, value)
         start, end = (self._value(update, e, exception) for e in form.expressions)
         self._check(update, end, exception, "the end of its ramp")
-        self._set(update, start, exception)
+        self._set(update, start, exception, stamp)
         task = self._task(update.module)
         periodic = task.activation is Activation.PERIODIC
         origin = self._activated.get(update.module, now) + task.offset_ns if periodic else now
@@ -132,15 +136,17 @@ class TypeOneUpdates:
         except OrccadError as error:
             raise self._error(update, exception, f"{what}: {error.message}") from None
 
-    def _set(self, update: ParamUpdate, value: Any, exception: str) -> None:
+    def _set(self, update: ParamUpdate, value: Any, exception: str,
+             at_ns: int | None = None) -> None:
         try:
             self._compute(update.module).set_param(update.param, value)
         except Exception as error:  # a refused value, or a module's own failure
             message = error.message if isinstance(error, OrccadError) else \
                 f"{type(error).__name__}: {error}"
             raise self._error(update, exception, message) from None
+        stamp = self._kernel.now if at_ns is None else at_ns
         for hook in self._on_param:
-            hook(self._kernel.now, update.module, update.param, value)
+            hook(stamp, update.module, update.param, value)
 
     def _error(self, update: ParamUpdate, exception: str, message: str) -> UpdateError:
         where = f"{update.loc}: " if update.loc is not None else ""

@@ -15,13 +15,13 @@ numbers finite, integers within 64 bits (see ``docs/limits.md``)::
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from orccad_app.diagnostics import OrccadError, SourceLocation, cut
-from orccad_app.lang.limits import MAX_DURATION_NS, MAX_INT, MIN_INT
+from orccad_app.diagnostics import OrccadError, SourceLocation
+from orccad_app.lang.limits import MAX_DURATION_NS
+from orccad_app.lang.literals import LiteralError, read_literal
 from orccad_app.reactive import ir
 
 __all__ = ["Instant", "parse_script", "parse_value"]
@@ -40,13 +40,6 @@ def _strip_comment(raw: str) -> str:
     return raw
 
 
-def _number(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value):
-        raise ValueError(text)
-    return value
-
-
 @dataclass(frozen=True)
 class Instant:
     """One instant of a script: ``inputs`` maps each present input to its value or ``None``."""
@@ -57,38 +50,12 @@ class Instant:
 
 
 def parse_value(text: str, signal: ir.SignalDecl, loc: SourceLocation) -> Any:
-    """A literal value checked against the signal's declared type."""
-    text = text.strip()
-    kind = signal.type
+    """A literal value checked against the signal's declared type (the literal grammar and
+    wording of :mod:`orccad_app.lang.literals`)."""
     try:
-        if kind == "bool":
-            if text not in ("true", "false"):
-                raise ValueError
-            return text == "true"
-        if kind == "string":
-            if len(text) < 2 or text[0] != '"' or text[-1] != '"':
-                raise ValueError
-            return text[1:-1]
-        if kind == "int":
-            if len(text) > 24:
-                raise ValueError(text)
-            value = int(text)
-            if not MIN_INT <= value <= MAX_INT:
-                raise ValueError(text)
-            return value
-        if kind in ("float", "duration"):
-            return _number(text)
-        if kind == "vector":
-            inner = text.strip("[]")
-            return tuple(_number(x) for x in inner.split(",") if x.strip())
-        return _number(text)
-    except ValueError:
-        limits = {"int": f" (a whole number in [{MIN_INT}, {MAX_INT}])",
-                  "float": " (a finite number)", "vector": " (finite numbers)",
-                  "duration": " (a finite number)"}.get(kind, "")
-        # cut past 1000 characters, as the generated --main program does
-        raise OrccadError(f"'{cut(text, 1000)}' is not a {kind} value for "
-                          f"{signal.name}{limits}", loc) from None
+        return read_literal(text, signal.type or "number", signal.name)
+    except LiteralError as error:
+        raise OrccadError(error.message, loc) from None
 
 
 def _time(token: str, loc: SourceLocation, previous: int | None) -> int:

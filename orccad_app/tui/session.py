@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
 from orccad_app.diagnostics import OrccadError
+from orccad_app.lang.literals import LiteralError, read_literal
 from orccad_app.robottask.signals import RoleKind
 from orccad_app.session import InputScript, RunOptions, RunSession
 from orccad_app.tui.live import LiveObserver, LiveUpdate, SeenStates
@@ -35,42 +36,18 @@ __all__ = ["FileDiagnostic", "FileView", "inspect_file", "check_file", "check_te
 
 VALUE_HINTS = {"int": "an integer, e.g. 3", "float": "a number, e.g. 0.8",
                "bool": "true or false", "vector": "numbers in brackets, e.g. [0.5, 0.5, 0.5]",
-               "string": "any text", "duration": "seconds, e.g. 2.5"}
-"""What the value of an input of each type looks like (for the prompt and the errors)."""
+               "string": 'text in double quotes, e.g. "dock"', "duration": "seconds, e.g. 2.5"}
+"""What the value of an input of each type looks like (for the prompt)."""
 
 
-def parse_value(text: str, type_name: str) -> Any:
-    """The value of a valued input of type ``type_name`` typed as ``text``; raises
-    ``ValueError`` saying what is expected (never a silent default)."""
-    text = text.strip()
-    expected = VALUE_HINTS.get(type_name, type_name)
-    if type_name == "string":
-        return text
-    if not text:
-        raise ValueError(f"type a value: {expected}")
+def parse_value(text: str, type_name: str, name: str | None = None) -> Any:
+    """The value of input (or fault) ``name`` of type ``type_name`` typed as ``text`` (the
+    literal grammar of :mod:`orccad_app.lang.literals`, as in ``--inject`` and input
+    scripts); raises ``ValueError`` with its wording (never a silent default)."""
     try:
-        if type_name == "int":
-            return int(text)
-        if type_name in ("float", "duration"):
-            value = float(text)
-            if value != value or value in (float("inf"), float("-inf")):
-                raise ValueError
-            return value
-        if type_name == "bool":
-            lowered = text.lower()
-            if lowered in ("true", "1", "on", "yes"):
-                return True
-            if lowered in ("false", "0", "off", "no"):
-                return False
-            raise ValueError
-        if type_name == "vector":
-            if not (text.startswith("[") and text.endswith("]")):
-                raise ValueError
-            items = [item.strip() for item in text[1:-1].split(",") if item.strip()]
-            return [float(item) for item in items]
-    except ValueError:
-        raise ValueError(f"{text!r} is not {expected}") from None
-    raise ValueError(f"inputs of type {type_name} cannot be raised from the console")
+        return read_literal(text, type_name, name)
+    except LiteralError as error:
+        raise ValueError(error.message) from None
 
 
 @dataclass(frozen=True)

@@ -59,6 +59,7 @@ from orccad_app.plugin_api import (
     Timing,
 )
 
+from orccad_auv.c_kinds import AUTOPILOT_C, GUIDANCE_C
 from orccad_auv.vehicle import THRUST_LIMITS_N, THRUSTER_ARM_M
 
 __all__ = ["DepthGuidance", "LosGuidance", "LawnmowerGuidance", "StationGuidance",
@@ -99,6 +100,7 @@ _LOS = (ParamSpec("radius", "float", 3.0, "waypoint acceptance radius [m]", 0.0,
 class _Guidance(ModuleKind):
     ports = _GUIDE_PORTS
     default_timing = Timing.from_ms(100.0, 1.0)
+    c_implementation = GUIDANCE_C
 
     def _instantiate(self, values: dict[str, Any], context: Any) -> ModuleInstance:
         return _GuidanceInstance(self, values, self.ports)
@@ -300,6 +302,7 @@ class Autopilot(ModuleKind):
              PortSpec("tau", "out", "vector", 5, True, "thruster forces [N]"))
     params = tuple(ParamSpec(name, "float", value, doc, 0.0) for name, value, doc in _GAINS)
     default_timing = Timing.from_ms(50.0, 1.0)
+    c_implementation = AUTOPILOT_C
 
     def _instantiate(self, values: dict[str, Any], context: Any) -> ModuleInstance:
         return _AutopilotInstance(self, values, self.ports)

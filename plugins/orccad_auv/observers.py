@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from orccad_app.plugin_api import ParamSpec, PortSpec, Timing
+from orccad_auv.c_kinds import observer_c
 from orccad_observers import Monitor, ObserverKind
 
 __all__ = ["BatteryLow", "Leak", "DepthLimit", "AltitudeLow", "AtWaypoint", "GpsFix",
@@ -67,6 +68,7 @@ class BatteryLow(ObserverKind):
     own_params = (ParamSpec("min", "float", 20.0, "charge bound [%]", 0.0),)
     monitor = _BatteryMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("min", 0)
 
 
 class _LeakMonitor(_Threshold):
@@ -83,6 +85,7 @@ class Leak(ObserverKind):
     own_params = (ParamSpec("max", "float", 0.5, "detector threshold [-]", 0.0),)
     monitor = _LeakMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("max", 1)
 
 
 class _DepthMonitor(_Threshold):
@@ -99,6 +102,7 @@ class DepthLimit(ObserverKind):
     own_params = (ParamSpec("max", "float", 30.0, "maximum depth [m]", 0.0, True),)
     monitor = _DepthMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("max", 1)
 
 
 class _AltitudeMonitor(_Threshold):
@@ -114,6 +118,7 @@ class AltitudeLow(ObserverKind):
     own_params = (ParamSpec("min", "float", 5.0, "minimum altitude [m]", 0.0, True),)
     monitor = _AltitudeMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("min", 0)
 
 
 class _GoalMonitor(_Threshold):
@@ -131,6 +136,7 @@ class AtWaypoint(ObserverKind):
     own_params = (ParamSpec("tol", "float", 2.0, "tolerance [m]", 0.0, True),)
     monitor = _GoalMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("tol", 0)
 
     def input_dims(self, values: Mapping[str, Any], context: Any) -> dict[str, int]:
         return {"goal_error": 1}
@@ -162,6 +168,7 @@ class GpsFix(ObserverKind):
     own_params = (ParamSpec("acquire", "float", 2.0, "time to a fix [s]", 0.0),)
     monitor = _GpsMonitor
     default_timing = _TIMING
+    c_implementation = observer_c("acquire", 2)
 
 
 OBSERVERS = (BatteryLow(), Leak(), DepthLimit(), AltitudeLow(), AtWaypoint(), GpsFix())

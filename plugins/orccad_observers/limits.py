@@ -11,6 +11,7 @@ import numpy as np
 from orccad_app.plugin_api import ControlError, ModuleContext, ParamSpec, PortSpec
 
 from orccad_observers.base import Monitor, ObserverKind
+from orccad_observers.c_kinds import JOINT_LIMITS_C, TORQUE_SATURATION_C
 
 __all__ = ["JointLimits", "TorqueSaturation"]
 
@@ -78,6 +79,7 @@ class JointLimits(ObserverKind):
     inputs = (PortSpec("q", "in", "vector", None, True, "joint positions [rad]"),)
     own_params = (ParamSpec("margin", "float", 0.1, "distance to the limit [rad]", 0.0),)
     monitor = _JointLimitsMonitor
+    c_implementation = JOINT_LIMITS_C
 
     def check(self, values: Mapping[str, Any], context: ModuleContext) -> None:
         robot = context.require_robot(self.name)
@@ -152,6 +154,7 @@ class TorqueSaturation(ObserverKind):
     own_params = (ParamSpec("ratio", "float", 1.0, "fraction of the bound that fires [-]",
                             0.0, True),)
     monitor = _TorqueSaturationMonitor
+    c_implementation = TORQUE_SATURATION_C
 
     def check(self, values: Mapping[str, Any], context: ModuleContext) -> None:
         context.require_robot(self.name)

@@ -18,6 +18,7 @@ from orccad_app.plugin_api import (
 )
 
 from orccad_observers.base import Monitor, ObserverKind
+from orccad_observers.c_kinds import AT_REST_C, TRACKING_ERROR_C
 
 __all__ = ["TrackingError", "AtRest", "AtGoal"]
 
@@ -50,6 +51,7 @@ class TrackingError(ObserverKind):
     input_alternatives = (frozenset({TASK_ERROR}), frozenset({"q", "qd"}))
     own_params = (ParamSpec("max", "float", REQUIRED, "error bound [rad or m]", 0.0, True),)
     monitor = _TrackingErrorMonitor
+    c_implementation = TRACKING_ERROR_C
 
     def input_dims(self, values: Mapping[str, Any], context: ModuleContext) -> dict[str, int]:
         dims = super().input_dims(values, context)
@@ -77,6 +79,7 @@ class AtRest(ObserverKind):
     inputs = (PortSpec("qdot", "in", "vector", None, True, "joint velocities [rad/s]"),)
     own_params = (ParamSpec("tol", "float", REQUIRED, "speed tolerance [rad/s]", 0.0, True),)
     monitor = _AtRestMonitor
+    c_implementation = AT_REST_C
 
 
 class _AtGoalMonitor(Monitor):

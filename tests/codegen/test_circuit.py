@@ -13,7 +13,9 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 
 from orccad_app.cli import main as orccad
-from orccad_app.codegen.circuit_schedule import NotStatic
+from orccad_app.codegen.circuit import circuit_of
+from orccad_app.codegen.circuit_reach import reachable
+from orccad_app.codegen.circuit_schedule import NotStatic, schedule
 from orccad_app.codegen.mission import generate_chosen
 from orccad_app.codegen.static_types import CodegenError
 from orccad_app.diagnostics import OrccadError
@@ -29,17 +31,18 @@ from tests.codegen.test_run_traces import TRACED, _mission, script_of
 from tests.reactive.strategies import expand, input_sequences, programs
 from tests.reactive.test_esterel_suite import CASES, FOLDER, _trace
 
-#: shipped missions whose events have no static order (auto writes their explicit automaton)
-NOT_STATIC = {("arm_recovery", "ArmRecovery")}
 _NAMES = itertools.count()
+#: HipHop's parvalued (tests/reactive/esterel/): ?I read in a branch before, in the walk, the
+#: emission of I in a parallel one — the engine makes the read wait: no static order
+NOT_STATIC = """mission parvalued {
+    output J : int;
+    signal I : int { par { if I { emit J(?I); } } || { emit I(5); } }
+}
+"""
 
 
 def _circuit(stem: str, mission: str):
     made = generated(stem, mission)
-    if (stem, mission) in NOT_STATIC:
-        with pytest.raises(CodegenError, match="static order"):
-            mission_circuit(made.composition, stem)
-        pytest.skip("no static order: the explicit generator writes it (tested below)")
     return made.composition.automaton, mission_circuit(made.composition, stem)
 
 
@@ -135,17 +138,35 @@ def test_auto_keeps_the_smaller_explicit_automaton():
     assert "lines of C, the circuit's" in program.header
 
 
-def test_auto_falls_back_where_the_order_is_not_static():
-    made = generated("arm_recovery", "ArmRecovery")
-    program = generate_chosen(made.composition, "arm_recovery")
+def test_auto_falls_back_where_the_order_is_not_static(tmp_path):
+    path = tmp_path / "parvalued.orc"
+    path.write_text(NOT_STATIC)
+    source = load(path)
+    composition = compose_mission(source, source.program.missions[0], lazy=True)
+    program = generate_chosen(composition, "parvalued")
     assert program.generator == "explicit"
-    assert "no static order" in program.header
+    assert "no static order: a value is read before" in program.header
 
 
 def test_forced_circuit_without_static_order_is_a_located_error(tmp_path, capsys):
-    status = orccad(["codegen", str(MISSIONS / "arm_recovery.orc"), "--generator", "circuit",
+    path = tmp_path / "parvalued.orc"
+    path.write_text(NOT_STATIC)
+    status = orccad(["codegen", str(path), "--generator", "circuit",
                      "-o", str(tmp_path / "out")])
     err = capsys.readouterr().err
     assert status == 2
-    assert "static order" in err and "arm_recovery.orc:" in err
+    assert "static order" in err and "parvalued.orc:3:" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_the_static_order_needs_hold_only_on_the_reachable_states():
+    """arm_recovery's ``every 1 s`` counter: its events may run in the other order only in
+    register valuations no run reaches."""
+    made = generated("arm_recovery", "ArmRecovery")
+    circuit = circuit_of(made.composition.automaton.program)
+    try:
+        with pytest.raises(NotStatic, match="becomes sure after a later one"):
+            schedule(circuit, circuit.manager.true)
+        assert schedule(circuit, reachable(circuit))
+    finally:
+        circuit.manager.release(circuit)

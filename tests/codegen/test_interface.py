@@ -94,9 +94,16 @@ def test_the_hand_written_loop_of_the_docs_runs(tmp_path):
 
 def test_an_automaton_over_the_state_budget_is_refused(tmp_path, capsys):
     assert orccad(["codegen", str(MISSIONS / "arm_recovery.orc"), "--max-states", "5", "-o",
-                   str(tmp_path / "o")]) == 2
+                   str(tmp_path / "o"), "--generator", "explicit"]) == 2
     assert "state budget exceeded" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+def test_past_the_state_budget_auto_writes_the_circuit(tmp_path, capsys):
+    assert orccad(["codegen", str(MISSIONS / "arm_recovery.orc"), "--max-states", "5", "-o",
+                   str(tmp_path / "o")]) == 0
+    header = (tmp_path / "o" / "arm_recovery.h").read_text()
+    assert "generator: circuit: the explicit automaton has more than" in header
 
 
 def test_two_missions_link_and_run_in_one_process(tmp_path):

@@ -51,7 +51,8 @@ def test_verbose_and_json_say_which_kinds_have_c(capsys):
     document = json.loads(capsys.readouterr().out)
     c = {e["name"]: e["c"] for e in document["module_kinds"] + document["observers"]}
     assert c["control_law"].startswith("the runtime library (pid")
-    assert c["joint_limits"] == "the runtime library"
+    assert c["joint_limits"].endswith("observers.c (prefix orccad_obs_joint_limits)")
+    assert c["auv_autopilot"].endswith("auv_autopilot.c (prefix orccad_auv_autopilot)")
     assert c["singularity"] is None  # an observer that runs only in Python
     assert main(["plugins", "-v"]) == 0
     out = capsys.readouterr().out.splitlines()

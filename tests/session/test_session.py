@@ -59,7 +59,7 @@ def test_the_report_holds_the_injections_the_result_and_the_verdicts(recovery):
 
 @pytest.mark.parametrize("injection, message", [
     (Injection("Stop", 0, 3), "Stop is a pure input"),
-    (Injection("Gripper", 0, "x"), "Gripper carries a float"),
+    (Injection("Gripper", 0, "x"), "is not a float value for Gripper"),
     (Injection("Nope", 0), "not an input of mission 'ArmRecovery'"),
     (Injection("Stop", 9_000_000_000), "after --until"),
     (Injection("arm.leak", 0, float("nan"), fault=PlantFault("arm", "leak")), "finite number"),

@@ -84,3 +84,23 @@ def test_a_retuned_trajectory_is_refused_at_its_adjust_not_run_with_a_jump(tmp_p
     assert "retune.orc:14:48:" in done.stderr
     assert "Retune.traj.omega" in done.stderr and "continuous" in done.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_declared_timing_is_64_bits_on_every_target(tmp_path):
+    """A period or execution time is nanoseconds in an int64_t, written INT64_C(…): a `long`
+    (32 bits on 32-bit ARM) would wrap past 2.1 s. The header's field is 8 bytes (checked by
+    the compiler: a negative array size otherwise) and the table writes a 3 s period whole."""
+    from orccad_app.sil.generate.library import C_DIR
+    from orccad_app.sil.generate.layout import CKind, CLayout
+    from orccad_app.sil.generate.table import ModuleEntry, ModuleTable, table_source
+
+    table = ModuleTable("M", (ModuleEntry("T.m", CLayout(CKind.LAW_PID, (), (), (0.0,)),
+                                          3_000_000_000, 4_000_000_000, 0, 1),), ("cpu0",))
+    assert "INT64_C(3000000000), INT64_C(4000000000)" in table_source(table, "m.orc")
+    check = tmp_path / "check.c"
+    check.write_text('#include "orccad_mt.h"\n'
+                     "typedef char period_is_64_bits[sizeof(((orc_mt_def *)0)->period_ns) == 8 "
+                     "? 1 : -1];\nint main(void) { return 0; }\n")
+    built = subprocess.run([compiler(), *CFLAGS, "-I", str(C_DIR), str(check), "-o",
+                            str(tmp_path / "check")], capture_output=True, text=True)
+    assert built.returncode == 0, built.stderr

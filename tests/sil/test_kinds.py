@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 from orccad_app.mission.plan import SiteModules
-from orccad_app.sil.generate.layout import AUV_THRUST_LIMITS_N, THRUSTER_ARM_M
 from orccad_app.sil.lockstep import lockstep, random_inputs
 from orccad_app.sil.controller.remote import RemoteModule
 
@@ -52,10 +51,3 @@ def test_each_c_kind_computes_what_its_python_kind_computes(file, mission, exact
                     inputs = random_inputs(python, rng, scale)
                     _same(python.compute(t_s, inputs), remote.compute(t_s, inputs), exact)
         assert started.controller.alive
-
-
-def test_the_auv_constants_are_the_plugins():
-    from orccad_auv import vehicle
-
-    assert THRUSTER_ARM_M == vehicle.THRUSTER_ARM_M
-    assert AUV_THRUST_LIMITS_N == tuple(vehicle.THRUST_LIMITS_N.tolist())

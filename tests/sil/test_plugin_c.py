@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 from orccad_app.pipeline import load, select_mission
-from orccad_app.plugin_api import (REQUIRED, CImplementation, ModuleInstance, ModuleKind,
-                                   ParamSpec, PortSpec, PluginHost, Timing, hookimpl)
+from orccad_app.plugin_api import (REQUIRED, CField, CFieldType, CImplementation,
+                                   ModuleInstance, ModuleKind, OrccadError, ParamSpec, PortSpec,
+                                   PluginHost, Timing, hookimpl, kind_header)
 from orccad_app.session import ControllerOptions, Execution, RunOptions, RunSession
 from orccad_app.sil.generate.layout import NoCImplementation
 
@@ -136,3 +137,98 @@ def test_check_kinds_reports_the_first_difference_of_a_wrong_c(tmp_path):
         assert (difference.kind, difference.port) == ("low_pass", "y")
         assert difference.job == 0 and difference.c == pytest.approx([0.0] * 3)
         assert "module-task 'TrackPID.filt' (kind low_pass), job 0" in difference.text()
+
+
+LOW_PASS_DECLARED_C = Path(__file__).parent / "c" / "low_pass_declared.c"
+
+
+class DeclaredLowPass(LowPass):
+    """The same filter, its parameters and state declared once: the words sent and the C
+    structs (low_pass_d_kind.h) both come from the declaration."""
+
+    c_implementation = CImplementation(
+        LOW_PASS_DECLARED_C, "low_pass_d",
+        lambda instance: {"cutoff_hz": instance.params["cutoff"]},
+        param_fields=(CField("cutoff_hz", doc="cut-off frequency [Hz]"),),
+        state_fields=(CField("primed", CFieldType.INT64, doc="1 once y holds a value"),
+                      CField("last_t_s", doc="the previous job's time [s]"),
+                      CField("y", size=16, doc="the filtered signal")))
+
+
+def test_a_kind_declared_once_runs_in_the_controller_as_its_python_does(tmp_path):
+    """A third-party-style kind whose parameters and state are declared once
+    (CImplementation.param_fields, state_fields): its C reads typed structs from the generated
+    header, no offset written by hand, and the lockstep run ends as the executive's."""
+    from orccad_app.sil.lockstep import check_kinds
+    from orccad_app.mission.plan import plan_mission
+
+    path = _mission(tmp_path)
+    expected = report(_session(path, DeclaredLowPass()).execute())
+    got = report(_session(path, DeclaredLowPass(), Execution.LOCKSTEP).execute())
+    assert expected["status"] == "done" and got == expected
+    source = load(str(path), PluginHost.load([("declared", _Plugin(DeclaredLowPass()))]))
+    plan = plan_mission(source, select_mission(source, None))
+    assert check_kinds(plan, str(path), jobs=50, seed=2)[1] is None
+
+
+def test_the_declaration_gives_the_words_and_the_header():
+    c = DeclaredLowPass.c_implementation
+    assert c.words(type("I", (), {"params": {"cutoff": 150.0}})()) == (150.0,)
+    header = kind_header(c)
+    assert "typedef struct {\n    double cutoff_hz; /* cut-off frequency [Hz] */\n} " \
+           "low_pass_d_params;" in header
+    assert "    int64_t primed; /* 1 once y holds a value */" in header
+    assert "    double y[16]; /* the filtered signal */" in header
+    assert "v.cutoff_hz = m->p[0];" in header
+
+
+@pytest.mark.parametrize("given,words", [
+    ({"cutoff_hz": 1.0, "gain": 2.0}, r"undeclared field\(s\) gain"),
+    ({}, "no value for field 'cutoff_hz'"),
+    ([1.0], "must give a mapping"),
+])
+def test_a_declared_kinds_params_must_match_its_declaration(given, words):
+    c = CImplementation(LOW_PASS_DECLARED_C, "low_pass_d", lambda instance: given,
+                        param_fields=(CField("cutoff_hz"),))
+    with pytest.raises(OrccadError, match=words):
+        c.words(None)
+
+
+def test_a_declaration_is_checked_when_it_is_made():
+    with pytest.raises(OrccadError, match="declared twice"):
+        CImplementation(LOW_PASS_DECLARED_C, "x", dict, param_fields=(CField("a"), CField("a")))
+    with pytest.raises(OrccadError, match="161 state words declared, the C runtime holds 160"):
+        CImplementation(LOW_PASS_DECLARED_C, "x", dict, state_fields=(CField("s", size=161),))
+    with pytest.raises(OrccadError, match="int64"):
+        CImplementation(LOW_PASS_DECLARED_C, "x", lambda i: {"n": 2.5},
+                        param_fields=(CField("n", CFieldType.INT64),)).words(None)
+
+
+def test_the_built_in_plugins_carry_their_own_c_and_the_core_names_none_of_their_kinds():
+    """The observers' and the AUV's kinds run from their plugins' own C files, through
+    CImplementation as a third party's do (issue 36); no string in the core's Python names one
+    of them."""
+    import ast
+
+    from orccad_app.sil.generate.layout import kind_c
+
+    root = Path(__file__).resolve().parents[2]
+    host = PluginHost.load()
+    names = set()
+    for registry in (host.registries.module_kinds, host.registries.observers):
+        for entry in registry.entries():
+            if entry.plugin not in ("orccad_observers", "orccad_auv"):
+                continue
+            names.add(entry.name)
+            c = entry.item.c_implementation
+            if c is not None:
+                assert (root / "plugins" / entry.plugin) in c.source.parents, entry.name
+                assert "runtime library" not in kind_c(entry.item)
+    assert {"joint_limits", "at_rest", "auv_autopilot", "gps_fix"} <= names
+    literals = set()
+    for path in (root / "orccad_app").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
+                literals.add(node.value)
+    literals.discard("tracking_error")  # the report's field of a run's error samples, not the kind
+    assert not names & literals, sorted(names & literals)

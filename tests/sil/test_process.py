@@ -139,3 +139,36 @@ def test_ctrl_c_ends_the_run_with_its_report_and_no_process_left():
     assert command.returncode == 130, err
     assert "mission AuvSurvey: aborted (interrupted (Ctrl-C))" in out and "interrupted" in err
     assert _gone(controller)
+
+
+def _c_enum(name: str) -> dict[str, int]:
+    """``enum NAME`` of orccad_wire.h: member -> value."""
+    import re
+
+    from orccad_app.sil.generate.library import C_DIR
+
+    text = (C_DIR / "orccad_wire.h").read_text()
+    body = re.search(r"enum " + name + r" \{(.*?)\};", text, re.S).group(1)
+    return {m: int(v) for m, v in re.findall(r"^\s*(\w+) = (\d+)", body, re.M)}
+
+
+def test_the_wire_vocabulary_is_typed_the_same_on_both_sides():
+    """Operations and reply statuses are enums on both ends of the socket, member for member
+    (orccad_wire.h's orc_op and orc_status; process.py's Op and Reply)."""
+    from orccad_app.sil.controller.process import Op, Reply
+
+    assert _c_enum("orc_op") == {f"OP_{op.name}": op.value for op in Op}
+    assert _c_enum("orc_status") == {f"ORC_{reply.name}": reply.value for reply in Reply}
+
+
+def test_a_refused_request_names_the_reason(tmp_path):
+    from orccad_app.sil.controller.process import ControllerFailure, Op
+    from orccad_app.sil.lockstep import lockstep
+
+    from tests.sil.helpers import plan_of
+
+    with lockstep(plan_of("arm_pid.orc"), "arm_pid.orc") as started:
+        with pytest.raises(ControllerFailure) as refused:
+            started.controller.request(Op.INIT, 99)
+    assert str(refused.value).endswith("refused request INIT for Module-Task 99: no such "
+                                       "Module-Task in its table")

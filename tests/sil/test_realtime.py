@@ -67,7 +67,10 @@ def test_arm_recovery_recovers_on_the_real_time_threads_as_in_simulation():
     ctrl = timings["TrackPID.ctrl"]
     assert ctrl.released > 4000 and ctrl.lateness_s is not None
     assert ctrl.predicted_s == pytest.approx(0.0003)
-    assert timings["Park.ctrl"].released == 0  # never started
+    assert timings["Park.ctrl"].released == 0  # never started: no response time, shown "—"
+    assert timings["Park.ctrl"].response_max_s is None
+    ends = [r.end_ns for r in result.robot_tasks if r.end_ns is not None]
+    assert result.sim_time_ns >= max(ends)  # the report's time covers the last task's end
     assert _controllers_of(os.getpid()) == []
     assert not os.path.exists(backend.shared_memory_path)  # removed once mapped: none left
 
@@ -189,15 +192,16 @@ def test_computed_and_ramped_type_1_updates_are_applied_by_the_automaton_task():
         session = session_of("arm_retune.orc", execution=Execution.REALTIME, until_s=1.5)
         controller = session.backend.controller
         _spied(controller, ops)
-        request, kernel = controller.request, session.run.kernel
+        request, request_words = controller.request, controller.request_words
+        kernel = session.run.kernel
         law = session.backend.table.index("TrackSoft.ctrl")
 
-        def sample(op, *args, **kwargs):
+        def sample(op, *args, **kwargs):  # the heartbeat's PING: integer words
             if op is Op.PING:
                 samples.append((kernel.now, tuple(request(Op.PARAMS, law))))
-            return request(op, *args, **kwargs)
+            return request_words(op, *args, **kwargs)
 
-        controller.request = sample
+        controller.request_words = sample
         return (session.execute().result,)
 
     (result,) = on_a_real_time_machine(run)
@@ -310,14 +314,15 @@ def test_a_start_with_run_time_arguments_is_bound_by_the_controller():
                          until_s=1.2)
     controller = session.backend.controller
     _spied(controller, ops)
-    request, guide = controller.request, session.backend.table.index("GoTo.guide")
+    request, request_words = controller.request, controller.request_words
+    guide = session.backend.table.index("GoTo.guide")
 
-    def sample(op, *args, **kwargs):
+    def sample(op, *args, **kwargs):  # the heartbeat's PING: integer words
         if op is Op.PING:
             words.append(tuple(request(Op.PARAMS, guide)))
-        return request(op, *args, **kwargs)
+        return request_words(op, *args, **kwargs)
 
-    controller.request = sample
+    controller.request_words = sample
     result = session.execute().result
     timings = {t.name: t for t in session.backend.timings}
     goto = result.robot_tasks[0]
@@ -345,23 +350,32 @@ def test_a_constant_type_1_update_is_applied_by_the_automaton_task():
     """arm_recovery's Saturated sets ctrl.kp to 200 (a constant): the automaton task writes it
     into the law's parameters itself (no PARAM request from the plant server), the report
     records 600 -> 200, and the arm then tracks as the executive's run with kp = 200 does
-    (the task error's RMS within 25 %)."""
+    (the task error's RMS within 25 %). The trace's parameter write is stamped at the
+    exception's instant, not at the plant server's later exchange (issue 34)."""
     from orccad_app.sil.controller.process import Op
 
     from tests.sil.helpers import executive_report
 
     ops: list[Op] = []
+    writes: list[tuple[int, str, str]] = []
     inject = (parse_injection("TrackPID.Saturated@1.8"),)
+
+    class Writes:
+        def on_param(self, t_ns, module, param, value):
+            writes.append((t_ns, module, param))
 
     def run():
         ops.clear()
+        writes.clear()
         session = session_of("arm_recovery.orc", execution=Execution.REALTIME,
-                             injections=inject, until_s=2.6)
+                             injections=inject, until_s=2.6, observers=(Writes(),))
         _spied(session.backend.controller, ops)
         return (session.execute().result,)
 
     (result,) = on_a_real_time_machine(run)
     assert Op.PARAM not in ops and Op.START not in ops
+    (raised,) = [e for e in result.exceptions if e.name == "Saturated"]
+    assert writes == [(raised.time_ns, "TrackPID.ctrl", "kp")]
     (update,) = [e.update for e in result.exceptions if e.name == "Saturated"]
     assert (update.old, update.new) == (600.0, 200.0)
     track = result.robot_tasks[1]
@@ -385,7 +399,7 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
 
     from mcap.reader import make_reader
 
-    from orccad_app.trace.writers import open_trace
+    from orccad_app.trace.writers import open_trace, sensor_ports
 
     periods_ns = {"TrackPID.traj": 1_000_000, "TrackPID.ctrl": 1_000_000,
                   "TrackPID.jl": 5_000_000}
@@ -396,7 +410,7 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
     # stalled plant server delays the records' reading, not the jobs
     session = session_of("arm_pid.orc", execution=Execution.REALTIME, until_s=0.5,
                          trace=str(table))
-    session.record(open_trace(mcap))
+    session.record(open_trace(mcap, None, sensor_ports(session.plan)))
     shared = session.backend._shared
     read = shared.jobs
 
@@ -449,7 +463,10 @@ def test_the_trace_of_a_real_time_run_has_the_jobs_life_cycle(tmp_path):
     with open(mcap, "rb") as stream:
         messages = [(channel.topic, data) for _, channel, data in
                     make_reader(stream).iter_messages()]
-    assert {"/orccad/release", "/orccad/start", "/orccad/finish"} <= {t for t, _ in messages}
+    topics = {t for t, _ in messages}
+    assert {"/orccad/release", "/orccad/start", "/orccad/finish"} <= topics
+    # the robot's sensors as the Module-Tasks read them, as in lockstep (issue 34)
+    assert {"/plant/arm/q", "/plant/arm/qdot"} <= topics, sorted(topics)
     warnings = [json.loads(m.data) for topic, m in messages if topic == "/log"
                 and b"job records lost" in m.data]
     assert [(w["level"], w["name"]) for w in warnings] == [(3, "sil")]

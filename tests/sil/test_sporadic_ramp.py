@@ -45,17 +45,22 @@ def test_the_controller_steps_it_on_the_minimum_inter_arrival_grid(ramped):
         execution=Execution.REALTIME, controller=ControllerOptions(ramped),
         injections=(parse_injection("TrackWatched.Saturated@0.5"),), until_s=1.8))
     controller = session.backend.controller
-    request, watch = controller.request, session.backend.table.index("TrackWatched.watch")
+    request, request_words = controller.request, controller.request_words
+    watch = session.backend.table.index("TrackWatched.watch")
     ops: list[Op] = []
     samples: list[float] = []
 
     def spy(op, *args, **kwargs):
         ops.append(op)
-        if op is Op.PING:
-            samples.append(request(Op.PARAMS, watch)[1])
         return request(op, *args, **kwargs)
 
-    controller.request = spy
+    def spy_words(op, *args, **kwargs):  # PING, ACTIVATE, INPUT: integer or packed words
+        ops.append(op)
+        if op is Op.PING:
+            samples.append(request(Op.PARAMS, watch)[1])
+        return request_words(op, *args, **kwargs)
+
+    controller.request, controller.request_words = spy, spy_words
     result = session.execute().result
     assert Op.PARAM not in ops and controller.supervisor_writes == 0
     (update,) = [e.update for e in result.exceptions if e.name == "Saturated"]

@@ -10,7 +10,7 @@
  * the machine's speed.
  *
  * Frames (native byte order): request = u32 op, u32 module, f64 t_s, u32 n, u32 offset, then
- * n doubles; reply = u32 status (0 ok), u32 n, then n doubles. A value slot is
+ * n doubles; reply = u32 status (enum orc_status, orccad_wire.h), u32 n, then n doubles. A value slot is
  * [present, v_0 .. v_(dim-1)]. C99, no allocation, no recursion. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -87,7 +87,7 @@ int orc_lockstep_main(int fd)
         }
         if (req.op != OP_HELLO && req.op != OP_PING && req.op != OP_QUIT && req.op != OP_REACT) {
             if (req.module >= (uint32_t)ORC_N_MODULES) {
-                reply(fd, 1, 0);
+                reply(fd, ORC_NO_SUCH_MODULE, 0);
                 continue;
             }
             m = &ORC_INSTANCES[req.module];
@@ -96,45 +96,46 @@ int orc_lockstep_main(int fd)
         case OP_HELLO:
             orc_automaton_reset();
             orc_wire_hello(data_out);
-            if (reply(fd, 0, ORC_HELLO_DOUBLES) != 0) {
+            if (reply(fd, ORC_OK, ORC_HELLO_DOUBLES) != 0) {
                 return 3;
             }
             break;
         case OP_START:
             orc_mt_load(m, &ORC_MODULES[req.module]);
             orc_mt_init(m);
-            reply(fd, 0, 0);
+            reply(fd, ORC_OK, 0);
             break;
         case OP_PARAM:
-            reply(fd, orc_mt_set_param(m, (int)req.offset, data_in, (int)req.n) ? 2 : 0, 0);
+            reply(fd, orc_mt_set_param(m, (int)req.offset, data_in, (int)req.n) ? ORC_BAD_PARAMS : ORC_OK,
+                  0);
             break;
         case OP_INIT:
             orc_mt_init(m);
-            reply(fd, 0, 0);
+            reply(fd, ORC_OK, 0);
             break;
         case OP_COMPUTE:
             n = compute(m, req.t_s);
             if (n == (uint32_t)-1) {
-                reply(fd, 3, 0);
-            } else if (reply(fd, 0, n) != 0) {
+                reply(fd, ORC_NO_SUCH_KIND, 0);
+            } else if (reply(fd, ORC_OK, n) != 0) {
                 return 3;
             }
             break;
         case OP_REACT:
             if (orc_automaton_react(data_in, req.n, data_out, &n) != 0) {
-                reply(fd, 5, 0);
-            } else if (reply(fd, 0, n) != 0) {
+                reply(fd, ORC_BAD_REACTION, 0);
+            } else if (reply(fd, ORC_OK, n) != 0) {
                 return 3;
             }
             break;
         case OP_PING:
-            reply(fd, 0, 0);
+            reply(fd, ORC_OK, 0);
             break;
         case OP_QUIT:
-            reply(fd, 0, 0);
+            reply(fd, ORC_OK, 0);
             return 0;
         default:
-            reply(fd, 4, 0);
+            reply(fd, ORC_UNKNOWN_OP, 0);
         }
     }
 }

@@ -2,15 +2,14 @@
  * compute, a type-1 parameter update), the dispatch of a job to its kind, and what every kind
  * uses to write its outputs and read its task time (orccad_mt_kinds.h).
  *
- * The kinds, each operation for operation its Python kind (orccad_app/control,
- * plugins/orccad_observers, plugins/orccad_auv) so that the values are bit-identical on finite
+ * The kinds of the control library, each operation for operation its Python kind
+ * (orccad_app/control) so that the values are bit-identical on finite
  * inputs (tests/sil/test_kinds.py compares them), with its parameter and state layout
  * (orccad_app/sil/generate/layout.py writes the same offsets):
  *   orccad_mt_trajectory.c  cosine, min_jerk, constant
  *   orccad_mt_laws.c        pid, computed_torque, dynamic_model, ct_feedback
- *   orccad_mt_observers.c   joint_limits, torque_saturation, tracking_error, at_rest
- *   orccad_mt_auv.c         the AUV's autopilot, guidance and observers
- * A plugin's kind is the generated table's (orc_plugin_compute). Ties follow numpy's rules
+ * A plugin's kind (the observers', plugins/orccad_observers/c; the AUV's, plugins/orccad_auv/c;
+ * a third party's) is the generated table's (orc_plugin_compute). Ties follow numpy's rules
  * where the Python code uses numpy (np.maximum(a, b) and np.minimum(a, b) return b on a tie)
  * and Python's where it uses min()/max().
  * C99, no allocation, no recursion. */
@@ -18,7 +17,7 @@
 
 #include "orccad_mt_kinds.h"
 
-/* ---- what the kinds share ---------------------------------------------------------------- */
+/* ---- what the kinds share (orccad_mt.h: the plugins' kinds too) ------------------------ */
 
 void orc_mt_set_out(orc_mt *m, int slot, const double *v, int dim)
 {
@@ -68,6 +67,16 @@ double orc_mt_task_time(double *state, double t_s)
     return t_s - state[1];
 }
 
+void orc_mt_observe(orc_mt *m, int holds, double value)
+{
+    int edge = m->p[0] != 0.0, fires = holds && !(edge && m->s[0] != 0.0);
+    m->s[0] = holds ? 1.0 : 0.0;
+    orc_mt_set_out1(m, 1, value);
+    if (fires) {
+        orc_mt_set_out1(m, 0, 1.0);
+    }
+}
+
 /* ---- the interface ----------------------------------------------------------------------- */
 
 void orc_mt_load(orc_mt *m, const orc_mt_def *def)
@@ -112,13 +121,6 @@ int orc_mt_compute(orc_mt *m, double t_s)
     case ORC_LAW_CT: orc_mt_computed_torque(m, t_s); break;
     case ORC_MODEL_DYN: orc_mt_dynamic_model(m); break;
     case ORC_CT_FEEDBACK: orc_mt_ct_feedback(m); break;
-    case ORC_OBS_JOINT_LIMITS: orc_mt_joint_limits(m); break;
-    case ORC_OBS_TORQUE_SAT: orc_mt_torque_saturation(m); break;
-    case ORC_OBS_TRACKING: orc_mt_tracking_error(m); break;
-    case ORC_OBS_AT_REST: orc_mt_at_rest(m); break;
-    case ORC_AUV_AUTOPILOT: orc_mt_autopilot(m, t_s); break;
-    case ORC_AUV_GUIDANCE: orc_mt_guidance(m); break;
-    case ORC_AUV_OBSERVER: orc_mt_auv_observer(m, t_s); break;
     default: return orc_plugin_compute(m, t_s);
     }
     return 0;

@@ -14,6 +14,8 @@
 #ifndef ORCCAD_MT_H
 #define ORCCAD_MT_H
 
+#include <stdint.h>
+
 #define ORC_MAX_DIM 16     /* components of a vector port (M of 4 joints: 16) */
 #define ORC_MAX_PORTS 8    /* input (and output) slots of a Module-Task */
 #define ORC_MAX_PARAMS 192 /* doubles of parameters */
@@ -27,14 +29,7 @@ enum orc_kind {
     ORC_LAW_PID = 10,          /* control_law, pid with joint_tracking */
     ORC_LAW_CT = 11,           /* control_law, computed_torque (pinocchio or perturbed model) */
     ORC_MODEL_DYN = 12,        /* dynamic_model */
-    ORC_CT_FEEDBACK = 13,      /* ct_feedback */
-    ORC_OBS_JOINT_LIMITS = 20, /* joint_limits(margin) */
-    ORC_OBS_TORQUE_SAT = 21,   /* torque_saturation(ratio) */
-    ORC_OBS_TRACKING = 22,     /* tracking_error(max) */
-    ORC_OBS_AT_REST = 23,      /* at_rest(tol) */
-    ORC_AUV_AUTOPILOT = 30,    /* auv_autopilot */
-    ORC_AUV_GUIDANCE = 31,     /* depth/station/los/hold/waypoint/lawnmower guidance */
-    ORC_AUV_OBSERVER = 32      /* leak, depth_limit, battery_low, altitude_low, ... */
+    ORC_CT_FEEDBACK = 13       /* ct_feedback */
 };
 
 /* One port value: present (0: "none yet" / not written) and its components. */
@@ -54,9 +49,11 @@ typedef struct {
     int out_dim[ORC_MAX_PORTS];
     int n_params;
     double params[ORC_MAX_PARAMS];
-    long period_ns, wcet_ns;   /* declared timing (sporadic: period = minimum inter-arrival) */
+    int64_t period_ns, wcet_ns; /* declared timing [ns] (sporadic: period = minimum
+                                 * inter-arrival); 64 bits on every target */
     int processor, priority;   /* placement (priority 1 the highest) */
     int sporadic;              /* 1: released by the writes on its inputs (interrupts) */
+    int event_out;             /* 1: output slot 0 is an event port (an observer's event) */
 } orc_mt_def;
 
 typedef struct {
@@ -101,6 +98,24 @@ extern const int ORC_N_PROCESSORS;
 
 /* The generated instances' memory, one per table entry (no allocation at run time). */
 extern orc_mt ORC_INSTANCES[];
+
+/* What a kind's C may call (the runtime library's kinds and the plugins' alike). */
+/* Output slot `slot` written: present, `dim` components from v. */
+void orc_mt_set_out(orc_mt *m, int slot, const double *v, int dim);
+void orc_mt_set_out1(orc_mt *m, int slot, double v);
+/* ModuleInstance.task_time: seconds since the first job after init; `state` holds
+ * [t0 set, t0] (two words of the kind's state). */
+double orc_mt_task_time(double *state, double t_s);
+/* An observer's job (plugins/orccad_observers/base.py): its value on output slot 1; its
+ * event on slot 0 when `holds`, only at the rising edge when the edge parameter p[0] is set
+ * (the state's s[0] is "held"). */
+void orc_mt_observe(orc_mt *m, int holds, double value);
+/* The torque interval [lo, hi] [N·m] the actuator constraint allows joint j at velocity
+ * qdot (control/constraints.py: |tau + beta·qdot| <= alpha within [tau_min, tau_max], never
+ * empty); bounds = [tau_min, tau_max, alpha, beta], dof each. The laws clamp to it,
+ * torque_saturation measures against it. */
+void orc_mt_torque_bounds(const double *bounds, int dof, int j, double qdot, double *lo,
+                          double *hi);
 
 /* The plugin kinds' C (ModuleKind.c_implementation; docs/deploy.md): kind ORC_PLUGIN_BASE + k
  * is the table's k-th plugin kind, its functions PREFIX_init(orc_mt *) and

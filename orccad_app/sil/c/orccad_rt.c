@@ -164,10 +164,6 @@ static void interrupt(int m)
     t->next_release_ns = earliest > now ? earliest : now;
 }
 
-static int is_observer(int kind)
-{
-    return (kind >= ORC_OBS_JOINT_LIMITS && kind <= ORC_OBS_AT_REST) || kind == ORC_AUV_OBSERVER;
-}
 
 /* Reads the inputs from t->at on; 0 when blocked on one. */
 static int read_inputs(int m)
@@ -235,7 +231,7 @@ static void finish_job(int m)
     int64_t now = now_ns();
     double response = (double)(now - t->job_release_ns);
     int missed = response > (double)ORC_MODULES[m].period_ns;
-    if (is_observer(ORC_MODULES[m].kind) && ORC_INSTANCES[m].out[0].present) {
+    if (ORC_MODULES[m].event_out && ORC_INSTANCES[m].out[0].present) {
         t->events += 1; /* an observer's event (slot 0): counted for the plant server */
     }
     t->phase = JOB_IDLE;

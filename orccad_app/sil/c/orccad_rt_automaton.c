@@ -26,6 +26,7 @@
 #include "orccad_automaton.h"
 #include "orccad_io.h"
 #include "orccad_rt.h"
+#include "orccad_wire.h"
 
 #define MAX_QUEUED 256
 
@@ -124,13 +125,13 @@ void orc_automaton_start(void)
 uint32_t orc_automaton_input(const double *words, uint32_t n)
 {
     if (n != ORC_AUTOMATON_IN_WORDS) {
-        return 1;
+        return ORC_BAD_WORDS;
     }
     if (n_queued == MAX_QUEUED) {
-        return 6; /* more inputs ahead than a reaction period can hold: refused */
+        return ORC_INPUTS_FULL; /* more inputs ahead than a reaction period can hold */
     }
     memcpy(queued[n_queued++], words, n * sizeof(double));
-    return 0;
+    return ORC_OK;
 }
 
 static int event_pending(void)

@@ -8,6 +8,7 @@
 #include "orccad_port.h"
 #include "orccad_rt.h"
 #include "orccad_rt_task.h"
+#include "orccad_wire.h"
 
 /* The Module-Task whose operation alone releases m's job (-1: m's job does not wait), and
  * the connection and direction of the wait. */
@@ -44,9 +45,9 @@ uint32_t orc_rt_deadlock(double *cycle)
             uint32_t n = 0;
             do {
                 int next = waits_for(at, &c, &reading);
-                cycle[n++] = (double)at;
-                cycle[n++] = (double)c;
-                cycle[n++] = (double)reading;
+                orc_wire_put_int(&cycle[n++], at);
+                orc_wire_put_int(&cycle[n++], c);
+                orc_wire_put_int(&cycle[n++], reading);
                 at = next;
             } while (at != m);
             return n;

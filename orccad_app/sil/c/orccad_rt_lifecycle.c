@@ -13,6 +13,7 @@
 #include "orccad_port.h"
 #include "orccad_rt.h"
 #include "orccad_rt_task.h"
+#include "orccad_wire.h"
 
 /* Until Module-Task m's compute (outside the lock) has ended: a command touching its memory
  * waits for it. */
@@ -90,7 +91,7 @@ double orc_rt_get_param(int m, int offset)
 uint32_t orc_rt_set_params(int m, int offset, const double *values, int n)
 {
     wait_compute(m);
-    return orc_mt_set_param(&ORC_INSTANCES[m], offset, values, n) ? 2 : 0;
+    return orc_mt_set_param(&ORC_INSTANCES[m], offset, values, n) ? ORC_BAD_PARAMS : ORC_OK;
 }
 
 void orc_rt_init(int m)

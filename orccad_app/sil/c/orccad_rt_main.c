@@ -45,11 +45,11 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
         orc_automaton_reset();
         orc_wire_hello(answer);
         *n = ORC_HELLO_DOUBLES;
-        return 0;
+        return ORC_OK;
     }
     if (req->op == OP_PING) { /* the heartbeat, with the jobs deadlocked if any */
         *n = orc_rt_deadlock(answer);
-        return 0;
+        return ORC_OK;
     }
     if (req->op == OP_INPUT) { /* inputs for the automaton task, at their instant */
         return orc_automaton_input(data_in, req->n);
@@ -58,52 +58,53 @@ static uint32_t command(const orc_request *req, double *answer, uint32_t *n)
                                 * automaton task starts its ticks */
         orc_rt_take_epoch();
         orc_automaton_start();
-        return 0;
+        return ORC_OK;
     }
     if (req->module >= (uint32_t)ORC_N_MODULES) {
-        return 1;
+        return ORC_NO_SUCH_MODULE;
     }
     switch (req->op) {
     case OP_START:
         orc_rt_fresh((int)req->module);
-        return 0;
+        return ORC_OK;
     case OP_PARAM:
         return orc_rt_set_params((int)req->module, (int)req->offset, data_in, (int)req->n);
     case OP_INIT:
         orc_rt_init((int)req->module);
-        return 0;
+        return ORC_OK;
     case OP_ACTIVATE: { /* every Module-Task in the data (or the request's one), their
                          * first release shared, as in the executive (their jobs read before
                          * any of them computes): at epoch + t_s, or now when that has passed
                          * (the plant server behind the wall clock is not the threads' lateness) */
         int64_t at = orc_rt_epoch_ns() + (int64_t)(req->t_s * 1e9 + 0.5), now = orc_rt_now_ns();
-        for (i = 0; i < req->n; i++) {
-            if (!(data_in[i] >= 0 && data_in[i] < ORC_N_MODULES)) {
-                return 1;
+        for (i = 0; i < req->n; i++) { /* their indices: integer words */
+            int64_t index = orc_wire_get_int(&data_in[i]);
+            if (index < 0 || index >= ORC_N_MODULES) {
+                return ORC_NO_SUCH_MODULE;
             }
         }
         if (req->n == 0) {
             orc_rt_activate((int)req->module, at > now ? at : now);
         }
         for (i = 0; i < req->n; i++) {
-            orc_rt_activate((int)data_in[i], at > now ? at : now);
+            orc_rt_activate((int)orc_wire_get_int(&data_in[i]), at > now ? at : now);
         }
-        return 0;
+        return ORC_OK;
     }
     case OP_KILL:
         orc_rt_kill((int)req->module);
-        return 0;
+        return ORC_OK;
     case OP_RESET:
         orc_rt_reset_ports((int)req->module);
-        return 0;
+        return ORC_OK;
     case OP_PARAMS: /* what the Module-Task computes with now (the type-1 updates applied) */
         for (i = 0; i < (uint32_t)ORC_MODULES[req->module].n_params; i++) {
             answer[i] = orc_rt_get_param((int)req->module, (int)i);
         }
         *n = i;
-        return 0;
+        return ORC_OK;
     default:
-        return 4;
+        return ORC_UNKNOWN_OP;
     }
 }
 
@@ -246,7 +247,7 @@ int main(int argc, char **argv)
             break; /* the plant server is gone */
         }
         if (req.op == OP_QUIT) {
-            orc_wire_reply(fd, 0, 0, NULL);
+            orc_wire_reply(fd, ORC_OK, 0, NULL);
             break;
         }
         pthread_mutex_lock(&orc_rt_lock);

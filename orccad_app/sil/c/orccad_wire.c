@@ -51,10 +51,22 @@ int orc_wire_reply(int fd, uint32_t status, uint32_t n, const double *values)
     return n ? write_full(fd, values, n * sizeof(double)) : 0;
 }
 
+void orc_wire_put_int(double *word, int64_t value)
+{
+    memcpy(word, &value, sizeof value);
+}
+
+int64_t orc_wire_get_int(const double *word)
+{
+    int64_t value;
+    memcpy(&value, word, sizeof value);
+    return value;
+}
+
 void orc_wire_hello(double *answer)
 {
     size_t len = strlen(ORC_TABLE_DIGEST);
     memset(answer, 0, ORC_HELLO_DOUBLES * sizeof(double));
-    answer[0] = (double)ORC_N_MODULES;
+    orc_wire_put_int(&answer[0], ORC_N_MODULES);
     memcpy(&answer[1], ORC_TABLE_DIGEST, len < 64 ? len : 64);
 }

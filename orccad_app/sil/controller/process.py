@@ -27,12 +27,13 @@ from pathlib import Path
 
 from orccad_app.executive.task_runtime import ComputeError
 
-__all__ = ["ControllerFailure", "ControllerProcess", "Op", "DEFAULT_HEARTBEAT_S"]
+__all__ = ["ControllerFailure", "ControllerProcess", "DEFAULT_HEARTBEAT_S", "Op", "Reply"]
 
 DEFAULT_HEARTBEAT_S = 10.0
 """How long the plant server waits for a reply before the controller is declared hung [s]."""
 _REQUEST = struct.Struct("=IIdII")
 _REPLY = struct.Struct("=II")
+_INT = struct.Struct("=q")
 _QUIT_GRACE_S = 1.0
 
 
@@ -53,6 +54,38 @@ class Op(IntEnum):
     REACT = 12
     INPUT = 13
     PARAMS = 14
+
+
+class Reply(IntEnum):
+    """A reply's status (``enum orc_status`` of ``orccad_wire.h``)."""
+
+    OK = 0
+    NO_SUCH_MODULE = 1
+    """The request's Module-Task (or one in its data) is not in the controller's table."""
+    BAD_PARAMS = 2
+    """Parameter words outside the Module-Task's."""
+    NO_SUCH_KIND = 3
+    """The Module-Task's kind has no C in this controller."""
+    UNKNOWN_OP = 4
+    """An operation this controller does not serve."""
+    BAD_REACTION = 5
+    """The automaton refused the reaction's words."""
+    INPUTS_FULL = 6
+    """More inputs ahead than a reaction period can hold."""
+    BAD_WORDS = 7
+    """The request's data has not the words its operation takes."""
+
+    @property
+    def reason(self) -> str:
+        """The status in words (its docstring's first line)."""
+        return {Reply.OK: "ok",
+                Reply.NO_SUCH_MODULE: "no such Module-Task in its table",
+                Reply.BAD_PARAMS: "parameter words outside the Module-Task's",
+                Reply.NO_SUCH_KIND: "the Module-Task's kind has no C in this controller",
+                Reply.UNKNOWN_OP: "an operation it does not serve",
+                Reply.BAD_REACTION: "the automaton refused the reaction's words",
+                Reply.INPUTS_FULL: "more inputs ahead than a reaction period can hold",
+                Reply.BAD_WORDS: "the data has not the words the operation takes"}[self]
 
 
 class ControllerFailure(ComputeError):
@@ -94,12 +127,12 @@ class ControllerProcess:
         self._socket = ours
         self.pid = self.process.pid
         try:
-            answer = self.request(Op.HELLO)
+            answer = self.request_words(Op.HELLO, b"")
         except BaseException:  # Ctrl-C or SIGTERM while waiting: nobody else can end it
             self.kill()
             raise
-        got_modules = int(answer[0])
-        got_digest = struct.pack("=8d", *answer[1:9]).split(b"\0")[0].decode(errors="replace")
+        got_modules = _INT.unpack_from(answer)[0] if len(answer) >= 8 else -1
+        got_digest = answer[8:72].split(b"\0")[0].decode(errors="replace")
         if got_modules != modules or got_digest != digest:
             self._fail(f"the controller runs another table ({got_modules} Module-Tasks, "
                        f"digest {got_digest}; expected {modules}, {digest})")
@@ -116,10 +149,18 @@ class ControllerProcess:
         body = self._exchange(op, module, t_s, offset, payload)
         return struct.unpack(f"={len(body) // 8}d", body) if body else ()
 
-    def request_words(self, op: Op, payload: bytes, module: int = 0) -> bytes:
-        """Send one request whose data are ``payload`` (8-byte words, already packed) and
-        wait for its reply; the reply's words, unpacked by the caller."""
-        return self._exchange(op, module, 0.0, 0, payload)
+    def request_words(self, op: Op, payload: bytes, module: int = 0, t_s: float = 0.0) -> bytes:
+        """Send one request whose data are ``payload`` (8-byte words, already packed: doubles,
+        or integers where the operation takes them) and wait for its reply; the reply's
+        words, unpacked by the caller."""
+        return self._exchange(op, module, t_s, 0, payload)
+
+    def request_ints(self, op: Op, values: Sequence[int] = (), module: int = 0,
+                     t_s: float = 0.0) -> tuple[int, ...]:
+        """Send one request whose data are integer words (Module-Task indices) and wait for
+        its reply; the reply's integer words."""
+        reply = self.request_words(op, struct.pack(f"={len(values)}q", *values), module, t_s)
+        return struct.unpack(f"={len(reply) // 8}q", reply)
 
     def _exchange(self, op: Op, module: int, t_s: float, offset: int, payload: bytes) -> bytes:
         if self.failure is not None:
@@ -132,9 +173,13 @@ class ControllerProcess:
             body = self._receive(8 * count, op) if count else b""
         except OSError as error:  # a closed or reset socket: the process is gone
             self._fail(self._crash_reason(f"the socket failed ({error.strerror or error})"))
-        if status != 0:
-            self._fail(f"the controller refused request {op.name} for Module-Task {module} "
-                       f"(status {status})")
+        if status != Reply.OK:
+            try:
+                why = Reply(status).reason
+            except ValueError:
+                why = f"an unknown status {status}"
+            self._fail(f"the controller refused request {op.name} for Module-Task {module}: "
+                       f"{why}")
         return body
 
     def _receive(self, size: int, op: Op) -> bytes:

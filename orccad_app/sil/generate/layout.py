@@ -4,8 +4,9 @@ A Python module instance (what the executive would run) is described to the C ru
 (``orccad_app/sil/c/orccad_mt.c`` and its kinds' files) by a :class:`CLayout`: the C kind, the
 input and output ports in the Python kind's port order with their dimensions and types, and
 the parameters as one vector of doubles whose offsets the C kind reads (the layouts are listed
-in each kind's file: ``orccad_mt_trajectory.c``, ``orccad_mt_laws.c``,
-``orccad_mt_observers.c``, ``orccad_mt_auv.c``). The robot file's data a kind needs — joint
+in each kind's file: ``orccad_mt_trajectory.c``, ``orccad_mt_laws.c``); a plugin's kind
+gives its own words to its own C (``ModuleKind.c_implementation``: the observers',
+``plugins/orccad_observers/c_kinds.py``; the AUV's, ``plugins/orccad_auv/c_kinds.py``). The robot file's data a kind needs — joint
 limits, the actuator constraint — goes into the vector too: the C code never reads the robot
 file.
 
@@ -26,21 +27,17 @@ from typing import Any
 
 import numpy as np
 
+from orccad_app.control.errors import ControlError
 from orccad_app.diagnostics import OrccadError
 
-__all__ = ["AUV_THRUST_LIMITS_N", "CKind", "CLayout", "CPort", "MAX_DIM", "MAX_PARAMS",
-           "NoCImplementation", "THRUSTER_ARM_M", "c_layout", "kind_c", "same_word"]
+__all__ = ["CKind", "CLayout", "CPort", "MAX_DIM", "MAX_PARAMS", "NoCImplementation",
+           "c_layout", "kind_c", "same_word"]
 
 MAX_DIM = 16
 """Components of a vector port in the C runtime (``ORC_MAX_DIM``)."""
 MAX_PORTS = 8
 MAX_PARAMS = 192
 """Doubles of parameters of one C Module-Task (``ORC_MAX_PARAMS``)."""
-THRUSTER_ARM_M = 0.6
-"""The AUV's thruster lever arm [m] (``plugins/orccad_auv/vehicle.py``; a test checks it)."""
-_GUIDE_HEADER = 10
-_AUTOPILOT_GAINS = ("kp_depth", "kd_depth", "ki_depth", "max_integral", "max_heave",
-                    "kp_pitch", "kd_pitch", "kp_heading", "kd_heading", "k_speed", "drag_coeff")
 
 
 class CKind(IntEnum):
@@ -53,13 +50,6 @@ class CKind(IntEnum):
     LAW_CT = 11
     MODEL_DYN = 12
     CT_FEEDBACK = 13
-    OBS_JOINT_LIMITS = 20
-    OBS_TORQUE_SAT = 21
-    OBS_TRACKING = 22
-    OBS_AT_REST = 23
-    AUV_AUTOPILOT = 30
-    AUV_GUIDANCE = 31
-    AUV_OBSERVER = 32
     PLUGIN = 100
     """A plugin kind's C (``ORC_PLUGIN_BASE``: the table numbers each plugin kind from it)."""
 
@@ -256,83 +246,11 @@ def _ct_feedback(instance: Any) -> tuple[CKind, list[float]]:
                                *_constraint(instance.constraint)]
 
 
-def _robot(instance: Any) -> Any:
-    return instance.monitor.context.robot
-
-
-def _joint_limits(instance: Any) -> tuple[CKind, list[float]]:
-    robot = _robot(instance)
-    lower, upper = robot.joint_limits
-    return CKind.OBS_JOINT_LIMITS, [instance.params["margin"], robot.dof, *_floats(lower),
-                                    *_floats(upper)]
-
-
-def _torque_saturation(instance: Any) -> tuple[CKind, list[float]]:
-    constraint = _robot(instance).actuator_constraint
-    return CKind.OBS_TORQUE_SAT, [instance.params["ratio"], constraint.dim,
-                                  *_constraint(constraint)]
-
-
-def _tracking(instance: Any) -> tuple[CKind, list[float]]:
-    dims = [p.dim or 1 for p in instance.ports if p.direction == "in"]
-    return CKind.OBS_TRACKING, [instance.params["max"], max(dims)]
-
-
-def _at_rest(instance: Any) -> tuple[CKind, list[float]]:
-    dims = [p.dim or 1 for p in instance.ports if p.direction == "in"]
-    return CKind.OBS_AT_REST, [instance.params["tol"], dims[0]]
-
-
-def _threshold(mode: int, limit: str) -> Callable[[Any], tuple[CKind, list[float]]]:
-    def layout(instance: Any) -> tuple[CKind, list[float]]:
-        return CKind.AUV_OBSERVER, [instance.params[limit], float(mode)]
-    return layout
-
-
-AUV_THRUST_LIMITS_N = (60.0, 40.0, 40.0, 30.0, 30.0)
-"""The AUV's thruster limits [N] (``plugins/orccad_auv/vehicle.py``; a test checks them)."""
-
-
-def _autopilot(instance: Any) -> tuple[CKind, list[float]]:
-    return CKind.AUV_AUTOPILOT, [*(instance.params[name] for name in _AUTOPILOT_GAINS),
-                                 THRUSTER_ARM_M, *AUV_THRUST_LIMITS_N]
-
-
-def _guidance(instance: Any) -> tuple[CKind, list[float]]:
-    prm = instance.params
-    name = instance.kind.name
-    station = name in ("station_guidance", "hold_guidance")
-    mode = 0 if name == "depth_guidance" else 1 if station else 2
-    points: list[tuple[float, float]] = [] if mode != 2 else instance.kind.waypoints(prm)
-    if _GUIDE_HEADER + 2 * len(points) > MAX_PARAMS:
-        raise NoCImplementation(f"module kind {name!r}: {len(points)} waypoints, the C "
-                                f"runtime holds {(MAX_PARAMS - _GUIDE_HEADER) // 2}")
-    header = [float(mode), prm["depth"], prm.get("speed", 0.0), prm.get("x", 0.0),
-              prm.get("y", 0.0), prm.get("gain", 0.0), prm.get("max_speed", 0.0),
-              prm.get("radius", 0.0), prm.get("lookahead", 1.0), float(len(points))]
-    return CKind.AUV_GUIDANCE, header + [float(c) for point in points for c in point]
-
-
-_OBSERVERS: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
-    "joint_limits": _joint_limits,
-    "torque_saturation": _torque_saturation,
-    "tracking_error": _tracking,
-    "at_rest": _at_rest,
-    "battery_low": _threshold(0, "min"),
-    "altitude_low": _threshold(0, "min"),
-    "at_waypoint": _threshold(0, "tol"),
-    "leak": _threshold(1, "max"),
-    "depth_limit": _threshold(1, "max"),
-    "gps_fix": _threshold(2, "acquire"),
-}
 _MODULES: dict[str, Callable[[Any], tuple[CKind, list[float]]]] = {
     "trajectory": _trajectory,
     "control_law": _control_law,
-    "auv_autopilot": _autopilot,
     "dynamic_model": _dynamic_model,
     "ct_feedback": _ct_feedback,
-    **{name: _guidance for name in ("depth_guidance", "los_guidance", "lawnmower_guidance",
-                                    "station_guidance", "waypoint_guidance", "hold_guidance")},
 }
 
 
@@ -348,7 +266,7 @@ def kind_c(kind: Any) -> str | None:
     the runtime library's (with what it covers), the plugin's file, or ``None``: the kind
     runs only in Python (``orccad sil`` and ``codegen --module-tasks`` refuse it)."""
     name = kind.name
-    if name in _OBSERVERS or name in _MODULES:
+    if name in _MODULES:
         limits = _LIBRARY_LIMITS.get(name)
         return "the runtime library" + (f" ({limits})" if limits else "")
     plugin = getattr(kind, "c_implementation", None)
@@ -360,10 +278,7 @@ def kind_c(kind: Any) -> str | None:
 def c_layout(instance: Any) -> CLayout:
     """The C layout of the module instance ``instance``; raises :class:`NoCImplementation`."""
     name = instance.kind.name
-    if name in _OBSERVERS:
-        kind, params = _OBSERVERS[name](instance)
-        params = [1.0 if instance.params.get("edge") else 0.0, *params]
-    elif name in _MODULES:
+    if name in _MODULES:  # the control library's kinds (orccad_app/control)
         kind, params = _MODULES[name](instance)
     else:
         plugin = getattr(instance.kind, "c_implementation", None)
@@ -382,9 +297,12 @@ def c_layout(instance: Any) -> CLayout:
 
 
 def _plugin_params(name: str, plugin: Any, instance: Any) -> tuple[float, ...]:
-    """The parameter vector a plugin kind's C reads: finite numbers, within the runtime's."""
+    """The parameter words a plugin kind's C reads (from its declared fields, or the vector it
+    gives): finite numbers, within the runtime's."""
     try:
-        params = tuple(_floats(plugin.params(instance)))
+        params = tuple(_floats(plugin.words(instance)))
+    except ControlError as error:
+        raise NoCImplementation(f"module kind {name!r}: {error.message}") from None
     except (TypeError, ValueError) as error:
         raise NoCImplementation(f"module kind {name!r}: its C implementation's parameters "
                                 f"are not numbers ({error})") from None

@@ -12,13 +12,11 @@ __all__ = ["C_DIR", "RUNTIME_FILES", "library_sources"]
 C_DIR = Path(__file__).resolve().parent.parent / "c"
 """The runtime library's sources."""
 
-_MODULE_TASK_SOURCES = ("orccad_mt.c", "orccad_mt_trajectory.c", "orccad_mt_laws.c",
-                        "orccad_mt_observers.c", "orccad_mt_auv.c")
+_MODULE_TASK_SOURCES = ("orccad_mt.c", "orccad_mt_trajectory.c", "orccad_mt_laws.c")
 """The Module-Tasks' C: the dispatch (``orccad_mt.c``) and the kinds, one file per family."""
 _REALTIME_SOURCES = ("orccad_port.c", "orccad_rt_lifecycle.c", "orccad_rt_record.c",
                      "orccad_rt_deadlock.c", "orccad_rt_automaton.c", "orccad_rt_main.c")
 """The real-time runtime's C besides its threads (``orccad_rt.c``, the ``main`` given)."""
-
 
 
 def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
@@ -29,7 +27,7 @@ def library_sources(main: str = "orccad_lockstep.c") -> list[Path]:
 
 
 RUNTIME_FILES = ("orccad_mt.h", "orccad_mt_kinds.h", "orccad_mt.c", "orccad_mt_trajectory.c",
-                 "orccad_mt_laws.c", "orccad_mt_observers.c", "orccad_mt_auv.c",
+                 "orccad_mt_laws.c",
                  "orccad_dynamics.h", "orccad_dynamics.c", "orccad_port.h", "orccad_port.c",
                  "orccad_wire.h", "orccad_wire.c", "orccad_automaton.h", "orccad_automaton.c",
                  "orccad_rt.h", "orccad_rt_task.h", "orccad_rt.c", "orccad_rt_lifecycle.c",

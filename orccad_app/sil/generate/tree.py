@@ -29,8 +29,8 @@ from orccad_app.codegen.generate import CProgram
 from orccad_app.mission.plan import MissionPlan
 from orccad_app.sil.generate.automaton import automaton_files
 from orccad_app.sil.generate.library import C_DIR, RUNTIME_FILES
-from orccad_app.sil.generate.table import (ModuleTable, module_table, plugin_file_name,
-                                           plugin_file_text, plugin_kinds, table_source)
+from orccad_app.sil.generate.table import (ModuleTable, module_table, plugin_files,
+                                           table_source)
 
 __all__ = ["controller_table", "controller_tree", "user_file", "USER_IO", "SIL_IO", "UDP_IO"]
 
@@ -66,8 +66,7 @@ def controller_tree(plan: MissionPlan, program: CProgram, source: str) -> dict[s
     file, named in the files."""
     table = controller_table(plan, program)
     files = {"orccad_modules.c": table_source(table, source)}
-    for plugin in plugin_kinds(table):
-        files[plugin_file_name(plugin)] = plugin_file_text(plugin)
+    files.update(plugin_files(table))
     files.update(automaton_files(program, plan, table))
     for name in (*RUNTIME_FILES, _LOCKSTEP, UDP_IO):
         files[name] = (C_DIR / name).read_text(encoding="utf-8")

@@ -21,9 +21,11 @@ times. The heartbeat is a ``PING`` every 100 ms of the run.
 
 Every connection runs its protocol on the controller's threads (``orccad_port.c``: the 8 of
 RR-1801 as the executive runs them on one processor: the threads share memory, there is no
-bus). A type-1 ramp is stepped by this process at the Module-Task's release grid on the wall
-clock (a parameter write between two jobs: a job may still see the previous step when the
-plant server is late). Robot ports are exchanged every ``exchange_ns``
+bus). The type-1 updates, their ramps and the run-time arguments of a start are applied by
+the automaton task in the controller (:mod:`~orccad_app.sil.generate.adjust`,
+:mod:`~orccad_app.sil.generate.binds`); what it cannot apply this process sends as parameter
+writes between two jobs (``controller.supervisor_writes`` counts their words: none for the
+shipped missions). Robot ports are exchanged every ``exchange_ns``
 (the shortest Module-Task period): a sensor read by a job is at most that old, a torque waits
 at most that long — a delay the simulated run does not have, so the tracking errors differ a
 little (docs/deploy.md).
@@ -110,7 +112,7 @@ class ModuleTiming:
     :param lateness_s: release lateness ``(median, p99, max)`` [s] (``None`` without job).
     :param overruns: releases skipped because the thread was still behind.
     :param deadline_misses: jobs that ended after their period.
-    :param response_max_s: the longest measured response time [s].
+    :param response_max_s: the longest measured response time [s] (``None``: no job ran).
     :param predicted_s: ``orccad tcs``'s bound on the response time [s] (``None``: no bound).
     """
 
@@ -119,7 +121,7 @@ class ModuleTiming:
     lateness_s: tuple[float, float, float] | None
     overruns: int
     deadline_misses: int
-    response_max_s: float
+    response_max_s: float | None
     predicted_s: float | None
 
 
@@ -179,6 +181,10 @@ class RealtimeBackend:
         self._simulation: Any = None
         self._writes: list[Any] = []
         self._jobs: JobTrace | None = None
+        self._last_reaction_ns = 0
+        self._readers: list[list[tuple[str, str]]] = []
+        """Per robot port, the Module-Task input ports it feeds (``on_read`` at each
+        exchange: the trace's ``/plant`` topics)."""
 
     def run_plan(self, plan: MissionPlan) -> MissionPlan:
         """A copy of ``plan``: the full automaton, sites whose starts make proxies (those
@@ -205,6 +211,11 @@ class RealtimeBackend:
                           if port.type != "event"])
                         for m, entry in enumerate(self.table.entries)]
         self._jobs = JobTrace(hooks, self.table)
+        table = self.table
+        self._readers = [[(table.entries[c.dst_module].name,
+                           table.entries[c.dst_module].layout.inputs[c.dst_slot].name)
+                          for c in table.connections if c.src_module == -1 and c.src_slot == k]
+                         for k in range(len(table.robot_ports))]
         run.kernel.schedule(0, _EXCHANGE, self._exchange)
 
     # -- the Module-Tasks' lifecycle, sent to the controller (but the managed sites') ------
@@ -214,9 +225,9 @@ class RealtimeBackend:
 
     def activate(self, modules: Sequence[str], at_ns: int) -> None:
         """One request for all ``modules``: their first releases are one instant."""
-        indices = [float(index) for index in self._indices(modules)]
+        indices = self._indices(modules)
         if indices:
-            self.controller.request(Op.ACTIVATE, 0, at_ns / 1e9, indices)
+            self.controller.request_ints(Op.ACTIVATE, indices, t_s=at_ns / 1e9)
 
     def kill(self, modules: Sequence[str], at_ns: int) -> None:
         for index in self._indices(modules):
@@ -247,6 +258,8 @@ class RealtimeBackend:
             shared.want_jobs(self._jobs_wanted)
         kernel.schedule(now + self.exchange_ns, _EXCHANGE, self._exchange)
         plants = simulation.plants
+        on_read = simulation.hooks.on_read
+        active = self._active(run) if on_read else frozenset()
         for k, port, robot, name in self._ports:
             plant = plants.get(robot)
             if plant is None:
@@ -257,7 +270,10 @@ class RealtimeBackend:
                     self._seen_actuators[k] = seq
                     plant.actuate(name, value)
             else:
-                shared.write_port(k, plant.sample(name))
+                sample = plant.sample(name)
+                shared.write_port(k, sample)
+                if on_read:
+                    self._read(now, k, sample, active)
         if now == 0:  # the automaton task starts once the first sensors are there: the
             self.controller.request(Op.EPOCH)  # Module-Tasks it activates read them
         self._apply_reactions(run)
@@ -278,9 +294,25 @@ class RealtimeBackend:
                     hook(now, name, port, written)
         if now >= self._next_ping:
             self._next_ping = now + _HEARTBEAT_NS
-            cycle = self.controller.request(Op.PING)
+            cycle = self.controller.request_ints(Op.PING)
             if cycle:
                 raise self._deadlock(now, cycle)
+
+    def _active(self, run: RunHost) -> frozenset[str]:
+        """The Module-Tasks the running Robot-Tasks' phases activate now."""
+        phases = run.phases
+        return frozenset(module for site in self._plan.sites
+                         for module in site.wanted(phases.get(site.number, 0)))
+
+    def _read(self, now: int, k: int, sample: Any, active: frozenset[str]) -> None:
+        """The sample of robot port ``k`` the active Module-Tasks it feeds read from now on,
+        to the observers' ``on_read`` (as each job's read in lockstep: the trace's
+        ``/plant`` topics and the robot's joint states)."""
+        assert self._simulation is not None
+        for module, port in self._readers[k]:
+            if module in active:
+                for hook in self._simulation.hooks.on_read:
+                    hook(now, module, port, sample)
 
     def _apply_reactions(self, run: RunHost) -> None:
         """The reactions the automaton task made since the last exchange, applied in order
@@ -297,6 +329,7 @@ class RealtimeBackend:
             except OrccadError as error:
                 raise ReactionError(error.message, error.location, error.notes) from None
             self._retire_restarted(run, step.outputs)
+            self._last_reaction_ns = max(self._last_reaction_ns, at_ns)
             run.apply_reaction(at_ns, inputs, step)
             if run.reactor.finished:
                 break
@@ -316,7 +349,7 @@ class RealtimeBackend:
                     if isinstance(compute, RemoteModule):
                         compute.retire()
 
-    def _deadlock(self, now: int, cycle: tuple[float, ...]) -> DeadlockError:
+    def _deadlock(self, now: int, cycle: tuple[int, ...]) -> DeadlockError:
         """The controller's jobs waiting on each other (the PING's answer: per job, its
         Module-Task, the connection and whether it reads), as the executive words it."""
         table = self.table
@@ -357,8 +390,9 @@ class RealtimeBackend:
             self._shared.want_jobs(False)
             self._hand_jobs(self._shared.jobs(), result.sim_time_ns, end=True)
         self.timings = self._measured()
-        return dataclasses.replace(result, stats=dataclasses.replace(
-            result.stats, timing=TimingSource.MEASURED))
+        return dataclasses.replace(  # the controller's clock may be ahead of the plant
+            result, sim_time_ns=max(result.sim_time_ns, self._last_reaction_ns),  # server's
+            stats=dataclasses.replace(result.stats, timing=TimingSource.MEASURED))
 
     def _hand_jobs(self, batch: JobRecords, now: int, end: bool = False) -> None:
         """The controller's job records to the observers (:class:`JobTrace`); a warning to
@@ -386,9 +420,9 @@ class RealtimeBackend:
             lateness = None if not late.size else (float(np.median(late)),
                                                    float(np.percentile(late, 99)),
                                                    float(late.max()))
+            response = mirror.response_max_ns / 1e9 if mirror.released else None
             timings.append(ModuleTiming(entry.name, mirror.released, lateness, mirror.overruns,
-                                        mirror.misses, mirror.response_max_ns / 1e9,
-                                        predicted.get(entry.name)))
+                                        mirror.misses, response, predicted.get(entry.name)))
             stats = self._simulation.tasks[entry.name].stats
             stats.released = stats.completed = mirror.released
             stats.overruns, stats.late = mirror.overruns, mirror.misses

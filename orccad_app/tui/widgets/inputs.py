@@ -112,7 +112,7 @@ class InputBar(Horizontal):
             name = value if isinstance(value, str) else None
         if name in self.faults:
             try:
-                value = parse_value(self.value_text, "float")
+                value = parse_value(self.value_text, "float", name)
             except ValueError as error:
                 self.notify(f"fault {name}: {error} (type it in the value field)",
                             severity="error")
@@ -127,9 +127,9 @@ class InputBar(Horizontal):
         if not signal.type:
             return True, None
         try:
-            return True, parse_value(self.value_text, signal.type)
+            return True, parse_value(self.value_text, signal.type, signal.name)
         except ValueError as error:
-            self.notify(f"{signal.name} ({signal.type}): {error}", severity="error")
+            self.notify(str(error), severity="error")
             return False, None
 
     def _raise(self, signal) -> None:

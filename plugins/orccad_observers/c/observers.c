@@ -1,26 +1,14 @@
-/* orccad_mt_observers.c: the observer Module-Task kinds in C (joint_limits,
- * torque_saturation, tracking_error, at_rest; plugins/orccad_observers), operation for
- * operation the Python kinds', and what every observer shares (edge, held). Part of the ORCCAD
- * runtime library (the dispatch: orccad_mt.c); C99, no allocation, no recursion. */
+/* observers.c: the C of the observers plugin's joint_limits, torque_saturation,
+ * tracking_error and at_rest (plugins/orccad_observers/limits.py, motion.py), operation for
+ * operation the Python kinds', so that the values agree on finite inputs (orccad sil
+ * --check-kinds; tests/sil/test_kinds.py). Each kind's parameter words are its
+ * CImplementation.params (plugins/orccad_observers/c_kinds.py), in the order of its layout
+ * comment below; every observer's first word is its edge flag and its state's first word
+ * "held" (orc_mt_observe). C99, no allocation, no recursion (docs/deploy.md, "A plugin kind's
+ * C"). */
 #include <math.h>
 
-#include "orccad_mt_kinds.h"
-
-/* ---- parameter layouts (orccad_app/sil/generate/layout.py writes the same offsets) --------------- */
-/* observers: [edge, ...kind's parameters]             state: [held, t0 set, t0, ...] */
-/* each kind's own parameters: at the kind below. */
-
-/* ---- observers (plugins/orccad_observers/base.py: edge, held) ---------------------------- */
-
-void orc_mt_observe(orc_mt *m, int holds, double value)
-{
-    int edge = m->p[0] != 0.0, fires = holds && !(edge && m->s[0] != 0.0);
-    m->s[0] = holds ? 1.0 : 0.0;
-    orc_mt_set_out1(m, 1, value);
-    if (fires) {
-        orc_mt_set_out1(m, 0, 1.0);
-    }
-}
+#include "orccad_mt.h"
 
 /* np.min left to right keeping the later element on a tie (limits.py _least) */
 static double least(const double *v, int n)
@@ -48,10 +36,16 @@ static double greatest(const double *v, int n)
 }
 
 /* joint_limits: [edge, margin, dof, lower[dof], upper[dof]]; in q */
-void orc_mt_joint_limits(orc_mt *m)
+void orccad_obs_joint_limits_init(orc_mt *m)
+{
+    (void)m; /* the runtime zeroed the state */
+}
+
+void orccad_obs_joint_limits_compute(orc_mt *m, double t_s)
 {
     int dof = (int)m->p[2], j;
     double nearest[ORC_MAX_DIM] = {0.0};
+    (void)t_s;
     if (!m->in[0].present) {
         return;
     }
@@ -66,10 +60,16 @@ void orc_mt_joint_limits(orc_mt *m)
 }
 
 /* torque_saturation: [edge, ratio, dof, tau_min, tau_max, alpha, beta]; in tau, qdot */
-void orc_mt_torque_saturation(orc_mt *m)
+void orccad_obs_torque_saturation_init(orc_mt *m)
+{
+    (void)m;
+}
+
+void orccad_obs_torque_saturation_compute(orc_mt *m, double t_s)
 {
     int dof = (int)m->p[2], j;
     double usage[ORC_MAX_DIM] = {0.0}, peak;
+    (void)t_s;
     if (!m->in[0].present) {
         return;
     }
@@ -103,10 +103,16 @@ static double norm_inf(const double *x, int n)
 }
 
 /* tracking_error: [edge, max, dim]; in e, q, qd */
-void orc_mt_tracking_error(orc_mt *m)
+void orccad_obs_tracking_error_init(orc_mt *m)
+{
+    (void)m;
+}
+
+void orccad_obs_tracking_error_compute(orc_mt *m, double t_s)
 {
     int dim = (int)m->p[2], i;
     double diff[ORC_MAX_DIM] = {0.0}, value;
+    (void)t_s;
     if (m->in[0].present) {
         value = norm_inf(m->in[0].v, dim);
     } else {
@@ -122,9 +128,15 @@ void orc_mt_tracking_error(orc_mt *m)
 }
 
 /* at_rest: [edge, tol, dim]; in qdot */
-void orc_mt_at_rest(orc_mt *m)
+void orccad_obs_at_rest_init(orc_mt *m)
+{
+    (void)m;
+}
+
+void orccad_obs_at_rest_compute(orc_mt *m, double t_s)
 {
     double value;
+    (void)t_s;
     if (!m->in[0].present) {
         return;
     }
