@@ -282,9 +282,10 @@ class _Step:
     def wire(self, f: Node) -> str:
         """The C of ``f`` as the step needs it.
 
-        (CUDD's *restrict* to the reachable states would shrink the BDDs several times, e.g.
-        ``auv_survey`` 36 900 lines to 2 000, but the C it gave disagreed with the runtime on
-        a random program: not used until that is understood.)"""
+        Not simplified by CUDD's *restrict* to the reachable states, which shrinks the BDDs
+        several times (``auv_survey``: 36 900 lines of C to 2 000; 8 x 4: 10 500 to 5 600)
+        but gave C that disagreed with ``Reactor.step`` on one of 80 random programs of
+        ``tests/codegen/test_circuit.py`` (not understood yet)."""
         return self.ref(f)
 
     def ref(self, u: Node) -> str:
@@ -325,7 +326,9 @@ class _Step:
             else:
                 text = f"{v} ? {hi} : {lo}"
             number = self.slot[int(u)] = len(self.slot)
-            self.held.append(u)  # its node stays allocated: no other node takes its address
+            # its node stays allocated while the step is written: a temporary BDD freed
+            # could give its address to another node, which ``slot`` would then name
+            self.held.append(u)
             self.lines.append(_Gate(f"x[{number}] = {text};"))
 
     def _grouped(self, prefix: str) -> list[str]:

@@ -15,6 +15,7 @@ from __future__ import annotations
 from orccad_app.reactive.bdd import Node
 from orccad_app.reactive.circuit import BOOT, Circuit, next_name
 
+
 __all__ = ["reachable", "MAX_IMAGES", "MAX_NODES"]
 
 #: breadth-first images tried before giving up (the care set is then every state)

@@ -97,6 +97,7 @@ def schedule(circuit: Circuit, care: Node) -> list[Event]:
         return _schedule(circuit, care)
     except NotStatic as error:
         problem = NotStatic(error.reason, error.loc)
+    del care
     raise problem
 
 
