@@ -194,17 +194,16 @@ class ExprWriter:
         """Emit the evaluation of ``expr``; ``None`` when it always raises (the ``return``
         is emitted; nothing after it runs)."""
         ctype = self.types.of(expr)
-        kind = type(expr)
-        if kind is ir.Fault:
+        if isinstance(expr, ir.Fault):
             self._emit(self._fail(expr.message))
             return None
-        if kind is ir.Const:
+        if isinstance(expr, ir.Const):
             return self._const(expr.value, ctype)
-        if kind is ir.Clock:
+        if isinstance(expr, ir.Clock):
             return _Value("m->clock_ns", INT)
-        if kind in (ir.VarRef, ir.SigValue, ir.PreValue):
+        if isinstance(expr, (ir.VarRef, ir.SigValue, ir.PreValue)):
             return self._read(expr)
-        if kind is ir.VectorExpr:
+        if isinstance(expr, ir.VectorExpr):
             items = []
             for item in expr.items:
                 value = self._value(item)
@@ -215,7 +214,7 @@ class ExprWriter:
             for index, text in enumerate(items):
                 self._emit(f"{name}[{index}] = {text};")
             return _Value(name, ctype)
-        if kind is ir.Unary:
+        if isinstance(expr, ir.Unary):
             return self._unary(expr, ctype)
         return self._binary(expr, ctype)
 
@@ -227,15 +226,15 @@ class ExprWriter:
             return _Value(name, ctype)
         return _Value(c_literal(value, self.strings), ctype)
 
-    def _read(self, expr: ir.Expr) -> _Value | None:
-        if type(expr) is ir.VarRef:
+    def _read(self, expr: ir.VarRef | ir.SigValue | ir.PreValue) -> _Value | None:
+        if isinstance(expr, ir.VarRef):
             place = self.places.variables.get(expr.var)
             detail = f"variable '{expr.var.name}' is read before it is assigned"
         else:
-            table = self.places.values if type(expr) is ir.SigValue else self.places.previous
-            place = table.get(expr.signal)  # type: ignore[attr-defined]
-            decl = expr.signal  # type: ignore[attr-defined]
-            text = f"?{decl.name}" if type(expr) is ir.SigValue else f"pre(?{decl.name})"
+            table = self.places.values if isinstance(expr, ir.SigValue) else self.places.previous
+            place = table.get(expr.signal)
+            decl = expr.signal
+            text = f"?{decl.name}" if isinstance(expr, ir.SigValue) else f"pre(?{decl.name})"
             detail = (f"{text} is read before {decl.name} ever had a value (declare an "
                       f"initial value: 'output {decl.name} : {decl.type} := …;')")
         if place is None:  # never given a value anywhere

@@ -157,7 +157,7 @@ def header_text(prefix: str, automaton: Automaton, interface: Interface, places:
         for decl, place in table.items():
             field = place.value.removeprefix("m->")
             size = f"[{place.ctype.size}]" if place.ctype.kind is Kind.VECTOR else ""
-            name = c_comment(decl.name)  # type: ignore[attr-defined]
+            name = c_comment(decl.name)
             lines.append(f"    {c_type(place.ctype)} {field}{size}; /* {what} {name} */")
             lines.append(f"    bool {field}_has;")
     lines += [

@@ -62,10 +62,10 @@ def _replace_in(target: Path, files: dict[str, str]) -> list[Path]:
     temporary: dict[str, Path] = {}
     try:
         for name, text in files.items():
-            handle, path = tempfile.mkstemp(prefix=f".{name}.", dir=target)
+            handle, temporary_name = tempfile.mkstemp(prefix=f".{name}.", dir=target)
             with os.fdopen(handle, "w", encoding="utf-8") as stream:
                 stream.write(text)
-            temporary[name] = Path(path)
+            temporary[name] = Path(temporary_name)
         for name, path in temporary.items():
             os.replace(path, target / name)
     except OSError as error:

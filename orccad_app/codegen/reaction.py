@@ -81,11 +81,11 @@ def intern(trees: tuple[Node, ...]) -> Graph:
             if id(node) in by_id:
                 continue
             if isinstance(node, Leaf):
-                key = ("leaf", node.target, tuple(id(s) for s in node.emitted), node.status)
+                key: tuple[object, ...] = ("leaf", node.target, tuple(id(s) for s in node.emitted), node.status)
                 by_id[id(node)] = make(key, GNode("leaf", leaf=node))
                 continue
             children = ([node.next] if isinstance(node, Action)
-                        else [node.then, node.orelse])  # type: ignore[union-attr]
+                        else [node.then, node.orelse])
             if not expanded:
                 stack.append((node, True))
                 stack.extend((c, False) for c in children if id(c) not in by_id)

@@ -163,10 +163,10 @@ def infer(actions: list[tuple[str, object, ir.Expr]], tests: list[ir.Expr],
     while changed:  # each round types more places; a place changes type at most once
         changed = False
         for _kind, target, expr in actions:
-            ctype = _expr(expr, table, final=False)
-            if ctype is not None:
-                changed |= table.give(target, ctype, getattr(expr, "loc", NOWHERE))
-            elif (type(expr) in (ir.SigValue, ir.PreValue) and table.place(target) is not None
+            typed = _expr(expr, table, final=False)
+            if typed is not None:
+                changed |= table.give(target, typed, getattr(expr, "loc", NOWHERE))
+            elif (isinstance(expr, (ir.SigValue, ir.PreValue)) and table.place(target) is not None
                   and expr.signal.kind == ir.INPUT):
                 # a vector input of no declared size takes the size of where it goes
                 changed |= table.give(expr.signal, table.places[target], expr.loc)
@@ -192,26 +192,26 @@ def infer(actions: list[tuple[str, object, ir.Expr]], tests: list[ir.Expr],
 def _expr(expr: ir.Expr, table: TypeTable, final: bool) -> CType | None:
     """The type of ``expr`` (``None`` while a place it reads is not typed yet); ``final``:
     every place is typed, record the type of each sub-expression and refuse what C lacks."""
-    kind = type(expr)
     result: CType | None
-    if kind is ir.Const:
+    if isinstance(expr, ir.Const):
         result = const_type(expr.value, expr.loc)
-    elif kind is ir.VarRef:
+    elif isinstance(expr, ir.VarRef):
         result = table.place(expr.var)
         if result is None and final:
             result = NEVER  # never assigned: the read always raises
-    elif kind in (ir.SigValue, ir.PreValue):
+    elif isinstance(expr, (ir.SigValue, ir.PreValue)):
         result = table.place(expr.signal)
         if result is None and final:
             result = NEVER
-    elif kind is ir.Fault:
+    elif isinstance(expr, ir.Fault):
         result = NEVER
-    elif kind is ir.Clock:
+    elif isinstance(expr, ir.Clock):
         result = INT
-    elif kind is ir.VectorExpr:
+    elif isinstance(expr, ir.VectorExpr):
         items = [_expr(i, table, final) for i in expr.items]
-        result = None if None in items else _vector(items, expr.loc)  # type: ignore[arg-type]
-    elif kind is ir.Unary:
+        typed = [t for t in items if t is not None]
+        result = None if len(typed) < len(items) else _vector(typed, expr.loc)
+    elif isinstance(expr, ir.Unary):
         inner = _expr(expr.operand, table, final)
         result = None if inner is None else _unary(expr.op, inner, expr.loc)
     else:
