@@ -39,6 +39,7 @@ from orccad_app.reactive.prepare import (
     KNode, Prepared,
 )
 from orccad_app.reactive.bdd import Manager, Node
+from orccad_app.reactive.circuit_data import WIDTH, Arithmetic, is_exact
 from orccad_app.reactive.reads import fresh_pre, value_reads
 
 __all__ = ["Activation", "Circuit", "build_circuit", "register", "pre_bit", "input_var", "data_var",
@@ -63,6 +64,11 @@ def input_var(index: int) -> str:
 
 def data_var(number: int) -> str:
     return f"d{number}"
+
+
+def counter_bit(k: int, bit: int) -> str:
+    """Bit ``bit`` of the ``k``-th tracked variable's register."""
+    return f"v{k}_{bit}"
 
 
 def next_name(name: str) -> str:
@@ -121,6 +127,9 @@ class Circuit:
     undecided: list[tuple[Node, SourceLocation, str]] = field(default_factory=list)
     relations: Node = None
     walks: int = 0
+    tracked: tuple[ir.VarDecl, ...] = ()
+    overflow: Node = None
+    """Where a tracked variable's value leaves its bits (the counters are then abstracted)."""
     #: the data actions and tests of the last walk, in its order
     activations: list[Activation] = field(default_factory=list)
     #: for each walk, the sure activation of each visit (by ``Activation.visit``)
@@ -162,6 +171,11 @@ class _Walk:
         self.evaluated: dict[int, Node] = {}
         self.undecided: list[tuple[Node, SourceLocation, str]] = []
         self.tested: set = set()             # signal keys some test reads
+        self.arithmetic = Arithmetic(self.m)
+        self.tracked = set(circuit.tracked)
+        self.values = {v: [self.m.var(counter_bit(k, i)) for i in range(self.arithmetic.width)]
+                       for k, v in enumerate(circuit.tracked)}
+        self.constraints: Node = self.m.true  # exact data tests: their outcome is their value
         self.visit = 0                       # the current visit (Circuit.visit_id)
         self.node: KNode = circuit.prep.root  # the statement of the current visit
         self.activations: list[Activation] = []
@@ -189,6 +203,11 @@ class _Walk:
                 number, test.expr,
                 reads=tuple(scope.get(d, d) for d in value_reads(test.expr, []))))
             v = m.var(data_var(number))
+            if self.tracked and is_exact(test.expr, self.tracked):
+                arithmetic = self.arithmetic
+                value = arithmetic.truth(arithmetic.evaluate(test.expr, self.values, act[0]))
+                self.constraints &= ~act[0] | v.equiv(value)
+                return value, ~value
             return v, ~v
         if kind is ir.PreRef:
             key = scope.get(test.signal, test.signal)
@@ -250,6 +269,11 @@ class _Walk:
         return {0: act}
 
     def _assign(self, node, depth, act, scope):
+        var = node.src.var
+        if var in self.tracked:
+            arithmetic = self.arithmetic
+            new = arithmetic.vector(arithmetic.evaluate(node.src.expr, self.values, act[0]))
+            self.values[var] = arithmetic.mux(act[0], new, self.values[var])
         self._record("assign", node, act, node.src.var, node.src.expr, None, scope)
         return {0: act}
 
@@ -411,7 +435,8 @@ for _kind, _handler in ((SEQ, _Walk._seq), (PAUSE, _Walk._pause), (EMIT, _Walk._
 
 # --------------------------------------------------------------------------- building
 
-def _declare(m: Manager, prep: Prepared) -> tuple[list[str], list[str], list[str]]:
+def _declare(m: Manager, prep: Prepared, tracked: tuple[ir.VarDecl, ...]
+             ) -> tuple[list[str], list[str], list[str]]:
     """Declare the variables in program order: each register beside its next copy, each
     input and data test at its first test."""
     registers: list[str] = []
@@ -425,6 +450,9 @@ def _declare(m: Manager, prep: Prepared) -> tuple[list[str], list[str], list[str
 
     for name in (BOOT, TERM, FAILED_BEFORE):
         reg(name)
+    for k in range(len(tracked)):
+        for bit in range(WIDTH):
+            reg(counter_bit(k, bit))
     program = prep.program
 
     def tests(test: ir.Test) -> None:
@@ -486,11 +514,13 @@ def _relations(m: Manager, program: ir.Program) -> Node:
     return result
 
 
-def build_circuit(prep: Prepared, manager: Manager | None = None) -> Circuit:
-    """The circuit of ``prep``: its walks iterated to the signals' fixpoint."""
+def build_circuit(prep: Prepared, manager: Manager | None = None,
+                  tracked: tuple[ir.VarDecl, ...] = ()) -> Circuit:
+    """The circuit of ``prep``: its walks iterated to the signals' fixpoint; ``tracked``: the
+    variables kept exactly (:mod:`.circuit_data`), the other data abstracted."""
     m = manager or Manager()
-    registers, inputs, data = _declare(m, prep)
-    circuit = Circuit(prep, m, registers, inputs, data)
+    registers, inputs, data = _declare(m, prep, tracked)
+    circuit = Circuit(prep, m, registers, inputs, data, tracked=tracked)
     circuit.relations = _relations(m, prep.program)
     boot, term = m.var(BOOT), m.var(TERM)
     running = ~term
@@ -556,6 +586,11 @@ def _outputs(circuit: Circuit, walk: _Walk, codes: dict[int, Rail], env: dict) -
             present = walk.must.get(decl, m.false)
         circuit.next[name] = present & running & ~code0
     circuit.evaluated = walk.evaluated
+    for k, var in enumerate(circuit.tracked):
+        for bit, value in enumerate(walk.values[var]):
+            circuit.next[counter_bit(k, bit)] = value & running & ~code0
+    circuit.overflow = walk.arithmetic.overflow
+    circuit.relations &= walk.constraints
     circuit.activations = walk.activations
     circuit.undecided = [(where, loc, name) for where, loc, name in walk.undecided
                          if where != m.false]

@@ -131,7 +131,13 @@ def minimize(program: ir.Program, trees: dict, initial, waiting: dict, labels: d
                 queue.append(tc)
     state_number = {key: number[cls[key]] for key in trees if cls[key] in number}
     new_trees = tuple(_retarget(trees[representative[c]], state_number) for c in order)
-    new_waiting = tuple(waiting[representative[c]] for c in order)
+    # where a class waits: a member's that waits somewhere (the boot state, merged with the
+    # states of a loop it starts, waits nowhere; its class waits where the loop does)
+    waits: dict[int, tuple] = {}
+    for key in trees:
+        if waiting[key] and cls[key] not in waits:
+            waits[cls[key]] = waiting[key]
+    new_waiting = tuple(waits.get(c, waiting[representative[c]]) for c in order)
     new_labels = tuple(labels[representative[c]] for c in order)
     terminal = next((state_number[k] for k in trees if k == TERMINAL and k in state_number), None)
     return Automaton(program, new_trees, new_waiting, tuple(data_tests), tuple(variables),

@@ -26,7 +26,9 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable
 
+from orccad_app.diagnostics import OrccadError
 from orccad_app.executive.kernel import EventClass
+from orccad_app.mission.injection import PlantFault
 from orccad_app.trace.report import InjectionRecord
 
 __all__ = ["UserInputs", "due_ns", "HELD_BY", "RAISED_BY"]
@@ -96,8 +98,8 @@ class UserInputs:
     def check_fault(self, name: str, value: Any) -> None:
         """Raise :class:`OrccadError` unless ``ROBOT.FAULT`` is a fault of a robot of the run
         and ``value`` within its declared range."""
-        robot, fault = name.split(".", 1)
-        self.run.check_fault(robot, fault, value)
+        fault = _plant_fault(name)
+        self.run.check_fault(fault.robot, fault.fault, value)
 
     def hold(self, name: str, value: Any = None) -> None:
         """Raise input ``name`` at every tick from the due instant until :meth:`release`."""
@@ -147,8 +149,8 @@ class UserInputs:
     def _fault(self, item: tuple[str, Any]) -> None:
         name, value = item
         now = self.run.kernel.now
-        robot, fault = name.split(".", 1)
-        self.run.apply_fault(robot, fault, value)
+        fault = _plant_fault(name)
+        self.run.apply_fault(fault.robot, fault.fault, value)
         self._records.append(InjectionRecord(now, name, value, True, RAISED_BY))
         self.log(now, "fault", f"{name}={value} injected by the user")
 
@@ -174,3 +176,11 @@ class UserInputs:
         holds = [*self._ended, *self._holds.values()]
         found = self._records + [h.record() for h in holds if h.instants]
         return sorted(found, key=lambda record: (record.time_ns, record.name))
+
+
+def _plant_fault(name: str) -> PlantFault:
+    """The fault ``ROBOT.FAULT`` the console lists as ``name`` (its robot and fault, typed)."""
+    fault = PlantFault.named(name)
+    if fault is None:
+        raise OrccadError(f"'{name}' is not a plant fault (ROBOT.FAULT)")
+    return fault

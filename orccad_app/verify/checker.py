@@ -101,15 +101,13 @@ class MissionReport:
 
     @property
     def counters_exact(self) -> bool:
-        return self.model.exact if self.symbolic is None else not self.symbolic.counters
+        return self.model.exact if self.symbolic is None else self.symbolic.abstracted is None
 
     @property
     def abstracted_because(self) -> str | None:
         if self.symbolic is None:
             return self.model.abstracted_because
-        if self.symbolic.counters:
-            return "the symbolic checker abstracts the counters too"
-        return None
+        return self.symbolic.abstracted
 
 
 def applicable(items, mission: ast.Mission) -> list:
@@ -264,6 +262,15 @@ def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
                     progress: CheckProgress | None) -> MissionReport:
     composition = compose(program, mission, lazy=True)
     model, witness, sizes = symbolic_model(composition)
+    try:
+        return _symbolic_outcomes(program, mission, builtins, progress, composition, model,
+                                  witness, sizes)
+    finally:
+        release(model, witness)
+
+
+def _symbolic_outcomes(program, mission, builtins, progress, composition, model, witness,
+                       sizes) -> MissionReport:
     report = MissionReport(composition, witness.model, engine=SYMBOLIC, symbolic=sizes)
     total = _properties_total(program, mission, builtins)
     if builtins:
@@ -280,7 +287,6 @@ def _check_symbolic(program: ast.Program, mission: ast.Mission, builtins: bool,
                                                 PropertyOutcome, _script))
         if progress is not None:
             progress.properties(len(report.outcomes), total)
-    release(model, witness)
     return report
 
 

@@ -19,6 +19,7 @@ import operator
 from typing import Any, Callable, Iterable
 
 from orccad_app.reactive import ir
+from orccad_app.reactive.circuit_data import is_exact
 from orccad_app.reactive.automaton import Action, Automaton, DataBranch, InputTest, Node
 
 __all__ = ["TOP", "tracked_variables", "evaluate", "is_exact", "is_clock_test", "assignments"]
@@ -62,20 +63,6 @@ def assignments(automaton: Automaton) -> list[Action]:
     """Every assignment action of the automaton's reaction trees."""
     return [n for tree in automaton.trees for n in _nodes(tree)
             if isinstance(n, Action) and n.kind == "assign"]
-
-
-def is_exact(expr: ir.Expr, tracked: set) -> bool:
-    """Can ``expr`` be computed exactly from tracked variables (integers, booleans)?"""
-    if isinstance(expr, ir.Const):
-        return isinstance(expr.value, (bool, int))
-    if isinstance(expr, ir.VarRef):
-        return expr.var in tracked
-    if isinstance(expr, ir.Unary):
-        return expr.op in ("-", "not") and is_exact(expr.operand, tracked)
-    if isinstance(expr, ir.Binary):
-        return (expr.op in _ARITH or expr.op in ("and", "or")) and \
-            is_exact(expr.left, tracked) and is_exact(expr.right, tracked)
-    return False
 
 
 def tracked_variables(automaton: Automaton) -> tuple[ir.VarDecl, ...]:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from orccad_app.diagnostics import OrccadError
 from orccad_app.lang import ast
 from orccad_app.reactive import ir
+from orccad_app.reactive.circuit_data import WIDTH
 from orccad_app.verify import data
 from orccad_app.robottask.atoms import ACTIVE, SIGNAL, STATUS, TRUE_ATOM, Atoms
 from orccad_app.robottask.composition import Composition
@@ -28,7 +29,8 @@ from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.builtins import check_builtin_symbolic
 from orccad_app.reactive.circuit import build_circuit
 from orccad_app.verify.symbolic.ltl import SymbolicLasso, find_lasso_symbolic
-from orccad_app.verify.symbolic.model import SymbolicModel
+from orccad_app.verify.symbolic.model import (MAX_COUNTER_IMAGES, SymbolicBudgetExceeded,
+                                              SymbolicModel)
 from orccad_app.verify.symbolic.runs import holds_at
 from orccad_app.verify.symbolic.witness import Witness
 
@@ -45,21 +47,46 @@ class SymbolicCheck:
     bdd_nodes: int
     registers: int
     walks: int
-    counters: bool
-    """Whether the mission has counters the explicit model would track exactly (the symbolic
-    one abstracts them)."""
+    abstracted: str | None
+    """Why the counters are abstracted (None: tracked exactly, or none)."""
 
 
 def symbolic_model(composition: Composition) -> tuple[SymbolicModel, Witness, SymbolicCheck]:
-    """The explored symbolic model of ``composition`` (built with a lazy automaton)."""
-    circuit = build_circuit(composition.automaton.prep)  # type: ignore[union-attr]
-    model = SymbolicModel(composition, circuit)
-    reachable = model.explore()
-    model.check_constructive()
+    """The explored symbolic model of ``composition`` (built with a lazy automaton): counters
+    exact unless one leaves its bits or they take more than :data:`MAX_COUNTER_IMAGES`
+    instants to explore."""
+    prep = composition.automaton.prep  # type: ignore[union-attr]
+    tracked = counters_of(composition)
+    abstracted = None
+    model = None
+    if tracked:
+        model = SymbolicModel(composition, build_circuit(prep, tracked=tracked))
+        try:
+            reachable = model.explore(MAX_COUNTER_IMAGES)
+            circuit = model.circuit
+            if (circuit.overflow & reachable & circuit.relations) != model.m.false:
+                low, high = -(1 << (WIDTH - 1)), (1 << (WIDTH - 1)) - 1
+                abstracted = f"a counter leaves [{low}, {high}]"
+        except SymbolicBudgetExceeded:
+            abstracted = f"the counters take more than {MAX_COUNTER_IMAGES} instants to explore"
+        if abstracted is not None:
+            model.m.release(model.circuit, model)
+            model = None
+    try:
+        if model is None:
+            model = SymbolicModel(composition, build_circuit(prep))
+            reachable = model.explore()
+        model.check_constructive()
+    except BaseException:
+        if model is not None:
+            model.m.release(model.circuit, model)
+        raise
     m = model.m
-    control = m.exists(["failed_before"], reachable)
-    sizes = SymbolicCheck(model.count(control) // 2, model.count(reachable),
-                          len(m.bdd), len(model.cur), circuit.walks, bool(counters_of(composition)))
+    counter_bits = [r for r in model.cur if r.startswith("v")]
+    control = m.exists(["failed_before"] + counter_bits, reachable)
+    sizes = SymbolicCheck(model.count(control) >> (1 + len(counter_bits)),
+                          model.count(reachable), len(m.bdd), len(model.cur),
+                          model.circuit.walks, abstracted)
     return model, Witness(model), sizes
 
 
@@ -81,7 +108,8 @@ def counters_of(composition: Composition) -> tuple:
         if isinstance(node.src, ir.Assign):
             actions.append(node.src)
         stack.extend(node.children)
-    tracked = {a.var for a in actions}
+    order = {a.var: None for a in actions}
+    tracked = set(order)
     changed = True
     while changed:
         changed = False
@@ -89,7 +117,7 @@ def counters_of(composition: Composition) -> tuple:
             if action.var in tracked and not data.is_exact(action.expr, tracked):
                 tracked.discard(action.var)
                 changed = True
-    return tuple(tracked)
+    return tuple(v for v in order if v in tracked)
 
 
 def parallel_tasks(composition: Composition) -> str:

@@ -135,34 +135,30 @@ class _Product:
         result = m.exists(self.bits + model.never_read, result)
         return m.rename(result, self.to_cur)
 
-    def can_reach(self, goal: Node, within: Node) -> Node:
-        """The states of ``within`` with a path to ``goal`` (backward, by pre-images)."""
-        m = self.m
-        reached = frontier = goal & within
-        while frontier != m.false:
-            frontier = within & self.pre(frontier) & ~reached
-            reached |= frontier
-        return reached
-
-    def explore(self, within: Node, goal: Node) -> None:
-        """The breadth-first rings from the initial state inside ``within``, until one
-        meets ``goal``."""
+    def explore(self, within: Node | None = None, goal: Node | None = None) -> Node:
+        """The product's states reachable inside ``within`` (default: all), breadth first,
+        until a ring meets ``goal`` (default: to the end); the rings are kept for the lasso."""
         m = self.m
         reached = frontier = self.init
         self.rings = [self.init]
-        while (frontier & goal) == m.false:
-            new = self.image(frontier) & within & ~reached
-            assert new != m.false, "the goal is not reachable inside the set"
+        while goal is None or (frontier & goal) == m.false:
+            new = self.image(frontier) & ~reached
+            if within is not None:
+                new &= within
+            self.model.check_budget()
+            if new == m.false:
+                break
             reached |= new
             self.rings.append(new)
             frontier = new
+        return reached
 
     # ------------------------------------------------------------------ fair states
-    def fair_states(self) -> Node:
-        """Emerson–Lei's greatest fixpoint, each set's constraint applied as soon as it is
-        computed (the rounds then converge in fewer passes)."""
+    def fair_states(self, reachable: Node) -> Node:
+        """Emerson–Lei's greatest fixpoint inside ``reachable``, each set's constraint applied
+        as soon as it is computed (the rounds then converge in fewer passes)."""
         m = self.m
-        z = self.model.reachable
+        z = reachable
         while True:
             old = z
             for edges in self.sets or [m.true]:
@@ -261,15 +257,8 @@ def find_lasso_symbolic(model: SymbolicModel, goal: F, atoms: dict[tuple, Node],
                         fair: bool = True) -> SymbolicLasso | None:
     """A fair run of the model satisfying ``goal`` (the assumptions and the negated
     property), or None when there is none."""
-    m = model.m
     product = _Product(model, goal, atoms, fair)
-    # fair cycles among the model's reachable states, whatever the tableau's bits; then
-    # whether the initial state reaches one (only then are the product's rings built)
-    fair_states = product.fair_states()
-    if fair_states == m.false:
+    fair_states = product.fair_states(product.explore())
+    if fair_states == model.m.false:
         return None
-    leads = product.can_reach(fair_states, model.reachable)
-    if (product.init & leads) == m.false:
-        return None
-    product.explore(leads, fair_states)
     return product.lasso(fair_states)

@@ -15,6 +15,7 @@ pre-image: the next-state functions substituted into the set (vector composition
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 from orccad_app.diagnostics import OrccadError, SourceLocation
@@ -33,6 +34,11 @@ __all__ = ["SymbolicModel", "SymbolicBudgetExceeded", "MAX_IMAGES", "MAX_BDD_NOD
 MAX_IMAGES = 100_000
 #: BDD nodes the symbolic checker may hold (about 100 bytes each in CUDD: ~1.5 GB).
 MAX_BDD_NODES = 15_000_000
+#: Breadth-first images allowed with exact counters (a counter that counts every instant
+#: would take 2^15 of them): past them the counters are abstracted.
+MAX_COUNTER_IMAGES = 1_000
+#: Seconds between two counts of the BDD nodes (the budget's check).
+BUDGET_EVERY_S = 0.5
 
 
 class SymbolicBudgetExceeded(OrccadError):
@@ -61,6 +67,7 @@ class SymbolicModel:
         self.free = list(c.inputs) + list(c.data)
         self.to_cur = dict(zip(self.nxt, self.cur))
         self.to_next = dict(zip(self.cur, self.nxt))
+        self._budget_checked = float("-inf")
         self.term = m.var(TERM)
         self.running = ~self.term
         self.init = m.cube({r: r == BOOT for r in c.registers})
@@ -114,16 +121,16 @@ class SymbolicModel:
         return source & self.compose(target) & self.circuit.relations
 
     # ------------------------------------------------------------------ reachability
-    def explore(self) -> Node:
+    def explore(self, max_images: int = MAX_IMAGES) -> Node:
         """The reachable states, breadth first (the rings are kept for shortest runs)."""
         m = self.m
         reached = self.init
         frontier = self.init
         self.rings = [self.init]
         while frontier != m.false:
-            if len(self.rings) > MAX_IMAGES:
+            if len(self.rings) > max_images:
                 raise SymbolicBudgetExceeded(
-                    f"mission {self.composition.name}: more than {MAX_IMAGES} instants to "
+                    f"mission {self.composition.name}: more than {max_images} instants to "
                     "reach every state", self.composition.mission.loc)
             new = self.image(frontier) & ~reached
             self.check_budget()
@@ -137,7 +144,12 @@ class SymbolicModel:
 
     def check_budget(self) -> None:
         """Refuse the mission, located, once the BDDs hold more than :data:`MAX_BDD_NODES`
-        nodes, naming the parallel branches that multiply the states."""
+        nodes, naming the parallel branches that multiply the states. Counting the nodes costs
+        a pass over CUDD's tables: it is done at most every :data:`BUDGET_EVERY_S`."""
+        now = time.monotonic()
+        if now - self._budget_checked < BUDGET_EVERY_S:
+            return
+        self._budget_checked = now
         if len(self.m.bdd) <= MAX_BDD_NODES:
             return
         composition = self.composition

@@ -55,11 +55,19 @@ def _registers(prep: Prepared, key) -> dict[str, bool]:
 
 def mismatches(prep: Prepared) -> tuple[int, list[str]]:
     """(transitions compared, descriptions of those where the circuit and engine differ)."""
+    trees = _trees(prep)  # first: the explicit compiler may refuse the program
     circuit = build_circuit(prep)
+    try:
+        return _compare(prep, circuit, trees)
+    finally:
+        circuit.manager.release(circuit)
+
+
+def _compare(prep: Prepared, circuit, trees: dict) -> tuple[int, list[str]]:
     m = circuit.manager
     program = prep.program
     compared, found = 0, []
-    for key, tree in _trees(prep).items():
+    for key, tree in trees.items():
         if key == TERMINAL:
             continue
         current = _registers(prep, key)
@@ -85,5 +93,4 @@ def mismatches(prep: Prepared) -> tuple[int, list[str]]:
                 found.append(f"from {key} with {sorted(d.name for d, v in inputs.items() if v)}"
                              f", data {data}: engine {sorted(want)} {sorted(d.name for d in leaf.emitted)}"
                              f", circuit {sorted(got)} {sorted(emitted)}")
-    m.release(circuit)
     return compared, found
