@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import itertools
 import random
+import subprocess
 import sys
 
 import pytest
@@ -24,6 +25,7 @@ from orccad_app.pipeline import compose_mission, load
 from orccad_app.reactive.compiler import compile_program
 from orccad_app.reactive.lower import lower_mission
 from orccad_app.robottask.composition import compose
+from tests.codegen.cbuild import build
 from tests.codegen.circuit_helpers import agree_circuit, circuit_program, mission_circuit
 from tests.codegen.conftest import MISSIONS, ROOT, SCRIPTS, SHIPPED, generated
 from tests.codegen.test_random_programs import _script
@@ -50,6 +52,19 @@ def _circuit(stem: str, mission: str):
 def test_shipped_mission_circuit_agrees(stem, mission):
     automaton, program = _circuit(stem, mission)
     agree_circuit(automaton, program, SCRIPTS / f"{stem}.{mission}.in")
+
+
+@pytest.mark.parametrize("stem,mission", SHIPPED)
+def test_circuit_main_prints_what_react_composed_prints(stem, mission, capsys):
+    _automaton, program = _circuit(stem, mission)
+    script = SCRIPTS / f"{stem}.{mission}.in"
+    status = orccad(["react", str(MISSIONS / f"{stem}.orc"), "--mission", mission,
+                     "--composed", "--jsonl", "--inputs", str(script)])
+    expected = capsys.readouterr().out
+    done = subprocess.run([str(build(program)), str(script)], capture_output=True, text=True,
+                          timeout=60)
+    assert done.stdout == expected
+    assert done.returncode == status
 
 
 @pytest.mark.parametrize("script,stem,mission", [("abro.in", "abro", "ABRO"),
