@@ -25,7 +25,7 @@ import re
 from dataclasses import dataclass
 
 from orccad_app.codegen.cexpr import ExprWriter, StringTable, c_comment
-from orccad_app.codegen.circuit_reach import reachable
+from orccad_app.codegen.circuit_reach import reachable, simplify
 from orccad_app.codegen.circuit_schedule import Event, NotStatic, schedule
 from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.generate import (
@@ -264,6 +264,10 @@ class _Step:
         self.places = places
         self.slot: dict[int, int] = {}       # node (its address in CUDD) -> its wire
         self.held: list[Node] = []            # the nodes of the slots, kept alive
+        self.wires = 0                        # wires x[] written so far
+        #: the data tests (numbers) a wire reads: written again once they are evaluated
+        self.reads: dict[int, frozenset[int]] = {}
+        self.tests_read = {name: frozenset({int(name[1:])}) for name in circuit.data}
         self.lines: list = []               # C lines, and _Gate lines (node definitions)
         self.gates: list[str] = []          # the functions computing runs of nodes
         self.register_index = {name: i for i, name in enumerate(circuit.registers)}
@@ -280,13 +284,9 @@ class _Step:
         return f"t[{int(name[1:])}]"
 
     def wire(self, f: Node) -> str:
-        """The C of ``f`` as the step needs it.
-
-        Not simplified by CUDD's *restrict* to the reachable states, which shrinks the BDDs
-        several times (``auv_survey``: 36 900 lines of C to 2 000; 8 x 4: 10 500 to 5 600)
-        but gave C that disagreed with ``Reactor.step`` on one of 80 random programs of
-        ``tests/codegen/test_circuit.py`` (not understood yet)."""
-        return self.ref(f)
+        """The C of ``f`` as the step needs it: simplified where the registers are not
+        reachable (:func:`.circuit_reach.simplify`)."""
+        return self.ref(simplify(f, self.care))
 
     def ref(self, u: Node) -> str:
         """The C of ``u`` (its nodes written first)."""
@@ -325,11 +325,27 @@ class _Step:
                 text = f"!{v} || {hi}"
             else:
                 text = f"{v} ? {hi} : {lo}"
-            number = self.slot[int(u)] = len(self.slot)
+            number = self.slot[int(u)] = self.wires
+            self.wires += 1
+            tests = self.tests_read.get(u.var, frozenset())
+            for child in (low, high):
+                key = int(~child if child.negated else child)
+                tests = tests | self.reads.get(key, frozenset())
+            if tests:
+                self.reads[int(u)] = tests
             # its node stays allocated while the step is written: a temporary BDD freed
             # could give its address to another node, which ``slot`` would then name
             self.held.append(u)
             self.lines.append(_Gate(f"x[{number}] = {text};"))
+
+    def _forget(self, number: int) -> None:
+        """Data test ``number`` may just have been evaluated: a wire computed before from
+        its (then unset) outcome is written again when next needed. (A function need not
+        depend on a test where it is not yet evaluated, but a node it shares with one that
+        does, computed early, holds the outcome's old value.)"""
+        for key in [k for k, tests in self.reads.items() if number in tests]:
+            del self.reads[key]
+            self.slot.pop(key, None)
 
     def _grouped(self, prefix: str) -> list[str]:
         """The step's lines, each run of node definitions moved into a function of at most
@@ -374,6 +390,8 @@ class _Step:
                 self.lines.append(f"if ({condition}) {{")
                 self.lines += ["    " + line for line in code]
                 self.lines.append("}")
+            if event.activation.kind == "test":
+                self._forget(event.activation.target)  # type: ignore[arg-type]
         emitted = {}
         for signal in self.interface.outputs:
             emitted[signal.decl] = self.wire(c.emitted.get(signal.decl, self.m.false))
@@ -391,8 +409,8 @@ class _Step:
             if plan.shared_tests:
                 body.append(f"bool v[{max(plan.tests) + 1}] = {{0}};")
         body += [f"int em{n} = 0;" for n in plan.multiple.values()]
-        if self.slot:
-            body.append(f"unsigned char x[{len(self.slot)}];")
+        if self.wires:
+            body.append(f"unsigned char x[{self.wires}];")
         body += [f"unsigned char nx[{len(c.registers)}];", "int i;", "int st;", "(void)in;"]
         body += step_prologue(self.interface, self.places, errors, relations)
         body += [f"if (m->reg[0] > 1 || m->reg[1] > 1) return {errors.state};"]
