@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import cast
 
 from orccad_app.codegen.cexpr import ExprWriter, StringTable, c_comment
 from orccad_app.codegen.circuit_reach import reachable, simplify
@@ -116,11 +117,11 @@ def _generate(circuit: Circuit, prefix: str, roles: SignalRoles | None,
     writer = ExprWriter(types, places, errors, strings)
     functions = []
     for number, action in enumerate(plan.actions):
-        body = _used(("m",), writer.action(action.kind, action.target, action.expr))
-        functions.append(_function(f"static int a{number}({prefix}_mem *m)", body))
+        lines = _used(("m",), writer.action(action.kind, action.target, action.expr))
+        functions.append(_function(f"static int a{number}({prefix}_mem *m)", lines))
     for number in plan.tests:
-        body = _used(("m", "r"), writer.test(prep.data_tests[number].expr))
-        functions.append(_function(f"static int d{number}({prefix}_mem *m, bool *r)", body))
+        lines = _used(("m", "r"), writer.test(prep.data_tests[number].expr))
+        functions.append(_function(f"static int d{number}({prefix}_mem *m, bool *r)", lines))
     relations = [(r, errors.code(ErrorKind.RELATION, r.loc,
                                  f"these inputs violate 'relation {r.text}' (declared at "
                                  f"{r.loc})")) for r in program.relations]
@@ -133,10 +134,10 @@ def _generate(circuit: Circuit, prefix: str, roles: SignalRoles | None,
             f"{len(events)} data events), as C99.")
     memory = (f"    unsigned char reg[{registers}]; /* the registers: boot, terminated, "
               "failed before, then one per pause and pre bit */",)
-    header = header_text(prefix, shape, interface, places, strings, errors,  # type: ignore[arg-type]
+    header = header_text(prefix, shape, interface, places, strings, errors,
                          sites, origin, form=form, note=note, memory=memory)
     body = "\n\n".join(functions + [step])
-    reset = _reset(prefix, shape, places, strings,  # type: ignore[arg-type]
+    reset = _reset(prefix, shape, places, strings,
                    (f"{{ int i; for (i = 0; i < {registers}; ++i) m->reg[i] = 0; }}",
                     "m->reg[0] = 1; /* boot */"))
     source = "\n".join([
@@ -173,7 +174,7 @@ class _Plan:
         for event in events:
             a = event.activation
             if a.kind == "test":
-                tests.setdefault(a.target)  # type: ignore[arg-type]
+                tests.setdefault(cast(int, a.target))  # a test's target: its number
             elif a.kind == "emit":
                 emitters.setdefault(a.key, []).append(a)
         self.tests = list(tests)
@@ -208,8 +209,8 @@ class _Plan:
                         f"    v[{a.target}] = true;", "}"]
             return lines
         if a.kind == "assign":
-            return [_call(self.action("assign", a.target, a.expr))]  # type: ignore[arg-type]
-        target: ir.SignalDecl = a.target  # type: ignore[assignment]
+            return [_call(self.action("assign", a.target, cast(ir.Expr, a.expr)))]
+        target = cast(ir.SignalDecl, a.target)  # an emission's or a new incarnation's signal
         loc = a.node.src.loc
         if a.kind == "init":
             value = made(prep, ("init", target), lambda: ir.Const(
@@ -227,7 +228,7 @@ class _Plan:
         expr = a.expr
         if target.combine is not None:
             combined = made(prep, ("combine", id(expr)), lambda: ir.Binary(
-                target.combine, ir.SigValue(target, loc), expr, loc))  # type: ignore[arg-type]
+                target.combine, ir.SigValue(target, loc), expr, loc))
             lines.append(f"else {{ {_call(self.action('emit', target, combined))} }}")
         else:
             for other in self.emitters[a.key]:
@@ -391,7 +392,7 @@ class _Step:
                 self.lines += ["    " + line for line in code]
                 self.lines.append("}")
             if event.activation.kind == "test":
-                self._forget(event.activation.target)  # type: ignore[arg-type]
+                self._forget(cast(int, event.activation.target))
         emitted = {}
         for signal in self.interface.outputs:
             emitted[signal.decl] = self.wire(c.emitted.get(signal.decl, self.m.false))

@@ -26,6 +26,7 @@ fails in both).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 from orccad_app.diagnostics import SourceLocation
 from orccad_app.reactive import ir
@@ -58,14 +59,13 @@ def variables_read(expr: ir.Expr | None) -> set:
     stack = [] if expr is None else [expr]
     while stack:
         node = stack.pop()
-        kind = type(node)
-        if kind is ir.VarRef:
+        if isinstance(node, ir.VarRef):
             found.add(node.var)
-        elif kind is ir.Unary:
+        elif isinstance(node, ir.Unary):
             stack.append(node.operand)
-        elif kind is ir.Binary:
+        elif isinstance(node, ir.Binary):
             stack.extend((node.left, node.right))
-        elif kind is ir.VectorExpr:
+        elif isinstance(node, ir.VectorExpr):
             stack.extend(node.items)
     return found
 
@@ -131,8 +131,9 @@ def _schedule(circuit: Circuit, care: Node) -> list[Event]:
             if levels[i] > levels[j]:
                 raise NotStatic("an event waits for more values than a later one touching "
                                 "the same data", _loc(earlier))
-            inverted = m.any(r.get(later.visit, m.false) & ~r.get(earlier.visit, m.false)
-                             for r in rounds)
+            # (cast: with Node = Any, mypy takes dict.get's default-None overload)
+            inverted = m.any(r.get(later.visit, m.false)
+                             & ~cast(Node, r.get(earlier.visit, m.false)) for r in rounds)
             if inverted & both != m.false:
                 raise NotStatic("an event becomes sure after a later one touching the same "
                                 "data (its path waits for a signal's status)", _loc(earlier))
@@ -184,7 +185,8 @@ def _check_tests_before(circuit: Circuit, events: list[Activation], care: Node) 
     for a in events:
         _independent(m, a.sure & care, decided, a)
         if a.kind == "test":
-            decided[a.target] = decided.get(a.target, m.false) | a.sure  # type: ignore[index]
+            number = cast(int, a.target)  # a test's target: its data test's number
+            decided[number] = decided.get(number, m.false) | a.sure
     finals = [*circuit.next.values(), *circuit.emitted.values(), circuit.code0]
     for f in finals:
         _independent(m, f & care, decided, None)

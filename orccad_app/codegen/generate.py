@@ -24,7 +24,7 @@ from orccad_app.codegen.cexpr import (ExprWriter, Place, Places, StringTable, c_
                                       c_string)
 from orccad_app.codegen.errors import ErrorKind, ErrorTable
 from orccad_app.codegen.helpers import helpers_for
-from orccad_app.codegen.header import header_text
+from orccad_app.codegen.header import AutomatonShape, header_text
 from orccad_app.codegen.interface import ROLE_CODES, Interface
 from orccad_app.codegen.names import c_identifier, own_macros
 from orccad_app.codegen.reaction import Graph, intern
@@ -331,7 +331,7 @@ def _node(number: int, node, graph: Graph, interface: Interface, places: Places)
 
 # --------------------------------------------------------------------------- reset, tables
 
-def _reset(prefix: str, automaton: Automaton, places: Places, strings: StringTable,
+def _reset(prefix: str, automaton: AutomatonShape, places: Places, strings: StringTable,
            extra: tuple[str, ...] = ()) -> str:
     body = [f"m->state = {automaton.initial};", *extra, f"m->status = {prefix.upper()}_RUNNING;",
             "m->reason = -1;", "m->clock_ns = 0;"]

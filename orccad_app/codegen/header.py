@@ -4,15 +4,17 @@ tables and the functions (see :mod:`.generate`)."""
 
 from __future__ import annotations
 
+from typing import Protocol
+
 from orccad_app.codegen.cexpr import Places, StringTable, c_comment, c_string, c_type
 from orccad_app.codegen.errors import ErrorTable
 from orccad_app.codegen.interface import Interface
 from orccad_app.codegen.names import header_guard
 from orccad_app.codegen.sites import SITE_TYPES, SiteInfo, site_comment
 from orccad_app.codegen.static_types import Kind
-from orccad_app.reactive.automaton import Automaton
+from orccad_app.reactive import ir
 
-__all__ = ["header_text"]
+__all__ = ["AutomatonShape", "header_text"]
 
 _COMMON = """\
 #ifndef ORCCAD_GENERATED_COMMON
@@ -67,7 +69,21 @@ typedef struct {
 """
 
 
-def header_text(prefix: str, automaton: Automaton, interface: Interface, places: Places,
+class AutomatonShape(Protocol):
+    """What the header and the reset read of an automaton: the explicit one
+    (:class:`~orccad_app.reactive.automaton.Automaton`) or the circuit's one-state shape."""
+
+    @property
+    def program(self) -> ir.Program: ...
+
+    @property
+    def state_count(self) -> int: ...
+
+    @property
+    def initial(self) -> int: ...
+
+
+def header_text(prefix: str, automaton: AutomatonShape, interface: Interface, places: Places,
             strings: StringTable, errors: ErrorTable, sites: tuple[SiteInfo, ...],
             origin: str, *, form: str | None = None, note: tuple[str, ...] = (),
             memory: tuple[str, ...] = ()) -> str:
