@@ -59,8 +59,17 @@ def refusal(text: str, type_name: str, name: str | None = None) -> str:
     literal (a long text :func:`~orccad_app.diagnostics.cut`)."""
     where = f" for {name}" if name else ""
     hint = HINTS.get(type_name)
+    if type_name not in ("bool", "string") and _non_finite(text):  # nan, inf, 1e400
+        hint = "numbers must be finite"
     tail = f" ({hint})" if hint else ""
     return f"'{cut(text)}' is not a {type_name} value{where}{tail}"
+
+
+def _non_finite(text: str) -> bool:
+    try:
+        return not math.isfinite(float(text))
+    except (ValueError, OverflowError):
+        return False
 
 
 def _finite(text: str) -> float:

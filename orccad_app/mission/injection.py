@@ -97,13 +97,15 @@ def parse_injection(text: str) -> Injection:
 
 
 def _fault_injection(text: str, fault: PlantFault, raw: str, when: str) -> Injection:
+    expected = "expected ROBOT.FAULT=VALUE@SECONDS, e.g. auv.leak=1@120 or auv.battery=5%@60"
     try:
         seconds = float(when)
-        value = _value(raw[:-1].strip() if raw.endswith("%") else raw)
     except ValueError:
-        raise OrccadError(f"bad injection {cut(repr(text))}: expected "
-                          f"ROBOT.FAULT=VALUE@SECONDS, "
-                          f"e.g. auv.leak=1@120 or auv.battery=5%@60") from None
+        raise OrccadError(f"bad injection {cut(repr(text))}: {expected}") from None
+    try:
+        value = _value(raw[:-1].strip() if raw.endswith("%") else raw)
+    except ValueError as error:  # the literal grammar says why (not a finite number, …)
+        raise OrccadError(f"bad injection {cut(repr(text))}: {error} ({expected})") from None
     if not seconds >= 0:
         raise OrccadError(f"bad injection {cut(repr(text))}: the time must be >= 0 s")
     return Injection(str(fault), int(round(seconds * 1e9)), value, fault=fault)
