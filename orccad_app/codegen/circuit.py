@@ -43,7 +43,8 @@ from orccad_app.codegen.static_types import CodegenError, CType, infer
 from orccad_app.reactive import ir
 from orccad_app.reactive.status import Status
 from orccad_app.reactive.bdd import Node
-from orccad_app.reactive.circuit import TERM, Circuit, build_circuit, register
+from orccad_app.reactive.circuit import TERM, Circuit, register
+from orccad_app.reactive.circuit_build import build_circuit
 from orccad_app.reactive.prepare import Prepared, prepare
 from orccad_app.reactive.reads import made
 from orccad_app.robottask.labels import Phase, PhaseLabel, RtLabel

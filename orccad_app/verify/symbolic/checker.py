@@ -27,7 +27,7 @@ from orccad_app.verify.lasso import holds_on_lasso
 from orccad_app.verify.search import Instant, Lasso
 from orccad_app.reactive.bdd import Node
 from orccad_app.verify.symbolic.builtins import check_builtin_symbolic
-from orccad_app.reactive.circuit import build_circuit
+from orccad_app.reactive.circuit_build import build_circuit
 from orccad_app.verify.symbolic.ltl import SymbolicLasso, find_lasso_symbolic
 from orccad_app.verify.symbolic.model import (MAX_COUNTER_IMAGES, SymbolicBudgetExceeded,
                                               SymbolicModel)

@@ -13,8 +13,9 @@ from orccad_app.reactive.automaton import TERMINAL, DataBranch, InputTest, Leaf
 from orccad_app.reactive.compiler import DEFAULT_MAX_STATES, _Explorer, _targets
 from orccad_app.reactive.engine import BOOT
 from orccad_app.reactive.prepare import Prepared
+from orccad_app.reactive.circuit_build import build_circuit
 from orccad_app.reactive.circuit import (BOOT as BOOT_REG, FAILED_BEFORE, TERM,
-                                                build_circuit, data_var, input_var, pre_bit,
+                                                data_var, input_var, pre_bit,
                                                 register)
 
 
