@@ -59,7 +59,7 @@ def refusal(text: str, type_name: str, name: str | None = None) -> str:
     literal (a long text :func:`~orccad_app.diagnostics.cut`)."""
     where = f" for {name}" if name else ""
     hint = HINTS.get(type_name)
-    if type_name not in ("bool", "string") and _non_finite(text):  # nan, inf, 1e400
+    if type_name == "literal" and _non_finite(text):  # nan, inf, 1e400 read by their form
         hint = "numbers must be finite"
     tail = f" ({hint})" if hint else ""
     return f"'{cut(text)}' is not a {type_name} value{where}{tail}"

@@ -111,7 +111,7 @@ def test_set_overrides_the_mission_and_the_seed_drives_the_noise(tmp_path):
                                        "noise_std, qdot_noise_std, quantization)"),
     ("", ("--set", "arm.noise_std=-1"), "--set arm.noise_std=-1: arm3dof: noise_std must be >= 0"),
     ("", ("--set", "arm.noise_std=true"), "noise_std must be a number"),
-    ("", ("--set", "arm.noise_std=inf"), "must be finite"),
+    ("", ("--set", "arm.noise_std=inf"), "'inf' is not a scalar value (a finite number"),
 ])
 def test_bad_sensor_parameters_exit_2_with_a_location(tmp_path, robot_args, options, message):
     mission = _mission(tmp_path, robot_args)
