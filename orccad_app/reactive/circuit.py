@@ -108,8 +108,7 @@ class Circuit:
     ``next`` gives each register's next value (registers: ``boot``, ``term``,
     ``failed_before``, pauses, ``pre`` bits), ``emitted`` each output's presence, ``code0``
     where the program terminates in the instant, ``evaluated`` where each data test is
-    evaluated, ``undecided`` where a signal test cannot be decided (with the test's location),
-    ``frozen`` nothing (kept for the reader of the walk).
+    evaluated, ``undecided`` where a signal test cannot be decided (with the test's location).
     """
 
     prep: Prepared

@@ -135,23 +135,19 @@ class _Product:
         result = m.exists(self.bits + model.never_read, result)
         return m.rename(result, self.to_cur)
 
-    def explore(self, within: Node | None = None, goal: Node | None = None) -> Node:
-        """The product's states reachable inside ``within`` (default: all), breadth first,
-        until a ring meets ``goal`` (default: to the end); the rings are kept for the lasso."""
+    def explore(self) -> Node:
+        """The product's reachable states, breadth first (the rings are kept for the lasso)."""
         m = self.m
         reached = frontier = self.init
         self.rings = [self.init]
-        while goal is None or (frontier & goal) == m.false:
+        while True:
             new = self.image(frontier) & ~reached
-            if within is not None:
-                new &= within
             self.model.check_budget()
             if new == m.false:
-                break
+                return reached
             reached |= new
             self.rings.append(new)
             frontier = new
-        return reached
 
     # ------------------------------------------------------------------ fair states
     def fair_states(self, reachable: Node) -> Node:

@@ -238,10 +238,6 @@ def _non_causal(name: str, loc: SourceLocation) -> OrccadError:
                        "this instant (it depends on itself)", loc)
 
 
-def inputs_of(model: SymbolicModel) -> tuple[ir.SignalDecl, ...]:
-    return model.composition.automaton.inputs
-
-
 def widest_par(circuit: Circuit) -> str:
     """The ``par`` whose branches hold the most pauses: where the states multiply."""
     best = None
